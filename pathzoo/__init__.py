@@ -1,0 +1,213 @@
+"""pathzoo: compare path planners honestly.
+
+The public API is small:
+
+- :func:`load_scenario` and :func:`load_scenarios` give :class:`Scenario` objects;
+- :func:`make_planner` builds a registered planner with validated parameters;
+- :func:`run` runs planners x scenarios x seeds through the harness;
+- :func:`list_plugins` shows what the installed plugins provide.
+"""
+
+from __future__ import annotations
+
+from importlib.metadata import PackageNotFoundError, version
+from pathlib import Path
+from typing import TYPE_CHECKING, Any, Iterable, Sequence
+
+from pathzoo.core import (
+    Budget,
+    InvalidExperimentError,
+    InvalidParameterError,
+    InvalidScenarioError,
+    Metric,
+    MovingObstacle,
+    Param,
+    PathzooError,
+    Planner,
+    PlanResult,
+    RunRecord,
+    RunStatus,
+    Scenario,
+    Status,
+    TerrainRules,
+    UnknownPluginError,
+    UnsupportedScenarioError,
+    VehicleModel,
+)
+from pathzoo.plugins.entries import PluginEntry, ScenarioEntry
+from pathzoo.plugins.hookspecs import hookimpl
+
+if TYPE_CHECKING:
+    import pandas as pd
+
+try:
+    __version__ = version("pathzoo")
+except PackageNotFoundError:  # running from a source tree
+    __version__ = "0.0.0+unknown"
+
+__all__ = [
+    "Budget",
+    "InvalidExperimentError",
+    "InvalidParameterError",
+    "InvalidScenarioError",
+    "Metric",
+    "MovingObstacle",
+    "Param",
+    "PathzooError",
+    "PlanResult",
+    "Planner",
+    "PluginEntry",
+    "RunRecord",
+    "RunStatus",
+    "Scenario",
+    "ScenarioEntry",
+    "Status",
+    "TerrainRules",
+    "UnknownPluginError",
+    "UnsupportedScenarioError",
+    "VehicleModel",
+    "hookimpl",
+    "list_plugins",
+    "load_scenario",
+    "load_scenarios",
+    "make_planner",
+    "run",
+    "__version__",
+]
+
+
+def _looks_like_path(text: str) -> bool:
+    return any(sep in text for sep in ("/", "\\")) or Path(text).suffix in {
+        ".toml", ".map", ".scen", ".npy", ".npz", ".asc"
+    } or Path(text).exists()
+
+
+def load_scenario(id_or_path: str | Path) -> Scenario:
+    """Load one scenario by registered id or from a file.
+
+    Parameters
+    ----------
+    id_or_path : str or path
+        A registered id such as ``"gant.fig7"`` (see ``pathzoo list
+        scenarios``), or a scenario TOML file.
+
+    Raises
+    ------
+    UnknownPluginError
+        No scenario is registered under that id.
+    InvalidScenarioError
+        The file is malformed; the message names the file and field.
+    """
+    text = str(id_or_path)
+    if isinstance(id_or_path, Path) or _looks_like_path(text):
+        from pathzoo.io import load_scenario_file
+
+        return load_scenario_file(Path(text))
+    from pathzoo.plugins.manager import get_registry
+
+    entry = get_registry().get("scenarios", text)
+    return entry.obj.load()
+
+
+def load_scenarios(path: str | Path) -> list[Scenario]:
+    """Load every scenario a file describes.
+
+    A ``.scen`` file gives one scenario per problem line (with its optimal
+    length as ``reference_length``); a scenario TOML gives one; a glob pattern
+    of registered ids (``"movingai.arena.*"``) gives every match.
+    """
+    text = str(path)
+    if isinstance(path, Path) or _looks_like_path(text):
+        from pathzoo.io import load_scenario_files
+
+        return load_scenario_files(Path(text))
+    from pathzoo.plugins.manager import get_registry
+
+    reg = get_registry()
+    return [reg.get("scenarios", sid).obj.load() for sid in reg.match("scenarios", text)]
+
+
+def make_planner(planner_id: str, **params: Any) -> Planner:
+    """Build a registered planner; parameters are validated now.
+
+    Raises
+    ------
+    UnknownPluginError
+        No planner is registered under ``planner_id``.
+    InvalidParameterError
+        A parameter is unknown or out of range.
+    """
+    from pathzoo.plugins.manager import get_registry
+
+    cls = get_registry().get("planners", planner_id).obj
+    return cls(**params)
+
+
+def list_plugins(kind: str = "planners") -> list[PluginEntry]:
+    """Entries of one kind (``planners``, ``scenarios`` or ``metrics``), sorted by id."""
+    from pathzoo.plugins.manager import get_registry
+
+    table = get_registry().table(kind)  # type: ignore[arg-type]
+    return [table[k] for k in sorted(table)]
+
+
+def run(
+    planners: Sequence[str | Planner | tuple[str, dict[str, Any]]],
+    scenarios: Sequence[str | Scenario],
+    *,
+    seeds: int | Iterable[int] = 5,
+    db: str | Path = "pathzoo-results.sqlite",
+    jobs: int | None = None,
+    budget: Budget | None = None,
+    timeout_s: float | None = None,
+    experiment: str = "default",
+    seed: int = 0,
+    executor: str = "process",
+    progress: bool = True,
+) -> "pd.DataFrame":
+    """Run planners x scenarios x seeds, validate every path, store and return the runs.
+
+    Parameters
+    ----------
+    planners : sequence
+        Planner ids, ``(id, params)`` pairs, or planner instances.
+    scenarios : sequence
+        Scenario ids, glob patterns of ids, file paths, or Scenario objects.
+    seeds : int or iterable of int
+        Number of seeds (indices ``0..n-1``) or explicit seed indices.
+    db : path
+        SQLite file; runs already stored for this experiment are skipped.
+    jobs : int, optional
+        Worker processes (default: number of CPUs).
+    budget : Budget, optional
+        Per-run planning budget (default: 10 s of planning time).
+    timeout_s : float, optional
+        Hard per-run wall-clock limit after which the worker is killed
+        (default: budget time + 30 s).
+    experiment : str
+        Experiment name, part of every run key.
+    seed : int
+        Experiment seed from which each run's seed is derived.
+    executor : {"process", "dask", "inline"}
+        Where runs execute. ``inline`` runs in this process (no isolation).
+    progress : bool
+        Show a progress bar.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per run of this experiment, metrics as columns.
+    """
+    from pathzoo.harness.experiment import Experiment
+    from pathzoo.harness.runner import run_experiment
+
+    exp = Experiment.build(
+        planners=planners,
+        scenarios=scenarios,
+        seeds=seeds,
+        budget=budget,
+        timeout_s=timeout_s,
+        name=experiment,
+        seed=seed,
+    )
+    return run_experiment(exp, db=db, jobs=jobs, executor=executor, progress=progress)

@@ -1,0 +1,223 @@
+"""The Planner interface and its validated hyperparameters."""
+
+from __future__ import annotations
+
+import abc
+import hashlib
+import json
+import math
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, Callable, ClassVar, Mapping, Sequence
+
+import numpy as np
+
+from pathzoo.core.budget import Budget
+from pathzoo.core.errors import InvalidParameterError, UnsupportedScenarioError
+from pathzoo.core.results import PlanResult
+
+if TYPE_CHECKING:
+    from pathzoo.core.scenario import Scenario
+
+__all__ = ["Param", "Planner", "ProgressCallback", "params_hash"]
+
+ProgressCallback = Callable[[int, int, float], None]
+"""``progress(iteration, evaluations, best_cost)``; the harness adds the time."""
+
+_MISSING = object()
+
+
+@dataclass(frozen=True)
+class Param:
+    """Declaration of one planner hyperparameter.
+
+    Parameters
+    ----------
+    default : object
+        Default value (the paper's value for the papers' planners).
+    doc : str
+        One-line meaning, with the paper's symbol and equation where relevant.
+    low, high : float, optional
+        Inclusive bounds for numeric parameters.
+    low_open, high_open : bool
+        Make the corresponding bound exclusive.
+    choices : sequence, optional
+        Allowed values for categorical parameters.
+    nullable : bool
+        Whether ``None`` is allowed.
+    """
+
+    default: Any
+    doc: str = ""
+    low: float | None = None
+    high: float | None = None
+    low_open: bool = False
+    high_open: bool = False
+    choices: Sequence[Any] | None = None
+    nullable: bool = False
+
+    @property
+    def kind(self) -> type:
+        """Python type of the default (``bool``, ``int``, ``float`` or ``str``)."""
+        return type(self.default)
+
+    def describe_range(self) -> str:
+        """Human-readable allowed range, used in error messages."""
+        if self.choices is not None:
+            return "one of " + ", ".join(repr(c) for c in self.choices)
+        lo = "-inf" if self.low is None else repr(self.low)
+        hi = "inf" if self.high is None else repr(self.high)
+        left = "(" if self.low_open or self.low is None else "["
+        right = ")" if self.high_open or self.high is None else "]"
+        return f"{self.kind.__name__} in {left}{lo}, {hi}{right}"
+
+    def validate(self, owner: str, name: str, value: Any) -> Any:
+        """Return ``value`` coerced to the parameter's type, or raise.
+
+        Raises
+        ------
+        InvalidParameterError
+            Naming the planner, the parameter, the allowed range and the value.
+        """
+
+        def fail() -> InvalidParameterError:
+            return InvalidParameterError(
+                f"{owner}: parameter '{name}' must be {self.describe_range()}, got {value!r}"
+            )
+
+        if value is None:
+            if self.nullable:
+                return None
+            raise fail()
+        kind = self.kind
+        if self.choices is not None:
+            if value not in self.choices:
+                raise fail()
+            return value
+        if kind is bool:
+            if not isinstance(value, (bool, np.bool_)):
+                raise fail()
+            return bool(value)
+        if kind is int:
+            if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)):
+                raise fail()
+            value = int(value)
+        elif kind is float:
+            if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
+                raise fail()
+            value = float(value)
+            if not math.isfinite(value):
+                raise fail()
+        elif not isinstance(value, kind):
+            raise fail()
+        if self.low is not None and (value < self.low or (self.low_open and value == self.low)):
+            raise fail()
+        if self.high is not None and (value > self.high or (self.high_open and value == self.high)):
+            raise fail()
+        return value
+
+
+def params_hash(planner_id: str, version: str, params: Mapping[str, Any]) -> str:
+    """Stable 12-hex-digit hash of a planner id, version and parameters."""
+    blob = json.dumps({"id": planner_id, "version": version, "params": dict(params)}, sort_keys=True, default=str)
+    return hashlib.sha256(blob.encode()).hexdigest()[:12]
+
+
+class Planner(abc.ABC):
+    """Base class of every planner.
+
+    Subclasses declare class attributes and implement :meth:`plan`:
+
+    - ``id``: ``"family.name"``, e.g. ``"exact.astar"``;
+    - ``version``: bumped whenever results for the same seed would change;
+    - ``summary``: one line for ``pathzoo list``;
+    - ``kinds``: the scenario kinds supported (``grid2d``, ``terrain``,
+      ``air3d``, ``dynamic``);
+    - ``params``: a mapping of hyperparameter name to :class:`Param`.
+
+    Hyperparameters are keyword-only and validated on construction. A planner
+    keeps no state between ``plan()`` calls, so it can be pickled and sent to
+    another process. All randomness comes from the ``rng`` argument.
+
+    Examples
+    --------
+    >>> import pathzoo
+    >>> planner = pathzoo.make_planner("exact.astar")
+    >>> scenario = pathzoo.load_scenario("demo.rooms")  # doctest: +SKIP
+    >>> result = planner.plan(scenario, budget=pathzoo.Budget(), rng=np.random.default_rng(0))  # doctest: +SKIP
+    """
+
+    id: ClassVar[str] = ""
+    version: ClassVar[str] = "1"
+    summary: ClassVar[str] = ""
+    kinds: ClassVar[frozenset[str]] = frozenset()
+    params: ClassVar[Mapping[str, Param]] = {}
+
+    def __init__(self, **params: Any) -> None:
+        unknown = sorted(set(params) - set(self.params))
+        if unknown:
+            allowed = ", ".join(sorted(self.params)) or "none"
+            raise InvalidParameterError(f"{self.id}: unknown parameter(s) {unknown}; allowed: {allowed}")
+        values: dict[str, Any] = {}
+        for name, spec in self.params.items():
+            values[name] = spec.validate(self.id, name, params.get(name, spec.default))
+        self._values = values
+        self._check_params(values)
+
+    def _check_params(self, values: Mapping[str, Any]) -> None:
+        """Hook for cross-parameter checks; raise :class:`InvalidParameterError`."""
+
+    def __getattr__(self, name: str) -> Any:
+        values = self.__dict__.get("_values")
+        if values is not None and name in values:
+            return values[name]
+        raise AttributeError(f"{type(self).__name__!s} has no attribute {name!r}")
+
+    def __repr__(self) -> str:
+        args = ", ".join(f"{k}={v!r}" for k, v in self._values.items())
+        return f"{type(self).__name__}({args})"
+
+    def get_params(self) -> dict[str, Any]:
+        """Return the validated hyperparameters as a dict."""
+        return dict(self._values)
+
+    @property
+    def params_hash(self) -> str:
+        """Hash of id, version and parameters; part of every run key."""
+        return params_hash(self.id, self.version, self._values)
+
+    def check_supports(self, scenario: "Scenario") -> None:
+        """Raise :class:`UnsupportedScenarioError` if ``scenario.kind`` is not supported."""
+        if scenario.kind not in self.kinds:
+            raise UnsupportedScenarioError(
+                f"{self.id} does not support scenario kind '{scenario.kind}' "
+                f"(supports: {', '.join(sorted(self.kinds))})"
+            )
+
+    @abc.abstractmethod
+    def plan(
+        self,
+        scenario: "Scenario",
+        *,
+        budget: Budget,
+        rng: np.random.Generator,
+        progress: ProgressCallback | None = None,
+    ) -> PlanResult:
+        """Plan a path from ``scenario.start`` to ``scenario.goal``.
+
+        Parameters
+        ----------
+        scenario : Scenario
+            The problem. Must not be modified.
+        budget : Budget
+            Limits to respect.
+        rng : numpy.random.Generator
+            The only source of randomness.
+        progress : callable, optional
+            ``progress(iteration, evaluations, best_cost)``, called on every
+            iteration or improvement.
+
+        Returns
+        -------
+        PlanResult
+            Finding no path is a status, never an exception.
+        """

@@ -1,0 +1,1 @@
+"""Shared grid machinery: neighbourhood graphs, segment tests, terrain geometry and clearance."""

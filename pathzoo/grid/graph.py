@@ -1,0 +1,211 @@
+"""The neighbourhood graph of a scenario, in compressed sparse row form.
+
+Nodes are *all* cells, numbered row-major (``node = row * W + col``, or
+``(layer * H + row) * W + col`` for air volumes); blocked cells simply have no
+edges. An edge exists from a free cell to a free neighbour when the straight
+segment between their centres touches no blocked cell (the closed-cell rule of
+:mod:`pathzoo.grid.segments`, i.e. no corner cutting) and, on terrain, when its
+slope is within the vehicle's climb and descent limits.
+
+- ``grid2d``, ``dynamic``, ``terrain``: 8-connected; straight moves cost one
+  cell, diagonals √2 cells (3-D length on terrain).
+- ``air3d``: every offset up to ``max_step = (horizontal, vertical)`` cells,
+  filtered by the vehicle's pitch limit.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from functools import cached_property
+from typing import TYPE_CHECKING
+
+import numpy as np
+import scipy.sparse as sp
+
+from pathzoo.grid.segments import touched_cells_2d, touched_cells_3d
+
+if TYPE_CHECKING:
+    from pathzoo.core.scenario import Scenario
+    from pathzoo.core.vehicle import VehicleModel
+
+__all__ = ["GridGraph", "build_graph", "neighbour_offsets"]
+
+
+@dataclass(frozen=True, eq=False)
+class GridGraph:
+    """Directed neighbourhood graph in CSR form.
+
+    Attributes
+    ----------
+    shape : tuple of int
+        Grid shape the node ids refer to.
+    indptr : ndarray of int64, shape (N + 1,)
+        Edges of node ``u`` are ``indptr[u]:indptr[u + 1]``.
+    indices : ndarray of int64, shape (E,)
+        Target node of each edge.
+    length : ndarray of float64, shape (E,)
+        3-D edge length in metres.
+    slope : ndarray of float64, shape (E,)
+        Signed slope (radians, uphill positive) of each edge; pitch for air.
+    offset_id : ndarray of int8, shape (E,)
+        Index into ``offsets`` of the move each edge makes.
+    offsets : ndarray of int64, shape (K, ndim)
+        The neighbourhood moves in array-axis order.
+    vehicle : VehicleModel
+        Used for the energy edge costs.
+    """
+
+    shape: tuple[int, ...]
+    indptr: np.ndarray
+    indices: np.ndarray
+    length: np.ndarray
+    slope: np.ndarray
+    offset_id: np.ndarray
+    offsets: np.ndarray
+    vehicle: "VehicleModel"
+
+    @property
+    def n_nodes(self) -> int:
+        """Number of nodes (all cells, blocked ones included)."""
+        return len(self.indptr) - 1
+
+    @property
+    def n_edges(self) -> int:
+        """Number of directed edges."""
+        return len(self.indices)
+
+    @cached_property
+    def degree(self) -> np.ndarray:
+        """Out-degree of each node (number of traversable neighbours)."""
+        return np.diff(self.indptr)
+
+    @cached_property
+    def energy(self) -> np.ndarray:
+        """Energy in joules to drive each edge at cruise speed (eq. 4 of G-Ant, no turns)."""
+        return self.vehicle.segment_energy(self.length, self.slope)
+
+    @cached_property
+    def sources(self) -> np.ndarray:
+        """Source node of each edge."""
+        return np.repeat(np.arange(self.n_nodes, dtype=np.int64), self.degree)
+
+    def neighbours(self, node: int) -> np.ndarray:
+        """Target nodes of ``node``'s edges."""
+        return self.indices[self.indptr[node] : self.indptr[node + 1]]
+
+    def weights(self, cost: str) -> np.ndarray:
+        """Edge weights for ``cost`` in ``{"length", "energy"}``."""
+        if cost == "length":
+            return self.length
+        if cost == "energy":
+            return self.energy
+        raise ValueError(f"unknown cost {cost!r}; allowed: length, energy")
+
+    def to_sparse(self, cost: str = "length") -> sp.csr_matrix:
+        """The graph as a SciPy CSR matrix (for :mod:`scipy.sparse.csgraph`)."""
+        n = self.n_nodes
+        return sp.csr_matrix((self.weights(cost), self.indices, self.indptr), shape=(n, n))
+
+
+def neighbour_offsets(ndim: int, max_step: tuple[int, int] = (1, 1)) -> np.ndarray:
+    """Neighbourhood moves in array-axis order.
+
+    2-D: the 8 king moves. 3-D: every ``(dz, dy, dx)`` with
+    ``|dx|, |dy| <= max_step[0]`` and ``|dz| <= max_step[1]``, except zero.
+    """
+    if ndim == 2:
+        return np.array([(dr, dc) for dr in (-1, 0, 1) for dc in (-1, 0, 1) if (dr, dc) != (0, 0)], dtype=np.int64)
+    sh, sv = max_step
+    moves = [
+        (dz, dy, dx)
+        for dz in range(-sv, sv + 1)
+        for dy in range(-sh, sh + 1)
+        for dx in range(-sh, sh + 1)
+        if (dz, dy, dx) != (0, 0, 0)
+    ]
+    return np.array(moves, dtype=np.int64)
+
+
+def _touched(offset: np.ndarray) -> np.ndarray:
+    """Cells (relative, array-axis order) the centre-to-centre move touches."""
+    if len(offset) == 2:
+        dr, dc = offset
+        return touched_cells_2d(0.5, 0.5, 0.5 + dc, 0.5 + dr)
+    dz, dy, dx = offset
+    return touched_cells_3d(np.array([0.5, 0.5, 0.5]), np.array([0.5 + dx, 0.5 + dy, 0.5 + dz]))
+
+
+def build_graph(scenario: "Scenario") -> GridGraph:
+    """Build the neighbourhood graph of a scenario (vectorised over cells).
+
+    Runs once per scenario; :attr:`Scenario.graph` caches it.
+    """
+    blocked = scenario.blocked
+    shape = blocked.shape
+    ndim = blocked.ndim
+    offsets = neighbour_offsets(ndim, scenario.max_step)
+    pad = int(np.abs(offsets).max())
+    free_padded = np.pad(~blocked, pad, constant_values=False)
+    core = tuple(slice(pad, pad + n) for n in shape)
+    sizes = scenario.cell_sizes[::-1]  # array-axis order
+    n = blocked.size
+    k = len(offsets)
+    valid = np.zeros((n, k), dtype=bool)
+    length = np.zeros((n, k))
+    slope = np.zeros((n, k))
+    flat_ids = np.arange(n, dtype=np.int64)
+    vehicle = scenario.vehicle
+    for j, off in enumerate(offsets):
+        ok = np.ones(shape, dtype=bool)
+        for rel in _touched(off):
+            ok &= free_padded[tuple(slice(pad + r, pad + r + s) for r, s in zip(rel, shape))]
+        step = off * sizes
+        horiz = float(np.hypot(step[-1], step[-2]))
+        if ndim == 3:
+            vert = float(step[0])
+            pitch = math.degrees(math.atan2(abs(vert), horiz))
+            if pitch > vehicle.max_pitch_deg + 1e-9:
+                ok[:] = False
+            length[:, j] = math.sqrt(horiz**2 + vert**2)
+            slope[:, j] = math.atan2(vert, horiz)
+        elif scenario.elevation is not None and scenario.kind == "terrain":
+            elev = scenario.elevation
+            target = np.full(shape, np.nan)
+            dr, dc = off
+            src = (slice(max(0, -dr), shape[0] - max(0, dr)), slice(max(0, -dc), shape[1] - max(0, dc)))
+            dst = (slice(max(0, dr), shape[0] - max(0, -dr)), slice(max(0, dc), shape[1] - max(0, -dc)))
+            target[src] = elev[dst]
+            dz = target - elev
+            theta = np.arctan2(dz, horiz)
+            with np.errstate(invalid="ignore"):
+                ok &= (np.degrees(theta) <= vehicle.max_climb_deg + 1e-9) & (
+                    np.degrees(theta) >= -vehicle.max_descent_deg - 1e-9
+                )
+            ok &= np.isfinite(dz)
+            length[:, j] = np.sqrt(horiz**2 + np.nan_to_num(dz) ** 2).ravel()
+            slope[:, j] = np.nan_to_num(theta).ravel()
+        else:
+            length[:, j] = horiz
+        valid[:, j] = ok.ravel()
+    # the target cell is always among the touched cells, so ``valid`` already
+    # excludes moves that leave the grid and a flat shift gives the target id
+    strides = np.array([int(np.prod(shape[i + 1 :])) for i in range(ndim)], dtype=np.int64)
+    tgt = flat_ids.reshape(n, 1) + (offsets @ strides)[None, :]
+    degree = valid.sum(axis=1)
+    indptr = np.zeros(n + 1, dtype=np.int64)
+    np.cumsum(degree, out=indptr[1:])
+    offset_id = np.broadcast_to(np.arange(k, dtype=np.int16), (n, k))[valid]
+    graph = GridGraph(
+        shape=tuple(shape),
+        indptr=indptr,
+        indices=tgt[valid],
+        length=length[valid],
+        slope=slope[valid],
+        offset_id=offset_id,
+        offsets=offsets,
+        vehicle=vehicle,
+    )
+    for arr in (graph.indptr, graph.indices, graph.length, graph.slope, graph.offset_id):
+        arr.setflags(write=False)
+    return graph

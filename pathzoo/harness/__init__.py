@@ -1,0 +1,1 @@
+"""The experiment harness: run planners x scenarios x seeds, validate, measure and store."""

@@ -1,0 +1,1 @@
+"""Plugin discovery (entry points + pluggy) and the registry of planners, scenarios and metrics."""

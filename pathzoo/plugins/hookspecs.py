@@ -1,0 +1,59 @@
+"""All pluggy hook specifications of pathzoo, in one place.
+
+A plugin is a module (or object) exposed under the ``pathzoo`` entry-point
+group. It implements any of these hooks with ``@pathzoo.hookimpl``::
+
+    [project.entry-points.pathzoo]
+    greedy = "pathzoo_greedy.plugin"
+
+Registration hooks return classes or entries; observer hooks are told about
+harness events and return nothing.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Sequence
+
+import pluggy
+
+if TYPE_CHECKING:
+    from pathzoo.core.metric import Metric
+    from pathzoo.core.planner import Planner
+    from pathzoo.core.results import RunRecord
+    from pathzoo.plugins.entries import ScenarioEntry
+
+__all__ = ["hookspec", "hookimpl", "PROJECT"]
+
+PROJECT = "pathzoo"
+hookspec = pluggy.HookspecMarker(PROJECT)
+hookimpl = pluggy.HookimplMarker(PROJECT)
+
+
+@hookspec
+def pathzoo_register_planners() -> Sequence[type["Planner"]]:
+    """Return the planner classes this plugin provides."""
+
+
+@hookspec
+def pathzoo_register_scenarios() -> Sequence["ScenarioEntry"]:
+    """Return the scenarios this plugin provides, as lazily loaded entries."""
+
+
+@hookspec
+def pathzoo_register_metrics() -> Sequence[type["Metric"]]:
+    """Return the metric classes this plugin provides."""
+
+
+@hookspec
+def pathzoo_run_started(run_key: str, planner_id: str, scenario_id: str, seed: int) -> None:
+    """Observer: a run is about to start (called in the harness process)."""
+
+
+@hookspec
+def pathzoo_run_finished(record: "RunRecord") -> None:
+    """Observer: a run has been validated, measured and stored."""
+
+
+@hookspec
+def pathzoo_experiment_finished(experiment: str, db: str, n_runs: int) -> None:
+    """Observer: every run of an experiment is stored."""

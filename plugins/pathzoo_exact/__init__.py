@@ -1,0 +1,1 @@
+"""Exact reference planners: Dijkstra, A* and Theta*."""

@@ -1,0 +1,1 @@
+"""Bundled scenario packs of pathzoo, registered as the ``scenarios`` plugin."""
