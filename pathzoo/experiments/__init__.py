@@ -1,0 +1,1 @@
+"""Experiment files shipped with pathzoo (``default.toml`` is what ``pathzoo run`` runs)."""

@@ -1,0 +1,1 @@
+"""Metaheuristic baselines: PSO (pyswarms), GA (DEAP), cuckoo search and fuzzy-GA."""

@@ -1,0 +1,1 @@
+"""OMPL sampling-based planners through the ompl 2.x nanobind bindings."""
