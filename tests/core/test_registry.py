@@ -1,0 +1,75 @@
+"""Plugin discovery: built-ins and third parties go through the same entry points."""
+
+import importlib.metadata as md
+import sys
+import types
+
+import pytest
+
+import pathzoo
+from pathzoo import Param, Planner, PlanResult, Status, UnknownPluginError
+from pathzoo.plugins.manager import discover
+
+
+class Dummy(Planner):
+    id = "dummy.one"
+    summary = "a dummy"
+    kinds = frozenset({"grid2d"})
+    params = {"k": Param(1, "k", low=1)}
+
+    def plan(self, scenario, *, budget, rng, progress=None):
+        return PlanResult(Status.FAILED)
+
+
+@pytest.fixture
+def fake_plugins(monkeypatch):
+    good = types.ModuleType("pz_fake_good")
+
+    @pathzoo.hookimpl
+    def pathzoo_register_planners():
+        return [Dummy]
+
+    good.pathzoo_register_planners = pathzoo_register_planners
+    clash = types.ModuleType("pz_fake_clash")
+    clash.pathzoo_register_planners = pathzoo.hookimpl(lambda: [Dummy])
+    bad_hook = types.ModuleType("pz_fake_badhook")
+
+    def boom():
+        raise RuntimeError("hook exploded")
+
+    bad_hook.pathzoo_register_planners = pathzoo.hookimpl(boom)
+    for mod in (good, clash, bad_hook):
+        monkeypatch.setitem(sys.modules, mod.__name__, mod)
+    return [
+        md.EntryPoint("good", "pz_fake_good", "pathzoo"),
+        md.EntryPoint("clash", "pz_fake_clash", "pathzoo"),
+        md.EntryPoint("badhook", "pz_fake_badhook", "pathzoo"),
+        md.EntryPoint("missing", "pz_fake_does_not_exist", "pathzoo"),
+    ]
+
+
+def test_discover_registers_and_reports_failures(fake_plugins):
+    reg = discover(fake_plugins)
+    assert list(reg.planners) == ["dummy.one"]
+    failures = {f.plugin: f.error for f in reg.failures}
+    assert "import failed: ModuleNotFoundError" in failures["missing"]
+    assert "hook raised" in failures["badhook"]
+    assert "already provided by" in failures["good"] or "already provided by" in failures["clash"]
+
+
+def test_unknown_ids_and_globs(fake_plugins):
+    reg = discover(fake_plugins)
+    with pytest.raises(UnknownPluginError, match="unknown planner 'dummy.two'.*did you mean one of: dummy.one"):
+        reg.get("planners", "dummy.two")
+    assert reg.match("planners", "dummy.*") == ["dummy.one"]
+    with pytest.raises(UnknownPluginError):
+        reg.match("planners", "nothing.*")
+    with pytest.raises(UnknownPluginError, match="unknown plugin kind"):
+        reg.table("widgets")
+
+
+def test_builtins_come_through_entry_points():
+    names = {ep.name for ep in md.entry_points(group="pathzoo")}
+    assert {"core", "exact", "aco", "baselines", "ompl", "scenarios"} <= names
+    with pytest.raises(UnknownPluginError):
+        pathzoo.make_planner("no.such.planner")

@@ -1,0 +1,109 @@
+"""The validator rejects every kind of forged path and accepts honest ones."""
+
+import math
+
+import numpy as np
+import pytest
+
+from pathzoo import MovingObstacle, Scenario, VehicleModel
+from pathzoo.harness.validation import validate_path
+
+
+@pytest.fixture
+def wall():
+    occ = np.zeros((5, 5), dtype=bool)
+    occ[1:5, 2] = True  # vertical wall with a gap at row 0
+    return Scenario(id="wall", kind="grid2d", occupancy=occ, cell_size=1.0, start=(0.5, 4.5), goal=(4.5, 4.5))
+
+
+def test_honest_path_is_valid(wall):
+    path = [(0.5, 4.5), (0.5, 1.5), (1.5, 0.5), (2.5, 0.5), (3.5, 0.5), (4.5, 1.5), (4.5, 4.5)]
+    assert validate_path(wall, path)
+
+
+def test_path_through_wall(wall):
+    v = validate_path(wall, [(0.5, 4.5), (4.5, 4.5)])
+    assert not v and "blocked cell" in v.reason
+
+
+def test_corner_cut(wall):
+    # (1.5, 1.5) -> (2.5, 0.5) cuts the corner of the wall cell (row 1, col 2)
+    path = [(0.5, 4.5), (1.5, 1.5), (2.5, 0.5), (3.5, 0.5), (4.5, 1.5), (4.5, 4.5)]
+    v = validate_path(wall, path)
+    assert not v and "row 1, col 2" in v.reason
+
+
+def test_wrong_endpoints_and_nan(wall):
+    assert "not at the goal" in validate_path(wall, [(0.5, 4.5), (0.5, 3.5)]).reason
+    assert "not at the start" in validate_path(wall, [(1.5, 4.5), (4.5, 4.5)]).reason
+    assert "NaN" in validate_path(wall, [(0.5, 4.5), (np.nan, 1.0), (4.5, 4.5)]).reason
+    assert "shape" in validate_path(wall, np.zeros((3, 3))).reason
+    assert not validate_path(wall, "not a path")
+
+
+def test_leaving_the_map(wall):
+    v = validate_path(wall, [(0.5, 4.5), (-1.0, 0.5), (4.5, 4.5)])
+    assert not v
+
+
+def test_terrain_slope_limit():
+    elev = np.array([[0.0, 0.5, 1.5]])
+    v = VehicleModel(max_climb_deg=40.0, max_descent_deg=60.0)
+    s = Scenario(id="t", kind="terrain", occupancy=np.zeros((1, 3), bool), cell_size=1.0, start=(0.5, 0.5),
+                 goal=(2.5, 0.5), elevation=elev, vehicle=v)
+    res = validate_path(s, [(0.5, 0.5), (1.5, 0.5), (2.5, 0.5)])
+    assert not res and "climbs 45.000 deg" in res.reason
+    back = Scenario(id="t", kind="terrain", occupancy=np.zeros((1, 3), bool), cell_size=1.0, start=(2.5, 0.5),
+                    goal=(0.5, 0.5), elevation=elev, vehicle=v)
+    assert validate_path(back, [(2.5, 0.5), (1.5, 0.5), (0.5, 0.5)])
+
+
+def test_turn_limit():
+    s = Scenario(id="t", kind="grid2d", occupancy=np.zeros((3, 3), bool), cell_size=1.0, start=(0.5, 0.5),
+                 goal=(0.5, 2.5), vehicle=VehicleModel(max_turn_deg=60))
+    assert "turn limit" in validate_path(s, [(0.5, 0.5), (2.5, 0.5), (0.5, 2.5)]).reason
+    assert validate_path(s, [(0.5, 0.5), (0.5, 2.5)])
+
+
+def dyn_scenario():
+    ob = MovingObstacle(radius=0.6, waypoints=np.array([[5.5, 0.5], [5.5, 9.5]]), speed=1.0)
+    return Scenario(id="d", kind="dynamic", occupancy=np.zeros((10, 10), bool), cell_size=1.0, start=(0.5, 0.5),
+                    goal=(9.5, 0.5), moving_obstacles=(ob,), vehicle=VehicleModel(cruise_speed=2.0))
+
+
+def test_moving_obstacle_hit_and_avoided_by_waiting():
+    s = dyn_scenario()
+    straight = [(0.5, 0.5), (9.5, 0.5)]
+    res = validate_path(s, straight)  # reaches x=5.5 at t=2.5 while the obstacle is at y=3.0: clear
+    assert res
+    # an obstacle that starts on the route: collide
+    ob = MovingObstacle(radius=0.6, waypoints=np.array([[5.5, 0.5], [5.5, 9.5]]), speed=0.1)
+    s2 = Scenario(id="d", kind="dynamic", occupancy=np.zeros((10, 10), bool), cell_size=1.0, start=(0.5, 0.5),
+                  goal=(9.5, 0.5), moving_obstacles=(ob,))
+    res2 = validate_path(s2, straight)
+    assert not res2 and "moving obstacle 0" in res2.reason
+    # waiting 30 s at the start lets the slow obstacle move away: at t = 32.5 s,
+    # when the vehicle crosses x = 5.5, the obstacle is at y = 0.5 + 3.25
+    times = [0.0, 30.0, 30.0 + 9.0 / 2.0]
+    assert validate_path(s2, [(0.5, 0.5), (0.5, 0.5), (9.5, 0.5)], times=times)
+
+
+def test_timed_path_cannot_teleport():
+    s = dyn_scenario()
+    res = validate_path(s, [(0.5, 0.5), (9.5, 0.5)], times=[0.0, 1.0])  # 9 m in 1 s at 2 m/s cruise
+    assert not res and "faster than cruise speed" in res.reason
+
+
+def test_min_distance_is_exact_against_sampling():
+    rng = np.random.default_rng(1)
+    ob = MovingObstacle(radius=1.0, waypoints=rng.uniform(0, 10, (4, 2)), speed=1.3, mode="loop", phase_s=0.7)
+    for _ in range(50):
+        p0, p1 = rng.uniform(0, 10, (2, 2))
+        t0 = rng.uniform(0, 20)
+        t1 = t0 + rng.uniform(0.1, 15)
+        exact = ob.min_distance(p0, p1, t0, t1)
+        ts = np.linspace(t0, t1, 20001)
+        veh = p0 + ((ts - t0) / (t1 - t0))[:, None] * (p1 - p0)
+        sampled = np.linalg.norm(veh - ob.position(ts), axis=1).min()
+        assert exact <= sampled + 1e-12
+        assert math.isclose(exact, sampled, abs_tol=2e-3)
