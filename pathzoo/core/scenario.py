@@ -32,6 +32,15 @@ ScenarioKind = Literal["grid2d", "terrain", "air3d", "dynamic"]
 SCENARIO_KINDS: tuple[str, ...] = ("grid2d", "terrain", "air3d", "dynamic")
 
 
+def _frozen_array(values: Any, dtype: type) -> np.ndarray:
+    """A read-only array of ``dtype``; an array that is already one (and owns its data) is shared, not copied."""
+    if isinstance(values, np.ndarray) and values.dtype == dtype and values.flags.owndata and not values.flags.writeable:
+        return values
+    arr = np.array(values, dtype=dtype)
+    arr.setflags(write=False)
+    return arr
+
+
 @dataclass(frozen=True, eq=False)
 class Scenario:
     """One planning problem: a map, a start, a goal and a vehicle.
@@ -98,7 +107,7 @@ class Scenario:
             raise bad(f"unknown kind {self.kind!r}; allowed: {', '.join(SCENARIO_KINDS)}", "kind")
         if not isinstance(self.cell_size, (int, float)) or not math.isfinite(self.cell_size) or self.cell_size <= 0:
             raise bad(f"must be a positive number, got {self.cell_size!r}", "cell_size")
-        occ = np.array(self.occupancy, dtype=bool)
+        occ = _frozen_array(self.occupancy, bool)
         want_ndim = 3 if self.kind == "air3d" else 2
         if occ.ndim != want_ndim or min(occ.shape, default=0) < 1:
             raise bad(f"must be a non-empty {want_ndim}-D array for kind {self.kind}, got shape {occ.shape}", "map")
@@ -110,17 +119,15 @@ class Scenario:
                 raise bad(f"must be two integers >= 1, got {self.max_step!r}", "max_step")
         elev = None
         if self.elevation is not None:
-            elev = np.array(self.elevation, dtype=np.float64)
+            elev = _frozen_array(self.elevation, np.float64)
             if elev.shape != occ.shape[-2:]:
                 raise bad(f"shape {elev.shape} differs from the map {occ.shape[-2:]}", "elevation")
-            elev.setflags(write=False)
         elif self.kind == "terrain":
             raise bad("a terrain scenario needs an elevation grid", "elevation")
         if self.moving_obstacles and self.kind != "dynamic":
             raise bad("only 'dynamic' scenarios may have moving obstacles", "moving_obstacles")
         if self.reference_length is not None and not (self.reference_length >= 0):
             raise bad(f"must be >= 0, got {self.reference_length!r}", "reference_length")
-        occ.setflags(write=False)
         object.__setattr__(self, "occupancy", occ)
         object.__setattr__(self, "elevation", elev)
         object.__setattr__(self, "moving_obstacles", tuple(self.moving_obstacles))
@@ -260,11 +267,31 @@ class Scenario:
 
         return segment_problem(self, np.asarray(p0, float), np.asarray(p1, float), t0, t1) is None
 
-    def with_endpoints(self, start: np.ndarray, goal: np.ndarray, *, id: str | None = None) -> "Scenario":
-        """A copy with another start and goal (re-validated); the graph is shared."""
+    def with_endpoints(
+        self,
+        start: np.ndarray,
+        goal: np.ndarray,
+        *,
+        id: str | None = None,
+        reference_length: float | None = None,
+        metadata: Mapping[str, Any] | None = None,
+    ) -> "Scenario":
+        """A copy with another start and goal (re-validated); map arrays, graph and clearance are shared.
+
+        A known optimum belongs to its endpoints, so the copy's
+        ``reference_length`` is the one given here (default: unknown), not the
+        original's. ``metadata`` replaces the original's when given.
+        """
         from dataclasses import replace
 
-        new = replace(self, start=start, goal=goal, id=id or self.id)
+        new = replace(
+            self,
+            start=start,
+            goal=goal,
+            id=id or self.id,
+            reference_length=reference_length,
+            metadata=self.metadata if metadata is None else metadata,
+        )
         for name in ("graph", "clearance", "blocked"):
             if name in self.__dict__:
                 new.__dict__[name] = self.__dict__[name]
