@@ -1,0 +1,366 @@
+"""The individual conformance checks a planner must pass (see ``docs/register-a-planner.md``).
+
+Every check is a function ``check_*(planner, **options)`` that returns nothing
+and raises :class:`ConformanceError` (an ``AssertionError``) naming the
+planner, the scenario and what went wrong. Checks that plan take the scenario
+``kind`` to use and the planning ``budget``; they run on the tiny scenarios of
+:mod:`pathzoo.testing.scenarios`.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import pickle
+import random
+import re
+import time
+from typing import Any, Callable, Mapping
+
+import numpy as np
+
+from pathzoo.core.budget import Budget
+from pathzoo.core.errors import InvalidParameterError, UnsupportedScenarioError
+from pathzoo.core.planner import Param, Planner
+from pathzoo.core.results import PlanResult
+from pathzoo.core.scenario import SCENARIO_KINDS, Scenario
+from pathzoo.core.status import Status
+from pathzoo.harness.validation import validate_path
+from pathzoo.testing.scenarios import check_scenario
+
+__all__ = [
+    "ConformanceError",
+    "DEFAULT_BUDGET",
+    "TIME_BUDGET_S",
+    "TIME_TOLERANCE_S",
+    "check_declaration",
+    "check_rejects_unknown_parameter",
+    "check_rejects_out_of_range",
+    "check_solves",
+    "check_same_seed_same_path",
+    "check_budget_iterations",
+    "check_budget_evaluations",
+    "check_budget_time",
+    "check_unreachable_goal",
+    "check_scenario_unchanged",
+    "check_picklable",
+    "check_history_improves",
+    "check_unsupported_kinds",
+]
+
+DEFAULT_BUDGET = Budget(iterations=5, time_s=2.0)
+"""Budget of the checks that plan: a few iterations, with a time cap as a safety net."""
+
+TIME_BUDGET_S = 0.3
+"""Planning time given in :func:`check_budget_time`."""
+
+TIME_TOLERANCE_S = 1.0
+"""How far past :data:`TIME_BUDGET_S` a planner may return (stopping granularity, loaded CI machines)."""
+
+SEED = 20240611
+"""Seed of the generator handed to ``plan()`` by the checks."""
+
+_ID_PATTERN = re.compile(r"^[a-z0-9_]+\.[a-z0-9_.\-]+$")
+
+
+class ConformanceError(AssertionError):
+    """A planner broke the planner contract; the message says which rule, where."""
+
+
+class _Progress:
+    """Records every ``progress(iteration, evaluations, best_cost)`` call."""
+
+    def __init__(self) -> None:
+        self.calls: list[tuple[Any, Any, Any]] = []
+
+    def __call__(self, iteration: int, evaluations: int, best_cost: float) -> None:
+        self.calls.append((iteration, evaluations, best_cost))
+
+
+def _fail(planner: Planner, message: str) -> ConformanceError:
+    return ConformanceError(f"{planner.id}: {message}")
+
+
+def _plan(
+    planner: Planner,
+    scenario: Scenario,
+    budget: Budget,
+    progress: Callable[[int, int, float], None] | None = None,
+    seed: int = SEED,
+) -> PlanResult:
+    """Call ``plan()`` and check that it returned a well-formed :class:`PlanResult`."""
+    result = planner.plan(scenario, budget=budget, rng=np.random.default_rng(seed), progress=progress)
+    if not isinstance(result, PlanResult):
+        raise _fail(planner, f"plan() returned {type(result).__name__}, not a PlanResult, on {scenario.id}")
+    if not isinstance(result.status, Status):
+        raise _fail(planner, f"PlanResult.status must be a Status, got {result.status!r} on {scenario.id}")
+    for name in ("iterations", "evaluations"):
+        value = getattr(result, name)
+        if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 0:
+            raise _fail(planner, f"PlanResult.{name} must be an int >= 0, got {value!r} on {scenario.id}")
+    return result
+
+
+def _first_kind(planner: Planner) -> str:
+    return next(k for k in SCENARIO_KINDS if k in planner.kinds)
+
+
+# ------------------------------------------------------------------ declaration
+def check_declaration(planner: Planner) -> None:
+    """Class attributes are well formed and the defaults build a planner."""
+    if not isinstance(planner.id, str) or not _ID_PATTERN.match(planner.id):
+        raise _fail(planner, f"id must read 'family.name' in lower case, got {planner.id!r}")
+    if not isinstance(planner.version, str) or not planner.version:
+        raise _fail(planner, f"version must be a non-empty string, got {planner.version!r}")
+    if not isinstance(planner.summary, str) or not planner.summary.strip() or "\n" in planner.summary:
+        raise _fail(planner, "summary must be one non-empty line")
+    kinds = set(planner.kinds)
+    if not kinds or not kinds <= set(SCENARIO_KINDS):
+        raise _fail(planner, f"kinds must be a non-empty subset of {SCENARIO_KINDS}, got {sorted(kinds)}")
+    if not isinstance(planner.params, Mapping) or not all(isinstance(p, Param) for p in planner.params.values()):
+        raise _fail(planner, "params must map parameter names to pathzoo.Param")
+    default = type(planner)()
+    if set(default.get_params()) != set(planner.params):
+        raise _fail(planner, "get_params() must return exactly the declared params")
+
+
+# ------------------------------------------------------------------ parameters
+def check_rejects_unknown_parameter(planner: Planner) -> None:
+    """An unknown keyword raises :class:`InvalidParameterError` naming it."""
+    name = "no_such_parameter_xyz"
+    try:
+        type(planner)(**planner.get_params(), **{name: 1})
+    except InvalidParameterError as exc:
+        if name not in str(exc):
+            raise _fail(planner, f"the error for an unknown parameter does not name it: {exc}") from None
+        return
+    raise _fail(planner, f"accepted the unknown parameter {name!r}")
+
+
+def _outside(spec: Param) -> list[Any]:
+    """Values that ``spec`` must reject, built from its declared type, range and choices."""
+    bad: list[Any] = []
+    if spec.choices is not None:
+        bad.append(("not", "a", "choice"))
+    elif spec.kind in (int, float):
+        if spec.low is not None:
+            value = spec.low if spec.low_open else spec.low - 1
+            bad.append(math.floor(value) if spec.kind is int else float(value))
+        if spec.high is not None:
+            value = spec.high if spec.high_open else spec.high + 1
+            bad.append(math.ceil(value) if spec.kind is int else float(value))
+        if spec.kind is float:
+            bad.append(float("nan"))
+        bad.append("not a number")
+    elif spec.kind is bool:
+        bad.append("yes")
+    elif spec.kind is str:
+        bad.append(12345)
+    if not spec.nullable:
+        bad.append(None)
+    return bad
+
+
+def check_rejects_out_of_range(planner: Planner) -> None:
+    """Each parameter rejects values outside its declared range, type or choices."""
+    base = planner.get_params()
+    for name, spec in planner.params.items():
+        for value in _outside(spec):
+            try:
+                type(planner)(**{**base, name: value})
+            except InvalidParameterError as exc:
+                if name not in str(exc):
+                    raise _fail(planner, f"the error for {name}={value!r} does not name the parameter: {exc}") from None
+                continue
+            raise _fail(planner, f"accepted {name}={value!r}, outside its declared {spec.describe_range()}")
+
+
+# ------------------------------------------------------------------ solving
+def check_solves(planner: Planner, *, kind: str, budget: Budget = DEFAULT_BUDGET) -> None:
+    """The tiny reachable scenario is solved and the harness's validator accepts the path."""
+    scenario = check_scenario(kind)
+    result = _plan(planner, scenario, budget)
+    if result.status is not Status.SOLVED:
+        raise _fail(
+            planner,
+            f"did not solve the easy scenario {scenario.id} within {budget} "
+            f"(status {result.status.value}: {result.message})",
+        )
+    if result.path is None:
+        raise _fail(planner, f"status SOLVED without a path on {scenario.id}")
+    verdict = validate_path(scenario, result.path, result.times)
+    if not verdict:
+        raise _fail(planner, f"invalid path on {scenario.id}: {verdict.reason}")
+
+
+def check_same_seed_same_path(planner: Planner, *, kind: str, budget: Budget = DEFAULT_BUDGET) -> None:
+    """Two calls with the same seed give the same answer.
+
+    The global ``random`` and ``numpy.random`` states are set differently
+    before each call, so a planner drawing from them is caught; the second
+    call passes no progress callback, which must not change the result.
+    """
+    scenario = check_scenario(kind)
+    saved = random.getstate(), np.random.get_state()
+    try:
+        random.seed(1)
+        np.random.seed(1)
+        first = _plan(planner, scenario, budget, progress=_Progress())
+        random.seed(2)
+        np.random.seed(2)
+        second = _plan(planner, scenario, budget, progress=None)
+    finally:
+        random.setstate(saved[0])
+        np.random.set_state(saved[1])
+    _require_same(planner, scenario, first, second, "a second call with the same seed")
+
+
+def _require_same(planner: Planner, scenario: Scenario, a: PlanResult, b: PlanResult, what: str) -> None:
+    if a.status is not b.status:
+        raise _fail(planner, f"{what} gave status {b.status.value}, the first {a.status.value}, on {scenario.id}")
+    for name in ("path", "times"):
+        x, y = getattr(a, name), getattr(b, name)
+        if (x is None) != (y is None) or (x is not None and not np.array_equal(np.asarray(x), np.asarray(y))):
+            raise _fail(planner, f"{what} gave a different {name} on {scenario.id}")
+
+
+# ------------------------------------------------------------------ budget
+def check_budget_iterations(planner: Planner, *, budget: Budget = DEFAULT_BUDGET) -> None:
+    """``Budget(iterations=2)`` is never exceeded, neither in the result nor in progress reports."""
+    limit = 2
+    scenario = check_scenario(_first_kind(planner))
+    progress = _Progress()
+    result = _plan(planner, scenario, Budget(iterations=limit, time_s=budget.time_s), progress)
+    reported = max([int(c[0]) for c in progress.calls], default=0)
+    if result.iterations > limit or reported > limit:
+        raise _fail(
+            planner,
+            f"used {max(result.iterations, reported)} iterations with Budget(iterations={limit}) on {scenario.id}",
+        )
+
+
+def check_budget_evaluations(planner: Planner, *, budget: Budget = DEFAULT_BUDGET) -> None:
+    """``Budget(evaluations=3)`` is never exceeded, neither in the result nor in progress reports."""
+    limit = 3
+    scenario = check_scenario(_first_kind(planner))
+    progress = _Progress()
+    result = _plan(planner, scenario, Budget(evaluations=limit, time_s=budget.time_s), progress)
+    reported = max([int(c[1]) for c in progress.calls], default=0)
+    if result.evaluations > limit or reported > limit:
+        raise _fail(
+            planner,
+            f"used {max(result.evaluations, reported)} evaluations with Budget(evaluations={limit}) on {scenario.id}",
+        )
+
+
+def check_budget_time(planner: Planner, *, budget: Budget = DEFAULT_BUDGET) -> None:
+    """With only a time limit, ``plan()`` returns within it (plus :data:`TIME_TOLERANCE_S`).
+
+    One untimed call first warms caches and JIT compilation, which the
+    harness's budget does not excuse but which a per-process cache hides.
+    """
+    scenario = check_scenario(_first_kind(planner))
+    _plan(planner, scenario, budget)
+    started = time.perf_counter()
+    _plan(planner, scenario, Budget(time_s=TIME_BUDGET_S))
+    elapsed = time.perf_counter() - started
+    if elapsed > TIME_BUDGET_S + TIME_TOLERANCE_S:
+        raise _fail(planner, f"took {elapsed:.2f} s with Budget(time_s={TIME_BUDGET_S}) on {scenario.id}")
+
+
+# ------------------------------------------------------------------ failure modes
+def check_unreachable_goal(planner: Planner, *, kind: str, budget: Budget = DEFAULT_BUDGET) -> None:
+    """A walled-in goal gives ``NO_PATH`` or ``FAILED``, not an exception and never ``SOLVED``."""
+    scenario = check_scenario(kind, reachable=False)
+    try:
+        result = _plan(planner, scenario, budget)
+    except ConformanceError:
+        raise
+    except Exception as exc:
+        raise _fail(planner, f"raised {type(exc).__name__}: {exc} on the unreachable {scenario.id}") from exc
+    if result.status not in (Status.NO_PATH, Status.FAILED):
+        raise _fail(planner, f"returned status {result.status.value} on the unreachable {scenario.id}")
+
+
+def check_unsupported_kinds(planner: Planner, *, budget: Budget = DEFAULT_BUDGET) -> None:
+    """Every kind the planner does not declare raises :class:`UnsupportedScenarioError`."""
+    for kind in SCENARIO_KINDS:
+        if kind in planner.kinds:
+            continue
+        scenario = check_scenario(kind)
+        try:
+            planner.plan(scenario, budget=budget, rng=np.random.default_rng(SEED), progress=None)
+        except UnsupportedScenarioError:
+            continue
+        raise _fail(planner, f"did not raise UnsupportedScenarioError on undeclared kind {kind!r}")
+
+
+# ------------------------------------------------------------------ purity
+def _snapshot(value: Any) -> Any:
+    """A comparable deep image of a value: arrays by dtype, shape, flags and bytes."""
+    if isinstance(value, np.ndarray):
+        return ("ndarray", value.dtype.str, value.shape, bool(value.flags.writeable), value.tobytes())
+    if dataclasses.is_dataclass(value) and not isinstance(value, type):
+        fields = tuple((f.name, _snapshot(getattr(value, f.name))) for f in dataclasses.fields(value))
+        return (type(value).__qualname__, fields)
+    if isinstance(value, Mapping):
+        return ("mapping", tuple(sorted((repr(k), _snapshot(v)) for k, v in value.items())))
+    if isinstance(value, (list, tuple)):
+        return (type(value).__name__, tuple(_snapshot(v) for v in value))
+    return ("value", repr(value))
+
+
+def _scenario_image(scenario: Scenario) -> dict[str, Any]:
+    """Every field and every cached geometry attribute of a scenario."""
+    return {name: _snapshot(value) for name, value in vars(scenario).items()}
+
+
+def check_scenario_unchanged(planner: Planner, *, kind: str, budget: Budget = DEFAULT_BUDGET) -> None:
+    """``plan()`` changes neither the scenario's fields nor its cached geometry, and adds no attribute."""
+    scenario = check_scenario(kind)
+    for cached in ("blocked", "graph", "clearance"):  # build the shared caches so they are compared too
+        getattr(scenario, cached)
+    before = _scenario_image(scenario)
+    _plan(planner, scenario, budget)
+    after = _scenario_image(scenario)
+    added = sorted(set(after) - set(before))
+    if added:
+        raise _fail(planner, f"plan() added attribute(s) {added} to the scenario {scenario.id}")
+    changed = sorted(name for name in before if before[name] != after.get(name))
+    if changed:
+        raise _fail(planner, f"plan() changed the scenario's {', '.join(changed)} on {scenario.id}")
+
+
+def check_picklable(planner: Planner, *, budget: Budget = DEFAULT_BUDGET) -> None:
+    """The planner pickles, keeps no state across ``plan()`` and its copy gives the same answer."""
+    scenario = check_scenario(_first_kind(planner))
+    try:
+        blob = pickle.dumps(planner)
+    except Exception as exc:
+        raise _fail(planner, f"cannot be pickled: {type(exc).__name__}: {exc}") from exc
+    copy = pickle.loads(blob)
+    if copy.get_params() != planner.get_params():
+        raise _fail(planner, "the unpickled planner has different parameters")
+    first = _plan(planner, scenario, budget)
+    if pickle.dumps(planner) != blob:
+        raise _fail(planner, "plan() changed the planner's state (a planner keeps no state between calls)")
+    _require_same(planner, scenario, first, _plan(copy, scenario, budget), "the unpickled planner")
+
+
+def check_history_improves(planner: Planner, *, kind: str, budget: Budget = DEFAULT_BUDGET) -> None:
+    """Progress reports never increase the best cost, and a solving run reports at least once."""
+    scenario = check_scenario(kind)
+    progress = _Progress()
+    result = _plan(planner, scenario, budget, progress)
+    if result.solved and not progress.calls:
+        raise _fail(planner, f"solved {scenario.id} without ever calling progress()")
+    previous = (-1, -1, math.inf)
+    for call in progress.calls:
+        iteration, evaluations, cost = call
+        if not isinstance(cost, (int, float, np.integer, np.floating)) or math.isnan(cost):
+            raise _fail(planner, f"progress() got best_cost={cost!r} on {scenario.id}; use inf before a solution")
+        if iteration < previous[0] or evaluations < previous[1]:
+            raise _fail(planner, f"progress() counts went backwards: {previous[:2]} then {call[:2]} on {scenario.id}")
+        if cost > previous[2]:
+            raise _fail(planner, f"best_cost increased from {previous[2]} to {cost} on {scenario.id}")
+        previous = call
