@@ -24,6 +24,7 @@ __all__ = [
     "segment_blocked_2d",
     "segment_blocked_3d",
     "first_blocked_cell_2d",
+    "count_blocked_cells_2d",
     "touched_cells_2d",
     "touched_cells_3d",
 ]
@@ -49,19 +50,16 @@ def _cell_range(lo: float, hi: float) -> tuple[int, int]:
 
 
 @numba.njit(cache=True)
-def first_blocked_cell_2d(blocked: np.ndarray, x0: float, y0: float, x1: float, y1: float) -> tuple[int, int]:
-    """Return ``(row, col)`` of the first blocked cell the segment touches, or ``(-2, -2)``.
-
-    Out-of-grid cells are blocked and may be returned with indices outside the
-    grid. ``blocked`` is a boolean array indexed ``[row, col]``; ``x`` is the
-    column axis and ``y`` the row axis, both in cell units.
-    """
+def _scan_2d(blocked: np.ndarray, x0: float, y0: float, x1: float, y1: float, first_only: bool) -> tuple[int, int, int]:
+    # walk the closed cells the segment touches, column by column from its left end;
+    # return (number of blocked or out-of-grid cells, row, col of the first one or -2, -2)
     h, w = blocked.shape
     if x0 > x1:
         x0, x1 = x1, x0
         y0, y1 = y1, y0
     dx = x1 - x0
     dy = y1 - y0
+    count, first_r, first_c = 0, -2, -2
     c_lo, c_hi = _cell_range(x0, x1)
     for c in range(c_lo, c_hi + 1):
         xa = max(x0, float(c))
@@ -75,11 +73,36 @@ def first_blocked_cell_2d(blocked: np.ndarray, x0: float, y0: float, x1: float, 
             ya, yb = yb, ya
         r_lo, r_hi = _cell_range(ya, yb)
         for r in range(r_lo, r_hi + 1):
-            if r < 0 or c < 0 or r >= h or c >= w:
-                return r, c
-            if blocked[r, c]:
-                return r, c
-    return -2, -2
+            if r < 0 or c < 0 or r >= h or c >= w or blocked[r, c]:
+                if count == 0:
+                    first_r, first_c = r, c
+                count += 1
+                if first_only:
+                    return count, first_r, first_c
+    return count, first_r, first_c
+
+
+@numba.njit(cache=True)
+def first_blocked_cell_2d(blocked: np.ndarray, x0: float, y0: float, x1: float, y1: float) -> tuple[int, int]:
+    """Return ``(row, col)`` of the first blocked cell the segment touches, or ``(-2, -2)``.
+
+    Out-of-grid cells are blocked and may be returned with indices outside the
+    grid. ``blocked`` is a boolean array indexed ``[row, col]``; ``x`` is the
+    column axis and ``y`` the row axis, both in cell units.
+    """
+    _, r, c = _scan_2d(blocked, x0, y0, x1, y1, True)
+    return r, c
+
+
+@numba.njit(cache=True)
+def count_blocked_cells_2d(blocked: np.ndarray, x0: float, y0: float, x1: float, y1: float) -> int:
+    """Number of blocked or out-of-grid cells the segment touches (cell units).
+
+    Zero exactly when :func:`segment_blocked_2d` is False; the count grows with
+    how deep the segment cuts into obstacles, which penalty-based optimisers use
+    as a collision measure.
+    """
+    return _scan_2d(blocked, x0, y0, x1, y1, False)[0]
 
 
 @numba.njit(cache=True)
