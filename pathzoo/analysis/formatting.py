@@ -1,0 +1,117 @@
+"""Render result tables as aligned text, Markdown, CSV or a self-contained HTML table."""
+
+from __future__ import annotations
+
+import html
+import math
+from typing import Literal, Sequence
+
+import pandas as pd
+
+from pathzoo.core.errors import InvalidParameterError
+
+__all__ = ["TABLE_FORMATS", "TableFormat", "format_number", "format_percent", "render_table"]
+
+TableFormat = Literal["text", "markdown", "csv", "html"]
+TABLE_FORMATS: tuple[str, ...] = ("text", "markdown", "csv", "html")
+MISSING = "–"
+
+
+def format_number(x: float, digits: int = 5) -> str:
+    """Show a number with ``digits`` significant figures, never in exponent form above 1e-3.
+
+    NaN and missing values become ``"–"``; infinities ``"inf"``/``"-inf"``.
+    """
+    if x is None or (isinstance(x, float) and math.isnan(x)) or pd.isna(x):
+        return MISSING
+    x = float(x)
+    if math.isinf(x):
+        return "inf" if x > 0 else "-inf"
+    if x == 0:
+        return "0"
+    magnitude = math.floor(math.log10(abs(x)))
+    if magnitude < -3:
+        return f"{x:.{digits - 1}e}"
+    decimals = max(digits - 1 - magnitude, 0)
+    return f"{x:.{decimals}f}"
+
+
+def format_percent(x: float) -> str:
+    """A fraction in [0, 1] as a whole percentage (``"85%"``), ``"–"`` when missing."""
+    if x is None or pd.isna(x):
+        return MISSING
+    return f"{100 * float(x):.0f}%"
+
+
+def render_table(
+    display: pd.DataFrame,
+    fmt: str,
+    *,
+    raw: pd.DataFrame | None = None,
+    title: str = "",
+    notes: Sequence[str] = (),
+    left: Sequence[str] = (),
+) -> str:
+    """Render a table of display strings.
+
+    Parameters
+    ----------
+    display : DataFrame
+        Cells already formatted as strings; column names are the headers.
+    fmt : {"text", "markdown", "csv", "html"}
+        Output format. ``csv`` writes ``raw`` (full-precision numbers) when
+        given, and never the title or notes.
+    raw : DataFrame, optional
+        The unformatted table, for ``csv``.
+    title : str
+        First line (text/Markdown) or ``<caption>`` (HTML).
+    notes : sequence of str
+        Lines printed under the table (legends, the ranking rule).
+    left : sequence of str
+        Columns aligned left in text output (others are right-aligned).
+
+    Raises
+    ------
+    InvalidParameterError
+        ``fmt`` is not one of :data:`TABLE_FORMATS`.
+    """
+    if fmt not in TABLE_FORMATS:
+        raise InvalidParameterError(f"fmt must be one of {', '.join(TABLE_FORMATS)}, got {fmt!r}")
+    if fmt == "csv":
+        return (raw if raw is not None else display).to_csv(index=False)
+    header = [str(c) for c in display.columns]
+    rows = [[str(v) for v in row] for row in display.itertuples(index=False, name=None)]
+    if fmt == "html":
+        return _html(header, rows, title, notes)
+    if fmt == "markdown":
+        esc = [[c.replace("|", "\\|") for c in r] for r in [header, *rows]]
+        lines = ["| " + " | ".join(esc[0]) + " |", "|" + "|".join("---" for _ in header) + "|"]
+        lines += ["| " + " | ".join(r) + " |" for r in esc[1:]]
+        head = [f"**{title}**", ""] if title else []
+        tail = ["", *notes] if notes else []
+        return "\n".join([*head, *lines, *tail]) + "\n"
+    widths = [max(len(r[i]) for r in [header, *rows]) for i in range(len(header))]
+    lefts = set(left)
+
+    def line(cells: list[str]) -> str:
+        out = [c.ljust(w) if h in lefts else c.rjust(w) for c, w, h in zip(cells, widths, header)]
+        return "  ".join(out).rstrip()
+
+    rule = "  ".join("-" * w for w in widths)
+    lines = [line(header), rule, *(line(r) for r in rows)]
+    head = [title, ""] if title else []
+    tail = ["", *notes] if notes else []
+    return "\n".join([*head, *lines, *tail]) + "\n"
+
+
+def _html(header: list[str], rows: list[list[str]], title: str, notes: Sequence[str]) -> str:
+    e = html.escape
+    parts = ['<table class="pz-table">']
+    if title:
+        parts.append(f"<caption>{e(title)}</caption>")
+    parts.append("<thead><tr>" + "".join(f"<th>{e(h)}</th>" for h in header) + "</tr></thead>")
+    parts.append("<tbody>")
+    parts += ["<tr>" + "".join(f"<td>{e(c)}</td>" for c in r) + "</tr>" for r in rows]
+    parts.append("</tbody></table>")
+    parts += [f'<p class="pz-note">{e(n)}</p>' for n in notes]
+    return "\n".join(parts) + "\n"

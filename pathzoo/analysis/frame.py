@@ -1,0 +1,165 @@
+"""The runs DataFrame as analysis sees it: column checks, success, configurations and metric facts.
+
+Every analysis function takes the frame returned by
+``pathzoo.harness.store.read_runs`` (one row per run). This module holds the
+few rules they share:
+
+- a run **succeeded** when ``status == "solved"`` and the harness found the
+  path ``valid`` (the same rule as :attr:`pathzoo.core.RunRecord.success`);
+- a **configuration** is a planner id plus a parameter hash; it is labelled by
+  the planner id alone unless the frame holds several parameter sets of the
+  same planner, then ``"<planner>@<first 7 hash characters>"``;
+- a metric's unit and direction come from the metric registry
+  (``pathzoo list metrics``); the harness's own numeric columns
+  (``wall_time_s``, ``cpu_time_s``, ``iterations``, ``evaluations``) are known
+  here too, all to be minimised;
+- for rank-based comparisons a failed run is **worse than every successful
+  run** and tied with the other failures: :func:`loss_values` turns a metric
+  into a "loss" (smaller is better, the sign flipped for ``max`` metrics) in
+  which every failed run is ``+inf``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Iterable, Literal
+
+import numpy as np
+import pandas as pd
+
+from pathzoo.core.errors import InvalidParameterError, UnknownPluginError
+
+__all__ = [
+    "MetricInfo",
+    "RUN_COLUMNS",
+    "metric_info",
+    "require_columns",
+    "success_mask",
+    "config_labels",
+    "loss_values",
+    "with_config",
+]
+
+Direction = Literal["min", "max"]
+
+
+@dataclass(frozen=True)
+class MetricInfo:
+    """What analysis needs to know about a metric column.
+
+    Attributes
+    ----------
+    id : str
+        Column name in the runs frame.
+    unit : str
+        SI unit, ``"1"`` for dimensionless.
+    direction : {"min", "max"}
+        Whether smaller or larger is better.
+    """
+
+    id: str
+    unit: str
+    direction: Direction
+
+    @property
+    def label(self) -> str:
+        """``"length [m]"``, or the bare id for dimensionless metrics."""
+        return self.id if self.unit in ("", "1") else f"{self.id} [{self.unit}]"
+
+    @property
+    def better(self) -> str:
+        """``"lower is better"`` or ``"higher is better"``."""
+        return "lower is better" if self.direction == "min" else "higher is better"
+
+
+RUN_COLUMNS: dict[str, MetricInfo] = {
+    "wall_time_s": MetricInfo("wall_time_s", "s", "min"),
+    "cpu_time_s": MetricInfo("cpu_time_s", "s", "min"),
+    "iterations": MetricInfo("iterations", "1", "min"),
+    "evaluations": MetricInfo("evaluations", "1", "min"),
+}
+"""Numeric harness columns that may be ranked like metrics (all minimised)."""
+
+_REQUIRED = ("planner", "params_hash", "scenario", "seed_index", "status", "valid")
+
+
+def metric_info(metric: str, direction: Direction | None = None, unit: str | None = None) -> MetricInfo:
+    """Look up a metric's unit and direction.
+
+    Parameters
+    ----------
+    metric : str
+        Metric id (a registered metric, or one of :data:`RUN_COLUMNS`).
+    direction : {"min", "max"}, optional
+        Override (needed for columns that are not registered metrics).
+    unit : str, optional
+        Override of the unit.
+
+    Raises
+    ------
+    UnknownPluginError
+        The metric is not registered and no ``direction`` was given.
+    InvalidParameterError
+        ``direction`` is not ``"min"`` or ``"max"``.
+    """
+    if direction is not None and direction not in ("min", "max"):
+        raise InvalidParameterError(f"direction must be 'min' or 'max', got {direction!r}")
+    known = RUN_COLUMNS.get(metric)
+    if known is None and (direction is None or unit is None):
+        from pathzoo.plugins.manager import get_registry
+
+        entry = get_registry().metrics.get(metric)
+        if entry is not None:
+            known = MetricInfo(metric, str(entry.obj.unit), entry.obj.direction)
+    if known is None and direction is None:
+        raise UnknownPluginError(
+            f"unknown metric '{metric}' (see 'pathzoo list metrics'); pass direction='min' or 'max' for other columns"
+        )
+    return MetricInfo(
+        metric,
+        unit if unit is not None else (known.unit if known else "1"),
+        direction if direction is not None else known.direction,  # type: ignore[union-attr]
+    )
+
+
+def require_columns(runs: pd.DataFrame, columns: Iterable[str], name: str = "runs") -> None:
+    """Raise :class:`InvalidParameterError` naming the first missing column."""
+    if not isinstance(runs, pd.DataFrame):
+        raise InvalidParameterError(f"{name} must be a pandas DataFrame, got {type(runs).__name__}")
+    for col in columns:
+        if col not in runs.columns:
+            raise InvalidParameterError(f"{name}: missing column '{col}'")
+
+
+def success_mask(runs: pd.DataFrame) -> pd.Series:
+    """Boolean Series: the harness validated a solved path."""
+    return (runs["status"].astype(str) == "solved") & runs["valid"].fillna(False).astype(bool)
+
+
+def config_labels(runs: pd.DataFrame) -> pd.Series:
+    """One label per run naming its configuration (planner, parameter hash)."""
+    planner = runs["planner"].astype(str)
+    phash = runs["params_hash"].astype(str)
+    n_sets = phash.groupby(planner).transform("nunique")
+    return planner.where(n_sets <= 1, planner + "@" + phash.str[:7])
+
+
+def with_config(runs: pd.DataFrame, metric: str | None = None) -> pd.DataFrame:
+    """A copy with ``config`` and ``success`` columns added (columns checked first)."""
+    require_columns(runs, (*_REQUIRED, metric) if metric else _REQUIRED)
+    out = runs.copy()
+    out["config"] = config_labels(out)
+    out["success"] = success_mask(out)
+    return out
+
+
+def loss_values(values: pd.Series | np.ndarray, success: pd.Series | np.ndarray, direction: Direction) -> np.ndarray:
+    """Metric values as losses (smaller is better) with every failed run at ``+inf``.
+
+    A successful run whose metric is NaN stays NaN (no value to rank) and is
+    dropped by the callers.
+    """
+    v = np.asarray(values, dtype=np.float64)
+    ok = np.asarray(success, dtype=bool)
+    loss = v if direction == "min" else -v
+    return np.where(ok, loss, np.inf)

@@ -1,0 +1,166 @@
+"""The leaderboard: configurations ranked within each scenario by one metric.
+
+Ranking rule
+------------
+Within a scenario, configurations are ordered by
+
+1. the **penalized median** of the metric: the median over *all* runs, where
+   a run that did not succeed (no path, failed, invalid, crash, timeout)
+   counts as worse than every successful run (``+inf`` for a metric to
+   minimise, ``-inf`` for one to maximise). It is finite only when more than
+   half of the runs succeeded, so a configuration that fails most of the time
+   can never outrank one that mostly succeeds;
+2. then the **success rate** (higher first), which separates configurations
+   whose penalized medians are both infinite;
+3. then the **median over successful runs**.
+
+Configurations equal on all three keys share a rank (competition ranking:
+1, 2, 2, 4). Success rate is always reported in its own column; the median,
+IQR and SD columns describe successful runs only.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from pathzoo.analysis.formatting import format_number, format_percent, render_table
+from pathzoo.analysis.frame import Direction
+from pathzoo.analysis.summary import summarize
+
+__all__ = ["leaderboard", "format_leaderboard", "RANKING_RULE"]
+
+RANKING_RULE = (
+    "Rank within each scenario: penalized median (failed runs count as worst), "
+    "then success rate, then median of successful runs. "
+    "Median, IQR and SD use successful runs only."
+)
+
+_VERDICT_NOTE = (
+    "vs reference: this configuration is significantly better/worse than the reference "
+    "(two-sided test, Holm-corrected per scenario, alpha={alpha:g}), else tie; "
+    "A12 = P(this run beats a reference run), ties count half."
+)
+
+
+def _rank_within(summary: pd.DataFrame, direction: Direction) -> pd.Series:
+    sign = 1.0 if direction == "min" else -1.0
+    keys = pd.DataFrame(
+        {
+            "pen": sign * summary["penalized_median"].astype(float),
+            "rate": -summary["success_rate"].astype(float),
+            "med": (sign * summary["median"].astype(float)).fillna(np.inf),
+        },
+        index=summary.index,
+    )
+    ranks = pd.Series(0, index=summary.index, dtype=int)
+    for _, idx in summary.groupby("scenario").groups.items():
+        k = keys.loc[idx].sort_values(["pen", "rate", "med"])
+        tuples = list(k.itertuples(index=False, name=None))
+        r = [1]
+        for i in range(1, len(tuples)):
+            r.append(r[-1] if tuples[i] == tuples[i - 1] else i + 1)
+        ranks.loc[k.index] = r
+    return ranks
+
+
+def leaderboard(
+    runs: pd.DataFrame,
+    metric: str = "length",
+    *,
+    direction: Direction | None = None,
+    reference: str | None = None,
+    alpha: float = 0.05,
+    paired: bool | str = "auto",
+) -> pd.DataFrame:
+    """Rank configurations within each scenario by one metric.
+
+    Parameters
+    ----------
+    runs : DataFrame
+        One row per run (``pathzoo.harness.store.read_runs``).
+    metric : str
+        Metric id to rank by (see ``pathzoo list metrics``).
+    direction : {"min", "max"}, optional
+        Override the metric's registered direction.
+    reference : str, optional
+        A configuration label (planner id, or ``planner@hash`` when a planner
+        ran with several parameter sets). When given, every other
+        configuration is tested against it (see
+        :func:`pathzoo.analysis.stats.pairwise_tests`) and the columns
+        ``vs_reference`` (``better``/``worse``/``tie``), ``p_holm`` and ``a12``
+        are added.
+    alpha : float
+        Significance level for ``vs_reference``.
+    paired : bool or "auto"
+        Passed to :func:`~pathzoo.analysis.stats.pairwise_tests`.
+
+    Returns
+    -------
+    DataFrame
+        Columns ``scenario, rank, planner, config, params_hash, n_runs,
+        success_rate, median, iqr, sd`` (plus the reference columns), sorted
+        by scenario and rank. ``attrs["metric"]`` is the metric's
+        :class:`~pathzoo.analysis.frame.MetricInfo`; ``attrs["reference"]``
+        and ``attrs["alpha"]`` are set too. See the module docstring for the
+        ranking rule.
+    """
+    summary = summarize(runs, metric, direction=direction)
+    info = summary.attrs["metric"]
+    summary["rank"] = _rank_within(summary, info.direction)
+    cols = ["scenario", "rank", "planner", "config", "params_hash", "n_runs", "success_rate", "median", "iqr", "sd"]
+    table = summary[cols]
+    if reference is not None:
+        from pathzoo.analysis.stats import pairwise_tests
+
+        tests = pairwise_tests(runs, metric, direction=info.direction, reference=reference, alpha=alpha, paired=paired)
+        verdict = {"a": "worse", "b": "better", "tie": "tie"}
+        other = tests[["scenario", "b", "p_holm", "a12", "winner"]].rename(columns={"b": "config"})
+        other["a12"] = 1.0 - other["a12"]  # P(this beats the reference)
+        other["vs_reference"] = other["winner"].map(verdict)
+        table = table.merge(other.drop(columns="winner"), on=["scenario", "config"], how="left")
+        table.loc[table["config"] == reference, "vs_reference"] = "reference"
+    table = table.sort_values(["scenario", "rank", "config"], kind="stable").reset_index(drop=True)
+    table.attrs.update(metric=info, reference=reference, alpha=alpha)
+    return table
+
+
+def format_leaderboard(table: pd.DataFrame, fmt: str = "text") -> str:
+    """Render a :func:`leaderboard` table.
+
+    Parameters
+    ----------
+    table : DataFrame
+        The output of :func:`leaderboard`.
+    fmt : {"text", "markdown", "csv", "html"}
+        ``csv`` keeps full precision; the others show 5 significant figures,
+        a title naming the metric and its direction, and the ranking rule.
+
+    Returns
+    -------
+    str
+    """
+    info = table.attrs.get("metric")
+    label = info.label if info is not None else "metric"
+    display = pd.DataFrame(
+        {
+            "scenario": table["scenario"].astype(str),
+            "rank": table["rank"].astype(str),
+            "planner": table["config"].astype(str),
+            "runs": table["n_runs"].astype(str),
+            "success": table["success_rate"].map(format_percent),
+            "median": table["median"].map(format_number),
+            "IQR": table["iqr"].map(format_number),
+            "SD": table["sd"].map(format_number),
+        }
+    )
+    notes = [RANKING_RULE]
+    if "vs_reference" in table.columns:
+        display["vs ref"] = table["vs_reference"].fillna("–")
+        display["p (Holm)"] = table["p_holm"].map(lambda x: format_number(x, 2))
+        display["A12"] = table["a12"].map(lambda x: f"{x:.2f}" if pd.notna(x) else "–")
+        notes.append(_VERDICT_NOTE.format(alpha=table.attrs.get("alpha", 0.05)))
+    title = f"Leaderboard: {label}" + (f", {info.better}" if info is not None else "")
+    return render_table(
+        display, fmt, raw=table, title=title, notes=notes, left=("scenario", "planner", "vs ref")
+    )

@@ -1,0 +1,125 @@
+"""Leaderboard ranking, statistics and formatting on hand-made runs."""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from pathzoo.analysis.leaderboard import format_leaderboard, leaderboard
+from pathzoo.analysis.synthetic import make_runs, random_runs
+from pathzoo.core.errors import InvalidParameterError, UnknownPluginError
+
+nan = np.nan
+
+
+def test_statistics_use_successful_runs_only():
+    runs = make_runs({"s": {"p": [1.0, 2.0, 3.0, 10.0, nan]}})
+    row = leaderboard(runs).iloc[0]
+    good = np.array([1.0, 2.0, 3.0, 10.0])
+    assert row["n_runs"] == 5
+    assert row["success_rate"] == pytest.approx(0.8)
+    assert row["median"] == pytest.approx(np.median(good))
+    assert row["iqr"] == pytest.approx(np.percentile(good, 75) - np.percentile(good, 25))
+    assert row["sd"] == pytest.approx(np.std(good, ddof=1))
+
+
+def test_failures_rank_worst_before_a_better_median():
+    # "fails" has the best successful median but fails 3 of 5 runs: penalized median is inf
+    runs = make_runs(
+        {
+            "s": {
+                "fails": [1.0, 1.0, nan, nan, nan],
+                "steady": [5.0, 5.0, 5.0, 5.0, 5.0],
+                "worse": [6.0, 6.0, 6.0, 6.0, nan],
+            }
+        }
+    )
+    lb = leaderboard(runs)
+    assert list(lb["config"]) == ["steady", "worse", "fails"]
+    assert list(lb["rank"]) == [1, 2, 3]
+
+
+def test_infinite_penalized_medians_are_separated_by_success_rate():
+    runs = make_runs({"s": {"a": [1.0, nan, nan, nan], "b": [9.0, 9.0, nan, nan], "c": [nan] * 4}})
+    lb = leaderboard(runs)
+    assert list(lb["config"]) == ["b", "a", "c"]
+    assert np.isnan(lb.set_index("config").loc["c", "median"])
+
+
+def test_ties_share_a_rank_and_max_metrics_rank_high_first():
+    runs = make_runs({"s": {"a": [3.0, 3.0], "b": [3.0, 3.0], "c": [5.0, 5.0]}}, metric="score")
+    lb = leaderboard(runs, "score", direction="min")
+    assert list(lb["rank"]) == [1, 1, 3]
+    lb = leaderboard(runs, "score", direction="max")
+    assert lb.iloc[0]["config"] == "c" and list(lb["rank"]) == [1, 2, 2]
+
+
+def test_ranked_per_scenario_and_direction_from_registry():
+    runs = make_runs({"s1": {"a": [1.0], "b": [2.0]}, "s2": {"a": [2.0], "b": [1.0]}})
+    lb = leaderboard(runs, "length")
+    assert lb.attrs["metric"].direction == "min" and lb.attrs["metric"].unit == "m"
+    best = lb[lb["rank"] == 1].set_index("scenario")["config"]
+    assert best.to_dict() == {"s1": "a", "s2": "b"}
+
+
+def test_success_metric_is_maximised():
+    runs = random_runs(n_seeds=6)
+    lb = leaderboard(runs, "success")
+    assert ((lb["rank"] == 1) == (lb["success_rate"] == lb.groupby("scenario")["success_rate"].transform("max"))).all()
+    assert (lb.loc[lb["config"] == "exact.dijkstra", "rank"] == 1).all()
+
+
+def test_several_parameter_sets_get_distinct_labels():
+    a = make_runs({"s": {"p": [1.0, 1.0]}})
+    b = make_runs({"s": {"p": [2.0, 2.0]}}).assign(params_hash="ffffffffffff")
+    lb = leaderboard(pd.concat([a, b], ignore_index=True))
+    assert sorted(lb["config"]) == sorted([f"p@{a.params_hash[0][:7]}", "p@fffffff"])
+
+
+def test_reference_columns():
+    runs = make_runs({"s": {"ref": [1.0 + 0.01 * i for i in range(10)], "bad": [2.0 + 0.01 * i for i in range(10)],
+                            "same": [1.0 + 0.01 * i for i in range(10)][::-1]}})
+    lb = leaderboard(runs, reference="ref").set_index("config")
+    assert lb.loc["ref", "vs_reference"] == "reference"
+    assert lb.loc["bad", "vs_reference"] == "worse"
+    assert lb.loc["bad", "a12"] == 0.0
+    assert lb.loc["same", "vs_reference"] == "tie"
+    assert lb.loc["same", "a12"] == pytest.approx(0.5)
+    with pytest.raises(InvalidParameterError, match="reference 'nope'"):
+        leaderboard(runs, reference="nope")
+
+
+def test_bad_inputs():
+    runs = make_runs({"s": {"a": [1.0]}})
+    with pytest.raises(UnknownPluginError, match="unknown metric 'foo'"):
+        leaderboard(runs.assign(foo=1.0), "foo")
+    with pytest.raises(InvalidParameterError, match="missing column 'bar'"):
+        leaderboard(runs, "bar", direction="min")
+    with pytest.raises(InvalidParameterError, match="missing column 'status'"):
+        leaderboard(runs.drop(columns="status"))
+    with pytest.raises(InvalidParameterError, match="fmt must be one of"):
+        format_leaderboard(leaderboard(runs), "pdf")
+
+
+def test_harness_columns_rank_without_registry():
+    runs = make_runs({"s": {"a": [1.0], "b": [1.0]}})
+    runs.loc[runs.planner == "a", "wall_time_s"] = 5.0
+    lb = leaderboard(runs, "wall_time_s")
+    assert lb.iloc[0]["config"] == "b" and lb.attrs["metric"].unit == "s"
+
+
+def test_formats():
+    runs = make_runs({"s1": {"a": [1.0, 2.0, nan], "b|x": [3.0, 3.0, 3.0]}})
+    lb = leaderboard(runs, reference="a")
+    text = format_leaderboard(lb, "text")
+    assert text.splitlines()[0] == "Leaderboard: length [m], lower is better"
+    assert "67%" in text and "penalized median" in text
+    md = format_leaderboard(lb, "markdown")
+    assert "| s1 | 1 | a |" in md and "b\\|x" in md
+    csv = format_leaderboard(lb, "csv")
+    back = pd.read_csv(__import__("io").StringIO(csv))
+    assert back["median"].tolist() == pytest.approx(lb["median"].tolist())
+    html = format_leaderboard(lb, "html")
+    assert html.startswith('<table class="pz-table">') and "<caption>Leaderboard: length [m]" in html
+    assert "<td>b|x</td>" in html and "<script" not in html
