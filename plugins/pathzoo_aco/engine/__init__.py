@@ -1,0 +1,25 @@
+"""The shared ant-colony engine: problem view, pheromone trails, walk rules, compiled walks and the colony loop."""
+
+from pathzoo_aco.engine.colony import AntColonyPlanner, ColonyState, colony_params
+from pathzoo_aco.engine.pheromone import Pheromone, deposit_walks
+from pathzoo_aco.engine.problem import ColonyProblem
+from pathzoo_aco.engine.rules import EMPTY, WalkRules
+from pathzoo_aco.engine.walk import ABORTED, EXHAUSTED, REACHED, STEP_CAP, STUCK, WalkEngine, Walks
+
+__all__ = [
+    "ABORTED",
+    "AntColonyPlanner",
+    "ColonyProblem",
+    "ColonyState",
+    "EMPTY",
+    "EXHAUSTED",
+    "Pheromone",
+    "REACHED",
+    "STEP_CAP",
+    "STUCK",
+    "WalkEngine",
+    "WalkRules",
+    "Walks",
+    "colony_params",
+    "deposit_walks",
+]

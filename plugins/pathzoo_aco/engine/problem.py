@@ -1,0 +1,135 @@
+"""The static view of a scenario that every ant colony walks on: graph arrays, geometry, turn table."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+
+from pathzoo.core.scenario import Scenario
+from pathzoo.grid.graph import GridGraph
+
+__all__ = ["ColonyProblem"]
+
+
+@dataclass(frozen=True, eq=False)
+class ColonyProblem:
+    """One scenario as the colony sees it: its neighbourhood graph and a few derived arrays.
+
+    Everything here depends only on the scenario, never on a planner's
+    parameters, and is computed lazily (a 2569 x 1919 terrain has about 39
+    million edges, so nothing is built that a variant does not ask for).
+
+    Parameters
+    ----------
+    scenario : Scenario
+        The planning problem (left unchanged).
+
+    Attributes
+    ----------
+    graph : GridGraph
+        ``scenario.graph`` (CSR: ``indptr``, ``indices``, ``length``, ``slope``, ``energy``, ``degree``).
+    start, goal : int
+        Start and goal node ids.
+    """
+
+    scenario: Scenario
+
+    @cached_property
+    def graph(self) -> GridGraph:
+        """The scenario's shared neighbourhood graph."""
+        return self.scenario.graph
+
+    @property
+    def start(self) -> int:
+        """Node id of the start cell."""
+        return self.scenario.start_node
+
+    @property
+    def goal(self) -> int:
+        """Node id of the goal cell."""
+        return self.scenario.goal_node
+
+    @property
+    def n_nodes(self) -> int:
+        """Number of nodes (all cells)."""
+        return self.graph.n_nodes
+
+    @cached_property
+    def n_free(self) -> int:
+        """Number of nodes with at least one edge: the longest simple walk has fewer edges."""
+        return int(np.count_nonzero(self.graph.degree)) + 1
+
+    @cached_property
+    def sources(self) -> np.ndarray:
+        """Source node of each edge."""
+        return self.graph.sources
+
+    @cached_property
+    def node_xyz(self) -> np.ndarray:
+        """World coordinates of every node centre, shape (N, 3); on terrain ``z`` is the cell's elevation."""
+        s = self.scenario
+        pts = s.point_of(np.arange(self.n_nodes))
+        if pts.shape[1] == 3:
+            return pts
+        z = np.zeros((len(pts), 1)) if s.elevation is None else np.nan_to_num(s.elevation).reshape(-1, 1)
+        return np.hstack([pts, z])
+
+    @cached_property
+    def goal_distance(self) -> np.ndarray:
+        """Straight-line (3-D on terrain) distance in metres from every node centre to the goal's centre."""
+        xyz = self.node_xyz
+        return np.sqrt(((xyz - xyz[self.goal]) ** 2).sum(axis=1))
+
+    @cached_property
+    def tangent(self) -> np.ndarray:
+        """Per edge ``|tan θ|``: the rise over run of eq. 3 of GGACO (0 on flat maps and in the air)."""
+        if self.scenario.kind != "terrain":
+            return np.zeros(self.graph.n_edges)
+        return np.abs(np.tan(self.graph.slope))
+
+    @cached_property
+    def horizontal_offsets(self) -> np.ndarray:
+        """Per neighbourhood move: True when it changes the horizontal position (heading matters)."""
+        off = self.graph.offsets
+        return np.any(off[:, -2:] != 0, axis=1)
+
+    @cached_property
+    def turn_table(self) -> np.ndarray:
+        """Allowed heading changes: ``table[prev, next]`` is 1.0 or 0.0, shape (K + 1, K).
+
+        Row ``K`` stands for "no previous move" (at the start). The heading
+        change is measured horizontally, as the validator does; vertical moves
+        keep the previous heading. Empty (shape (0, 0)) when the vehicle has no
+        turn limit, which switches the check off in the walk kernel.
+        """
+        limit = self.scenario.vehicle.max_turn_deg
+        if limit >= 180.0:
+            return np.zeros((0, 0))
+        off = self.graph.offsets
+        k = len(off)
+        heading = np.arctan2(off[:, -2], off[:, -1])  # y = row axis, x = column axis
+        turn = np.abs((heading[None, :] - heading[:, None] + math.pi) % (2 * math.pi) - math.pi)
+        table = np.ones((k + 1, k))
+        table[:k] = np.where(np.degrees(turn) <= limit + 1e-7, 1.0, 0.0)
+        vertical = ~self.horizontal_offsets
+        table[:, vertical] = 1.0
+        return table
+
+    def walk_points(self, edges: np.ndarray) -> np.ndarray:
+        """World path of a walk given as edge ids: exact start, cell centres, exact goal.
+
+        The exact start and goal replace the first and last centres when they
+        coincide (to the validator's tolerance) and are added otherwise.
+        """
+        s = self.scenario
+        nodes = np.concatenate([[self.start], self.graph.indices[np.asarray(edges, dtype=np.int64)]])
+        pts = s.point_of(nodes)
+        tol = 1e-9 * s.cell_size
+        head = [s.start[None, :]] if np.max(np.abs(pts[0] - s.start)) > tol else []
+        tail = [s.goal[None, :]] if np.max(np.abs(pts[-1] - s.goal)) > tol else []
+        pts[0] = s.start if not head else pts[0]
+        pts[-1] = s.goal if not tail else pts[-1]
+        return np.concatenate(head + [pts] + tail)

@@ -1,0 +1,18 @@
+"""The ``aco`` plugin: registers the ant-colony planners built on the shared engine."""
+
+from __future__ import annotations
+
+from typing import Sequence
+
+from pathzoo.core.planner import Planner
+from pathzoo.plugins.hookspecs import hookimpl
+
+__all__ = ["pathzoo_register_planners"]
+
+
+@hookimpl
+def pathzoo_register_planners() -> Sequence[type[Planner]]:
+    """Every ant-colony planner of this family."""
+    from pathzoo_aco.ant_system import AntSystem
+
+    return [AntSystem]
