@@ -1,0 +1,74 @@
+"""``pathzoo list planners|scenarios|metrics``: what the installed plugins provide, and where it comes from."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from typing import Any, Callable
+
+from pathzoo.plugins.entries import PluginEntry
+
+__all__ = ["add_parser", "list_table"]
+
+KINDS = ("planners", "scenarios", "metrics")
+
+
+def _planner_detail(entry: PluginEntry) -> str:
+    return ",".join(sorted(getattr(entry.obj, "kinds", ())))
+
+
+def _scenario_detail(entry: PluginEntry) -> str:
+    return str(getattr(entry.obj, "kind", ""))
+
+
+def _metric_detail(entry: PluginEntry) -> str:
+    return f"{getattr(entry.obj, 'unit', '')}, {getattr(entry.obj, 'direction', '')}"
+
+
+_DETAIL: dict[str, tuple[str, Callable[[PluginEntry], str]]] = {
+    "planners": ("kinds", _planner_detail),
+    "scenarios": ("kind", _scenario_detail),
+    "metrics": ("unit, better", _metric_detail),
+}
+
+
+def list_table(entries: list[PluginEntry], kind: str) -> str:
+    """An aligned text table of registry entries: id, detail, distribution, version and summary."""
+    import pandas as pd
+
+    from pathzoo.analysis.formatting import render_table
+
+    detail_name, detail = _DETAIL[kind]
+    columns = ["id", detail_name, "distribution", "version", "summary"]
+    rows = [[e.id, detail(e), e.distribution or "-", e.version or "-", e.summary] for e in entries]
+    frame = pd.DataFrame(rows, columns=columns)
+    return render_table(frame, "text", left=columns)
+
+
+def _run(args: argparse.Namespace) -> int:
+    from pathzoo.plugins.manager import discover
+
+    # a fresh discovery (not the cached registry) so import failures are reported here, once, at the end
+    registry = discover()
+    table = registry.table(args.kind)
+    entries = [table[k] for k in sorted(table)]
+    if entries:
+        sys.stdout.write(list_table(entries, args.kind))
+    else:
+        print(f"no {args.kind} registered")
+    for failure in registry.failures:
+        print(f"skipped: {failure.plugin}: {failure.error}", file=sys.stderr)
+    return 0
+
+
+def add_parser(subparsers: Any) -> None:
+    """Register the ``list`` subcommand."""
+    parser = subparsers.add_parser(
+        "list",
+        help="list registered planners, scenarios or metrics",
+        description="List what the installed plugins register: id, details, providing distribution "
+        "and its version, and a one-line summary. Plugins that failed to load are reported on stderr "
+        "as 'skipped: <plugin>: <error>'.",
+    )
+    parser.add_argument("kind", choices=KINDS, help="what to list")
+    parser.set_defaults(handler=_run)

@@ -1,0 +1,85 @@
+"""``pathzoo run [EXPERIMENT.toml]``: run an experiment (the bundled default without an argument) and rank it."""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import errno
+import sys
+from contextlib import ExitStack
+from importlib import resources
+from pathlib import Path
+from typing import Any
+
+from pathzoo.cli.cmd_leaderboard import add_table_options, render_leaderboard
+from pathzoo.cli.errors import CommandError
+
+__all__ = ["add_parser", "DEFAULT_DB", "positive_int"]
+
+DEFAULT_DB = "pathzoo-results.sqlite"
+EXECUTORS = ("process", "dask", "inline")
+
+
+def positive_int(text: str) -> int:
+    """argparse type: an integer >= 1."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"must be a positive integer, got {text!r}") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"must be a positive integer, got {text!r}")
+    return value
+
+
+def _run(args: argparse.Namespace) -> int:
+    if args.dask_address and args.executor != "dask":
+        raise CommandError("--dask-address needs --executor dask")
+    with ExitStack() as stack:
+        if args.experiment is None:
+            path = stack.enter_context(resources.as_file(resources.files("pathzoo.experiments") / "default.toml"))
+        else:
+            path = Path(args.experiment)
+            if not path.is_file():
+                raise FileNotFoundError(errno.ENOENT, "no such experiment file", str(path))
+        from pathzoo.harness.experiment import Experiment
+        from pathzoo.harness.runner import run_experiment
+
+        exp = Experiment.from_toml(path)
+    if args.seeds is not None:
+        exp = dataclasses.replace(exp, seeds=tuple(range(args.seeds)))
+    executor: Any = args.executor
+    if args.dask_address:
+        from pathzoo.harness.executors import dask_executor
+
+        executor = dask_executor(args.dask_address)
+    try:
+        runs = run_experiment(exp, db=args.db, jobs=args.jobs, executor=executor, progress=not args.no_progress)
+    except KeyboardInterrupt:
+        raise CommandError(
+            f"interrupted; finished runs are stored in {args.db}, run the same command again to resume"
+        ) from None
+    print(f"experiment '{exp.name}': {len(runs)} runs in {args.db}", file=sys.stderr)
+    sys.stdout.write(render_leaderboard(runs, args))
+    return 0
+
+
+def add_parser(subparsers: Any) -> None:
+    """Register the ``run`` subcommand."""
+    parser = subparsers.add_parser(
+        "run",
+        help="run an experiment and print its leaderboard",
+        description="Run planners x scenarios x seeds from an experiment TOML file (without one, the bundled "
+        "default comparison), validate every path, store each run in DB and print the leaderboard. "
+        "Runs already stored in DB are skipped, so an interrupted run resumes.",
+    )
+    parser.add_argument(
+        "experiment", nargs="?", metavar="EXPERIMENT.toml", help="experiment file (default: the bundled default.toml)"
+    )
+    parser.add_argument("--db", default=DEFAULT_DB, metavar="FILE", help=f"SQLite results file (default: {DEFAULT_DB})")
+    parser.add_argument("--jobs", type=positive_int, metavar="N", help="worker processes (default: number of CPUs)")
+    parser.add_argument("--executor", choices=EXECUTORS, default="process", help="where runs execute (default: process)")
+    parser.add_argument("--dask-address", metavar="ADDR", help="Dask scheduler address, with --executor dask")
+    parser.add_argument("--seeds", type=positive_int, metavar="N", help="override the experiment's number of seeds")
+    parser.add_argument("--no-progress", action="store_true", help="do not show a progress bar")
+    add_table_options(parser)
+    parser.set_defaults(handler=_run)

@@ -1,0 +1,72 @@
+"""Entry point of the ``pathzoo`` command: argument parsing and the one-line error contract.
+
+Every :class:`~pathzoo.core.errors.PathzooError`, a missing or unreadable
+file, a damaged database and Ctrl-C end the command with one line
+``pathzoo: error: <message>`` on stderr and exit code 2, without a
+traceback. Usage errors (argparse) also exit with code 2.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sqlite3
+import sys
+from typing import Sequence
+
+from pathzoo.cli import cmd_leaderboard, cmd_list, cmd_run, cmd_show
+from pathzoo.core.errors import PathzooError
+
+__all__ = ["build_parser", "main", "EXIT_ERROR"]
+
+EXIT_ERROR = 2
+"""Exit code of every handled error, as for argparse usage errors."""
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The ``pathzoo`` parser with all subcommands."""
+    from pathzoo import __version__
+
+    parser = argparse.ArgumentParser(
+        prog="pathzoo",
+        description="Compare path planners honestly: run planners x scenarios x seeds, validate every path, "
+        "and rank them with real statistics.",
+        epilog="Run 'pathzoo COMMAND --help' for the options of a command.",
+    )
+    parser.add_argument("--version", action="version", version=f"pathzoo {__version__}")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
+    for command in (cmd_list, cmd_run, cmd_leaderboard, cmd_show):
+        command.add_parser(sub)
+    return parser
+
+
+def _one_line(exc: BaseException) -> str:
+    if isinstance(exc, KeyboardInterrupt):
+        return "interrupted"
+    if isinstance(exc, OSError) and exc.filename is not None:
+        return f"{exc.filename}: {exc.strerror or exc}"
+    text = " ".join(str(exc).split())
+    return text or type(exc).__name__
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the ``pathzoo`` command and return its exit code.
+
+    Parameters
+    ----------
+    argv : sequence of str, optional
+        Arguments without the program name (default: ``sys.argv[1:]``).
+    """
+    try:
+        parser = build_parser()
+        try:
+            args = parser.parse_args(argv)
+        except SystemExit as exc:  # --help, --version and usage errors
+            return int(exc.code or 0)
+        return int(args.handler(args))
+    except (PathzooError, OSError, sqlite3.Error, KeyboardInterrupt) as exc:
+        print(f"pathzoo: error: {_one_line(exc)}", file=sys.stderr)
+        return EXIT_ERROR
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())
