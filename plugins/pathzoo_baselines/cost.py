@@ -1,0 +1,124 @@
+"""Penalised cost of a batch of polylines: length plus penalty times constraint violation.
+
+The metaheuristic baselines search over candidate paths that may collide, so
+they minimise
+
+``cost = length + penalty * diagonal * violation``
+
+where ``diagonal`` is the map diagonal in metres and ``violation`` (unitless,
+0 exactly for a path the harness would accept, up to the caveats below) adds:
+
+- **collision**: the number of blocked or out-of-grid cells touched by the
+  segments, under the closed-cell rule of :mod:`pathzoo.grid.segments`
+  (:func:`~pathzoo.grid.segments.count_blocked_cells_2d`, on the same snapped
+  cell units as the validator), so it is 0 exactly when every segment passes;
+- **slope** (terrain): the horizontal length, in cells, of the segment pieces
+  that climb or descend beyond the vehicle's limits. Pieces are cut exactly as
+  :func:`pathzoo.grid.terrain.segment_profile` cuts them (same piece count,
+  same fractions, same bilinear heights), and the limit is applied without the
+  validator's 1e-7 degree tolerance, so a 0 here is never rejected there;
+- **turns**: the number of heading changes beyond ``vehicle.max_turn_deg``
+  (only when that limit is below 180 degrees; zero-length segments are not
+  skipped here as the validator skips them, which is why the final path is
+  still judged by :func:`~pathzoo.harness.validation.validate_path`).
+
+``length`` is the horizontal length on ``grid2d`` maps and the 3-D length
+(sum of the pieces' lengths) on ``terrain``, i.e. the quantity the exact
+planners minimise on the same maps.
+"""
+
+from __future__ import annotations
+
+import numba
+import numpy as np
+
+from pathzoo.core import Scenario
+from pathzoo.grid.segments import count_blocked_cells_2d, to_cell_units
+from pathzoo.grid.terrain import MAX_PIECE_CELLS, bilinear_elevation
+
+__all__ = ["PathCost", "collision_counts"]
+
+
+@numba.njit(cache=True)
+def collision_counts(blocked: np.ndarray, cells: np.ndarray) -> np.ndarray:
+    """Blocked cells touched by each polyline; ``cells`` has shape (n, m, 2) in cell units (x, y)."""
+    n, m = cells.shape[0], cells.shape[1]
+    out = np.zeros(n)
+    for i in range(n):
+        total = 0
+        for k in range(m - 1):
+            total += count_blocked_cells_2d(
+                blocked, cells[i, k, 0], cells[i, k, 1], cells[i, k + 1, 0], cells[i, k + 1, 1]
+            )
+        out[i] = total
+    return out
+
+
+class PathCost:
+    """Vectorised penalised cost of polylines on one scenario.
+
+    Parameters
+    ----------
+    scenario : Scenario
+        A ``grid2d`` or ``terrain`` scenario.
+    penalty : float
+        Cost of one unit of violation, in map diagonals.
+    """
+
+    def __init__(self, scenario: Scenario, penalty: float) -> None:
+        self.scenario = scenario
+        self.weight = float(penalty) * float(np.hypot(*scenario.extent))
+        self._terrain = scenario.kind == "terrain"
+        self._max_turn = float(scenario.vehicle.max_turn_deg)
+
+    def __call__(self, paths: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Return ``(cost, violation)`` for polylines of shape (n, m, 2) in world coordinates."""
+        sc = self.scenario
+        n = paths.shape[0]
+        violation = collision_counts(sc.blocked, to_cell_units(paths, sc.cell_size))
+        if self._terrain:
+            length, slope_excess = self._terrain_terms(paths)
+            violation = violation + slope_excess
+        else:
+            d = np.diff(paths, axis=1)
+            length = np.hypot(d[..., 0], d[..., 1]).sum(axis=1)
+        if self._max_turn < 180.0 and paths.shape[1] > 2:
+            d = np.diff(paths, axis=1)
+            heading = np.arctan2(d[..., 1], d[..., 0])
+            turn = np.degrees(np.abs((np.diff(heading, axis=1) + np.pi) % (2 * np.pi) - np.pi))
+            violation = violation + (turn > self._max_turn).sum(axis=1)
+        return length + self.weight * violation, violation.reshape(n)
+
+    def _terrain_terms(self, paths: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """3-D length and slope violation (cells), piece by piece as ``segment_profile`` cuts them."""
+        sc = self.scenario
+        n, m = paths.shape[0], paths.shape[1]
+        cs = sc.cell_size
+        p0 = paths[:, :-1].reshape(-1, 2)
+        step = (paths[:, 1:] - paths[:, :-1]).reshape(-1, 2)
+        horiz = np.hypot(step[:, 0], step[:, 1])
+        pieces = np.maximum(1, np.ceil(horiz / cs / MAX_PIECE_CELLS - 1e-12)).astype(np.int64)
+        n_seg = len(horiz)
+        seg_of_point = np.repeat(np.arange(n_seg), pieces + 1)
+        first = np.concatenate([[0], np.cumsum(pieces + 1)[:-1]])
+        k = np.arange(len(seg_of_point)) - first[seg_of_point]
+        frac = k * (1.0 / pieces[seg_of_point])  # what np.linspace(0, 1, n + 1) computes
+        last = first + pieces
+        frac[last] = 1.0
+        pts = p0[seg_of_point] + frac[:, None] * step[seg_of_point]
+        z = bilinear_elevation(sc.elevation, pts / cs)
+        starts = np.ones(len(z), dtype=bool)
+        starts[last] = False  # a piece starts at every point but a segment's last
+        idx = np.flatnonzero(starts)
+        seg = seg_of_point[idx]
+        dz = z[idx + 1] - z[idx]
+        dh = horiz[seg] / pieces[seg]
+        with np.errstate(invalid="ignore"):
+            deg = np.degrees(np.arctan2(dz, dh))
+            bad = ~(np.isfinite(deg) & (deg <= sc.vehicle.max_climb_deg) & (-deg <= sc.vehicle.max_descent_deg))
+        piece_len = np.where(np.isfinite(dz), np.sqrt(dh * dh + np.nan_to_num(dz) ** 2), dh)
+        cand = seg // (m - 1)
+        length = np.bincount(cand, weights=piece_len, minlength=n)
+        excess = np.bincount(cand, weights=np.where(bad, dh / cs, 0.0), minlength=n)
+        return length, excess
+

@@ -1,0 +1,61 @@
+"""The encoding interface the metaheuristics search over, and the factory that builds one from parameters."""
+
+from __future__ import annotations
+
+from typing import Any, Mapping, Protocol
+
+import numpy as np
+
+from pathzoo.core import Scenario
+
+__all__ = ["Encoding", "make_encoding"]
+
+
+class Encoding(Protocol):
+    """What a metaheuristic needs to know about candidate paths.
+
+    Attributes
+    ----------
+    n_genes : int
+        Length of a candidate vector.
+    low, high : ndarray of shape (n_genes,)
+        Inclusive bounds of each gene.
+    integer : bool
+        True when genes are integers (the grid-path encoding).
+    """
+
+    n_genes: int
+    low: np.ndarray
+    high: np.ndarray
+    integer: bool
+
+    def initial(self, rng: np.random.Generator, n: int) -> np.ndarray:
+        """``n`` random candidates, shape (n, n_genes), drawn from ``rng``."""
+
+    def evaluate(self, genes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Penalised cost and violation (0 when feasible) of candidates of shape (n, n_genes)."""
+
+    def path(self, genes: np.ndarray) -> np.ndarray:
+        """The world path (N, 2) of one candidate, from ``scenario.start`` to ``scenario.goal``."""
+
+
+def make_encoding(scenario: Scenario, params: Mapping[str, Any]) -> Encoding:
+    """Build the encoding a planner's parameters ask for.
+
+    ``params`` holds the entries of
+    :data:`~pathzoo_baselines.params.ENCODING_PARAMS` and, for
+    ``encoding='grid'``, ``moves_factor``.
+    """
+    if params["encoding"] == "grid":
+        from pathzoo_baselines.gridpath import MoveEncoding
+
+        return MoveEncoding(scenario, moves_factor=params["moves_factor"], penalty=params["penalty"])
+    from pathzoo_baselines.waypoints import WaypointEncoding
+
+    return WaypointEncoding(
+        scenario,
+        waypoints=params["waypoints"],
+        spline=params["encoding"] == "spline",
+        spline_samples=params["spline_samples"],
+        penalty=params["penalty"],
+    )
