@@ -13,6 +13,10 @@ __all__ = ["pathzoo_register_planners"]
 @hookimpl
 def pathzoo_register_planners() -> Sequence[type[Planner]]:
     """Every ant-colony planner of this family."""
+    from pathzoo_aco.acs import AntColonySystem
     from pathzoo_aco.ant_system import AntSystem
+    from pathzoo_aco.gant import GreenAnt
+    from pathzoo_aco.ggaco import GGACO
+    from pathzoo_aco.mmas import MaxMinAntSystem
 
-    return [AntSystem]
+    return [AntSystem, MaxMinAntSystem, AntColonySystem, GGACO, GreenAnt]

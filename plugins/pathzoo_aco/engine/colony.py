@@ -11,7 +11,8 @@ hooks (see ``docs/aco-engine.md``):
   :class:`ColonyState`);
 - :meth:`AntColonyPlanner.before_iteration`: per-iteration schedules;
 - :meth:`AntColonyPlanner.walk_costs`: what "best" means;
-- :meth:`AntColonyPlanner.update_trail`: the pheromone update (required).
+- :meth:`AntColonyPlanner.update_trail`: the pheromone update (required);
+- :meth:`AntColonyPlanner.result_extras`: extra numbers for the answer.
 
 The loop: while the budget lasts, send ``n_ants`` ants (fewer in the last
 iteration if the evaluation budget says so), keep the best walk so far, let
@@ -147,6 +148,10 @@ class AntColonyPlanner(Planner):
         """Update ``state.trail`` after a colony (evaporation and deposits). Every variant defines it."""
         raise NotImplementedError(f"{type(self).__name__} must define update_trail")
 
+    def result_extras(self, state: ColonyState) -> dict[str, Any]:
+        """JSON-serialisable extras for the answer (default: none)."""
+        return {}
+
     # ------------------------------------------------------------- helpers
     def walk_options(self, problem: ColonyProblem) -> dict[str, Any]:
         """Keyword arguments for :class:`WalkRules` from the common parameters and the vehicle's turn limit."""
@@ -206,7 +211,7 @@ class AntColonyPlanner(Planner):
             if walks.exhausted and rules.turn.size == 0:
                 message = "an ant searched the start's whole component: the goal is unreachable"
                 break
-        extras = {"ant_steps": engine.total_steps, "walk_time_s": walk_time}
+        extras = {"ant_steps": engine.total_steps, "walk_time_s": walk_time, **self.result_extras(state)}
         if state.best_edges is None:
             return PlanResult(Status.FAILED, iterations=state.iteration, evaluations=state.evaluations,
                               message=message or "no ant reached the goal within the budget", extras=extras)

@@ -1,0 +1,123 @@
+"""aco.ggaco: gain-based green ACO of Sangeetha & Ravichandran (2024/25), eqs. 11-18.
+
+Mechanism, with the paper's equations:
+
+- **gain** (eqs. 11-14): at the ant's node ``i``, every neighbour ``j`` has
+  ``progress = d(j, D) / d(i, D)`` and ``Gain_ij = 1 / (1 + e^(-λ progress))``;
+  the gain is *added* to the trail toward the neighbour nearest the
+  destination ``D`` (all of them on a tie) and *subtracted* from the other
+  trails (eq. 13) before the ant chooses: :meth:`GGACO.gain`;
+- **transition** (eq. 15): ``τ^α η^β · n_j / (n_j + 1)``;
+- **heuristic** (eqs. 16-17): ``η = 1 / d + v / φ`` with the slope-scaled
+  distance ``d``: :meth:`GGACO.heuristic`;
+- **deposit** (eq. 18): after evaporation with ``ρ = 0.4`` every ant that
+  reached ``D`` lays ``1 / d_ij + 1 / E_ij`` on each edge it crossed:
+  :meth:`GGACO.update_trail`.
+
+See ``docs/planners/aco.ggaco.md`` for every interpretation.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from pathzoo.core.planner import Param
+from pathzoo_aco.engine import (
+    AntColonyPlanner,
+    ColonyProblem,
+    ColonyState,
+    Pheromone,
+    WalkEngine,
+    WalkRules,
+    Walks,
+    colony_params,
+    deposit_walks,
+)
+
+__all__ = ["GGACO", "GgacoState"]
+
+
+@dataclass
+class GgacoState(ColonyState):
+    """Colony state plus the per-edge deposit ``1 / d_ij + 1 / E_ij`` of eq. 18 (computed once)."""
+
+    edge_deposit: np.ndarray | None = None
+
+
+class GGACO(AntColonyPlanner):
+    """GGACO (Sangeetha & Ravichandran 2024/25) with ρ = 0.4 and G-Ant's Table 3 for the rest."""
+
+    id = "aco.ggaco"
+    version = "1"
+    summary = "GGACO (Sangeetha & Ravichandran 2024): sigmoid gain toward the destination, energy deposits"
+    kinds = frozenset({"grid2d", "terrain"})
+    params = {
+        **colony_params(n_ants=20, iterations=1000, alpha=0.4, beta=0.6, rho=0.4),
+        "lam": Param(1.0, "λ of the gain sigmoid, 0 <= λ <= 1 (eqs. 12, 14)", low=0.0, high=1.0),
+        "phi": Param(2.0, "φ, the UGV's maximum speed normalising v in η (eq. 16), m/s", low=0.0, low_open=True),
+        "tau_floor": Param(1e-3, "lowest trail value (τ0 = 0 and the subtracted gains would reach 0 or less)",
+                           low=0.0, low_open=True),
+        "energy_floor_j": Param(1.0, "lower bound on an edge's energy in 1/E (eq. 18), J", low=0.0, low_open=True),
+        "objective": Param("energy", "which walk is best: least energy (eq. 6) or length (eq. 5)",
+                           choices=("energy", "length")),
+    }
+
+    @staticmethod
+    def slope_distance(problem: ColonyProblem) -> np.ndarray:
+        """Eq. 17: ``d_ij = |V_i V_j| · (1 + |θ_ij|)``, the 3-D edge length scaled by the rise over run."""
+        return problem.graph.length * (1.0 + problem.tangent)
+
+    def heuristic(self, problem: ColonyProblem) -> np.ndarray:
+        """Eq. 16: ``η_ij = 1 / d_ij + v_ij / φ`` with ``v`` the vehicle's cruise speed."""
+        return 1.0 / self.slope_distance(problem) + problem.scenario.vehicle.cruise_speed / self.phi
+
+    def gain(self, problem: ColonyProblem) -> np.ndarray:
+        """Signed gain per edge (eqs. 11-14): ``+Gain_ij`` toward the neighbour(s) nearest ``D``, ``-Gain_ij`` otherwise.
+
+        Distances to ``D`` are 3-D between cell centres; the neighbours are
+        the node's graph neighbours (traversable ones).
+        """
+        g = problem.graph
+        dist = problem.goal_distance
+        to = dist[g.indices]
+        here = dist[problem.sources]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            progress = np.where(here > 0.0, to / here, np.inf)
+        gain = 1.0 / (1.0 + np.exp(-self.lam * progress))
+        nonempty = g.degree > 0
+        nearest = np.full(g.n_nodes, np.inf)
+        if to.size:
+            nearest[nonempty] = np.minimum.reduceat(to, g.indptr[:-1][nonempty])
+        best = to <= nearest[problem.sources] * (1.0 + 1e-12)
+        return np.where(best, gain, -gain)
+
+    def walk_rules(self, problem: ColonyProblem) -> WalkRules:
+        """Eq. 15 with the pre-choice gain of eq. 13."""
+        return WalkRules.product(self.alpha, self.heuristic(problem), self.beta, self.neighbour_factor(problem),
+                                 pre_add=self.gain(problem), **self.walk_options(problem))
+
+    def initial_trail(self, problem: ColonyProblem) -> float:
+        """``τ0 = 0`` (section 3.2.2.2); reads are floored at ``tau_floor``."""
+        return 0.0
+
+    def init_state(self, problem: ColonyProblem, rules: WalkRules, trail: Pheromone, engine: WalkEngine,
+                   rng: np.random.Generator) -> GgacoState:
+        """Floor the trail at ``tau_floor`` and compute eq. 18's per-edge deposit ``1 / d_ij + 1 / E_ij``."""
+        trail.set_bounds(self.tau_floor)
+        energy = np.maximum(problem.graph.energy, self.energy_floor_j)
+        return GgacoState(problem, rules, trail, rng, edge_deposit=1.0 / self.slope_distance(problem) + 1.0 / energy)
+
+    def walk_costs(self, state: ColonyState, walks: Walks) -> np.ndarray:
+        """Energy (J, eq. 6) or length (m, eq. 5) of each walk."""
+        g = state.problem.graph
+        return walks.totals(g.energy if self.objective == "energy" else g.length)
+
+    def update_trail(self, state: ColonyState, walks: Walks, costs: np.ndarray) -> None:
+        """Eqs. 13 and 18: ``τ <- (1 - ρ) τ + Σ_k (1 / d_ij + 1 / E_ij)`` over the edges each successful ant crossed."""
+        assert isinstance(state, GgacoState)
+        state.trail.evaporate(self.rho)
+        ok = np.flatnonzero(walks.reached)
+        deposit_walks(state.trail, state.problem.graph.indices, walks.flat, walks.offsets, ok, 0.0,
+                      per_edge=state.edge_deposit)
