@@ -203,3 +203,18 @@ def test_summarize_metrics_covers_registered_columns():
     vals = runs[(runs.scenario == "s1") & (runs.planner == "aco.a") & (runs.success == 1)]["energy"]
     assert one["median"] == pytest.approx(vals.median()) and one["sd"] == pytest.approx(vals.std())
     assert isinstance(out, pd.DataFrame)
+
+
+def test_wilcoxon_with_ties_matches_scipy_permutation_branch():
+    rng = np.random.default_rng(6)
+    for n in (5, 7, 9):
+        for _ in range(3):
+            d = rng.integers(-3, 4, n).astype(float)  # ties and zeros
+            if not d.any():
+                continue
+            ref = stats.wilcoxon(d)  # scipy enumerates all 2^n sign flips here
+            _, stat, p, _ = compare_losses(d, np.zeros(n), paired=True)
+            assert stat == ref.statistic and p == pytest.approx(ref.pvalue, rel=1e-9)
+    # above 13 pairs scipy's normal approximation is used, as in scipy
+    d = rng.integers(-3, 4, 20).astype(float)
+    assert compare_losses(d, np.zeros(20), paired=True)[2] == pytest.approx(stats.wilcoxon(d).pvalue)
