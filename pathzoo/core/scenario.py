@@ -138,9 +138,9 @@ class Scenario:
             if p.shape != (self.dim,) or not np.isfinite(p).all():
                 raise bad(f"must be {self.dim} finite coordinates, got {getattr(self, name)!r}", name)
             if not self.in_bounds(p[None, :])[0]:
-                raise bad(f"{tuple(p)} lies outside the map (extent {tuple(self.extent)})", name)
+                raise bad(f"{tuple(p.tolist())} lies outside the map (extent {tuple(self.extent.tolist())})", name)
             if self.blocked[tuple(self.cell_of(p[None, :])[0])]:
-                raise bad(f"{tuple(p)} lies in an obstacle or untraversable cell", name)
+                raise bad(f"{tuple(p.tolist())} lies in an obstacle or untraversable cell", name)
             p.setflags(write=False)
             object.__setattr__(self, name, p)
 
