@@ -8,13 +8,16 @@ blocked are ``@``, ``O``, ``T`` and ``W``. Any other character is an error.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from pathlib import Path
+from pathlib import Path, PureWindowsPath
 
 import numpy as np
 
 from pathzoo.core.errors import InvalidScenarioError
+from pathzoo.core.scenario import Scenario
+from pathzoo.generators.checks import relocated
+from pathzoo.io.provenance import file_record
 
-__all__ = ["read_map", "read_scen", "ScenProblem", "PASSABLE", "BLOCKED"]
+__all__ = ["read_map", "read_scen", "scenarios_from_scen", "ScenProblem", "PASSABLE", "BLOCKED"]
 
 PASSABLE = frozenset(".GS")
 BLOCKED = frozenset("@OTW")
@@ -120,3 +123,81 @@ def read_scen(path: str | Path) -> list[ScenProblem]:
             raise InvalidScenarioError(f"line {n} has a non-numeric field", source=src, field=f"line {n}") from None
         problems.append(ScenProblem(len(problems), bucket, parts[1], width, height, sx, sy, gx, gy, opt))
     return problems
+
+
+def scenarios_from_scen(path: str | Path) -> list[Scenario]:
+    """One ``grid2d`` Scenario per problem line of a MovingAI ``.scen`` file.
+
+    - The map is found next to the ``.scen`` by its base name (``.scen``
+      files name it with a path such as ``maps/rooms/8room_000.map``).
+    - Ids are ``<map stem>.<index>`` with the 0-based problem index, e.g.
+      ``8room_000.17``.
+    - Cells are 1 m; start and goal are cell centres (``x`` = column + 0.5,
+      ``y`` = row + 0.5) and ``reference_length`` is the file's optimal
+      length times the cell size.
+    - All problems on one map share one read-only map array and one
+      neighbourhood graph: the first problem's Scenario is built (graph
+      included) and the others are :meth:`Scenario.with_endpoints` copies.
+
+    Raises
+    ------
+    InvalidScenarioError
+        Naming the ``.scen`` file and the problem: missing map file, a map
+        size that differs from the line's, or a start/goal outside the map or
+        in an obstacle.
+    """
+    path = Path(path)
+    src = str(path)
+    problems = read_scen(path)
+    if not problems:
+        raise InvalidScenarioError("holds no problems", source=src)
+    first: dict[str, Scenario] = {}
+    records: dict[str, dict[str, str]] = {}
+    scenarios: list[Scenario] = []
+    for p in problems:
+        name = PureWindowsPath(p.map_name).name  # also splits on "/"
+        stem = Path(name).stem
+        where = f"problem {p.index} ({p.map_name}): "
+        if name not in first:
+            map_path = path.parent / name
+            if not map_path.is_file():
+                raise InvalidScenarioError(f"{where}map file not found next to the .scen: {map_path}", source=src, field="map")
+            occupancy = read_map(map_path)
+            occupancy.setflags(write=False)
+            records[name] = file_record(map_path)
+        else:
+            occupancy = first[name].occupancy
+        if occupancy.shape != (p.height, p.width):
+            raise InvalidScenarioError(
+                f"{where}the line says {p.width}x{p.height} (width x height), the map is "
+                f"{occupancy.shape[1]}x{occupancy.shape[0]}",
+                source=src,
+                field="map",
+            )
+        start = np.array([p.start_col + 0.5, p.start_row + 0.5])
+        goal = np.array([p.goal_col + 0.5, p.goal_row + 0.5])
+        metadata = {"source": src, "map": records[name], "problem_index": p.index, "bucket": p.bucket}
+        sid = f"{stem}.{p.index}"
+        try:
+            if name in first:
+                scenario = first[name].with_endpoints(
+                    start, goal, id=sid, reference_length=p.optimal_length, metadata=metadata
+                )
+            else:
+                scenario = Scenario(
+                    id=sid,
+                    kind="grid2d",
+                    occupancy=occupancy,
+                    cell_size=1.0,
+                    start=start,
+                    goal=goal,
+                    reference_length=p.optimal_length,
+                    description=f"MovingAI {stem}, problem {p.index} (bucket {p.bucket})",
+                    metadata=metadata,
+                )
+                scenario.graph  # build it now so every copy shares it
+                first[name] = scenario
+        except InvalidScenarioError as exc:
+            raise relocated(exc, source=src, note=where) from None
+        scenarios.append(scenario)
+    return scenarios
