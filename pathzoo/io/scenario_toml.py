@@ -252,9 +252,9 @@ def read_scenario_toml(path: str | Path) -> Scenario:
     elevation = None
     if elev_table is not None:
         elevation, cell_size, metadata["elevation"] = _elevation(elev_table, base, cell_size, top)
-    cell_size = 1.0 if cell_size is None else cell_size
+    cell_size = 1.0 if cell_size is None else float(cell_size)
 
-    vcs = top.number("vertical_cell_size", low=0.0, low_open=True) if kind == "air3d" else None
+    vcs = float(top.number("vertical_cell_size", low=0.0, low_open=True)) if kind == "air3d" else None
     occupancy = None
     if map_table is not None:
         occupancy, metadata["map"] = _occupancy(map_table, base, cell_size, dim)
