@@ -81,20 +81,25 @@ class RlsEwmaPredictor:
         """Take one sample; return the one-step residual ``ê(k) = y(k) - ŷ(k)`` (eq. 9).
 
         The EWMA statistic ``z(k) = λ_u ê(k) + (1 - λ_u) z(k-1)`` is compared
-        with ``limit · σ̂ · sqrt(λ_u / (2 - λ_u))``; outside it, the covariance is
-        reset so the estimate re-adapts quickly (G-Ant, section IV-2).
+        with ``limit · σ̂ · sqrt((1 + φᵀPφ) λ_u / (2 - λ_u))``, the band of an
+        EWMA of residuals whose one-step variance is ``σ̂² (1 + φᵀPφ)``; outside
+        it, the covariance is reset so the estimate re-adapts quickly (G-Ant,
+        section IV-2). ``σ̂²`` is a forgetting average of the standardised
+        residuals ``ê² / (1 + φᵀPφ)`` of in-control samples.
         """
         phi = np.array([1.0, x])
+        spread = 1.0 + float(phi @ self.cov @ phi)
         resid = float(y - phi @ self.theta)
         self.z = self.lambda_u * resid + (1.0 - self.lambda_u) * self.z
-        band = self.limit * math.sqrt(self.resid_var * self.lambda_u / (2.0 - self.lambda_u))
+        band = self.limit * math.sqrt(self.resid_var * spread * self.lambda_u / (2.0 - self.lambda_u))
         if self.samples >= self.warmup and abs(self.z) > band:
             self.cov = self.initial_cov * np.eye(2)
             self.z = 0.0
             self.resets += 1
-        else:  # residuals of an out-of-control step would inflate the noise estimate
-            self.resid_var = resid * resid if self.samples == 0 else (
-                self.lambda_ff * self.resid_var + (1.0 - self.lambda_ff) * resid * resid)
+        elif self.samples >= 2:  # two samples determine (b, C) exactly: no residual information before
+            scaled = resid * resid / spread
+            first = self.samples == 2
+            self.resid_var = scaled if first else self.lambda_ff * self.resid_var + (1.0 - self.lambda_ff) * scaled
         gain = self.cov @ phi / (self.lambda_ff + phi @ self.cov @ phi)
         self.theta = self.theta + gain * resid
         self.cov = (self.cov - np.outer(gain, phi @ self.cov)) / self.lambda_ff

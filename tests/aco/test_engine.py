@@ -1,0 +1,249 @@
+"""The shared ant-colony engine: lazy pheromone, the compiled walks and the colony loop."""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+import pathzoo
+from pathzoo import Budget, VehicleModel
+from pathzoo.harness.validation import validate_path
+from pathzoo_aco.engine import (
+    EXHAUSTED,
+    REACHED,
+    STEP_CAP,
+    STUCK,
+    ColonyProblem,
+    Pheromone,
+    WalkEngine,
+    WalkRules,
+    deposit_walks,
+)
+
+from aco_maps import hill, open_grid, walled_grid
+
+
+def _rules(problem: ColonyProblem, **kw) -> WalkRules:
+    g = problem.graph
+    eta = 1.0 / (g.length + problem.goal_distance[g.indices])
+    return WalkRules.product(1.0, eta, 2.0, max_steps=kw.pop("max_steps", 10**9), **kw)
+
+
+def _check_walk(problem: ColonyProblem, edges: np.ndarray) -> None:
+    g = problem.graph
+    sources = problem.sources[edges]
+    targets = g.indices[edges]
+    assert sources[0] == problem.start and targets[-1] == problem.goal
+    assert np.array_equal(sources[1:], targets[:-1])  # consecutive edges chain
+    assert len(set(targets.tolist()) | {problem.start}) == len(edges) + 1  # a simple path (tabu list)
+
+
+# ------------------------------------------------------------------ pheromone
+def test_lazy_trail_matches_eager_updates():
+    rng = np.random.default_rng(7)
+    """Lazy evaporation and clamp-on-read equal the eager MMAS-style update, rising bounds included."""
+    size = 50
+    trail = Pheromone(size, 5.0)
+    eager = np.full(size, 5.0)
+    indices = np.arange(size)
+    lo, hi = 0.0, math.inf
+    for step in range(400):  # forces several renormalisations of the scale
+        trail.evaporate(0.6)
+        eager *= 0.4
+        if step % 7 == 3:
+            lo, hi = lo + 0.01, (2.0 if hi == math.inf else hi + 0.05)
+            trail.set_bounds(lo, hi)
+        eager = np.clip(eager, lo, hi)
+        walk = rng.choice(size, 6, replace=False)
+        amount = float(rng.uniform(0, 1))
+        deposit_walks(trail, indices, walk, np.array([0, 6]), np.array([0]), amount)
+        eager[walk] = np.clip(eager[walk] + amount, lo, hi)
+        np.testing.assert_allclose(trail.values(), eager, rtol=1e-9, atol=1e-300)
+    assert trail.scale >= 1e-150
+
+
+def test_deposit_keep_and_per_edge_amounts():
+    trail = Pheromone(4, 2.0)
+    deposit_walks(trail, np.arange(4), np.array([1, 3]), np.array([0, 2]), np.array([0]), 0.5, keep=0.9,
+                  per_edge=np.array([0.0, 1.0, 0.0, 2.0]))
+    np.testing.assert_allclose(trail.values(), [2.0, 0.9 * 2 + 0.5 + 1.0, 2.0, 0.9 * 2 + 0.5 + 2.0])
+
+
+def test_node_trail_deposits_on_target_nodes():
+    trail = Pheromone(3, 0.0, on_nodes=True)
+    indices = np.array([2, 1, 0])  # edge -> target node
+    deposit_walks(trail, indices, np.array([0, 1]), np.array([0, 2]), np.array([0]), 1.0)
+    np.testing.assert_allclose(trail.values(), [0.0, 1.0, 1.0])
+
+
+# ------------------------------------------------------------------ walks
+def test_walks_are_simple_chains_from_start_to_goal():
+    problem = ColonyProblem(walled_grid())
+    engine = WalkEngine(problem)
+    walks = engine.walk(_rules(problem), Pheromone(problem.graph.n_edges, 1.0), 30, seed=3)
+    assert walks.started == 30 and walks.reached.all()
+    for a in range(30):
+        _check_walk(problem, walks.edges(a))
+    lengths = walks.totals(problem.graph.length)
+    assert np.all(lengths >= 12.0)  # the wall forces a detour
+
+
+def test_same_seed_same_walks_and_other_seed_differs():
+    problem = ColonyProblem(walled_grid())
+    trail = Pheromone(problem.graph.n_edges, 1.0)
+    runs = [WalkEngine(problem).walk(_rules(problem), trail, 10, seed=s).flat for s in (5, 5, 6)]
+    assert np.array_equal(runs[0], runs[1]) and not np.array_equal(runs[0], runs[2])
+
+
+def test_dead_ends_backtrack_or_drop():
+    problem = ColonyProblem(walled_grid(reachable=False))
+    trail = Pheromone(problem.graph.n_edges, 1.0)
+    back = WalkEngine(problem).walk(_rules(problem), trail, 3, seed=1)
+    # the first ant searches the whole component, proving the goal unreachable; the rest are not sent
+    assert back.flags[0] == EXHAUSTED and back.started == 1
+    free = int((problem.graph.degree > 0).sum())
+    assert back.steps[0] == 2 * (free - 1)  # depth-first: every free cell entered once and left once
+    drop = WalkEngine(problem).walk(replace(_rules(problem), backtrack=False), trail, 5, seed=1)
+    assert np.all(drop.flags == STUCK) and drop.started == 5
+
+
+def test_step_cap_drops_the_ant():
+    problem = ColonyProblem(open_grid(8))
+    walks = WalkEngine(problem).walk(_rules(problem, max_steps=3), Pheromone(problem.graph.n_edges, 1.0), 4, seed=0)
+    assert np.all(walks.flags == STEP_CAP) and np.all(walks.steps == 3)
+    assert walks.flat.size == 0 and np.all(np.isinf(walks.totals(problem.graph.length)))
+
+
+def test_q0_one_always_takes_the_heaviest_edge():
+    problem = ColonyProblem(open_grid(8))
+    g = problem.graph
+    rules = _rules(problem, q0=1.0)
+    walks = WalkEngine(problem).walk(rules, Pheromone(g.n_edges, 1.0), 1, seed=0)
+    visited = {problem.start}
+    for e in walks.edges(0):
+        i = problem.sources[e]
+        options = [f for f in range(g.indptr[i], g.indptr[i + 1]) if g.indices[f] not in visited]
+        assert rules.weight_mul[e] == max(rules.weight_mul[f] for f in options)
+        visited.add(int(g.indices[e]))
+    assert len(walks.edges(0)) == 7  # the greedy walk is the diagonal
+
+
+def test_local_update_marks_crossed_edges_only():
+    problem = ColonyProblem(open_grid(6))
+    trail = Pheromone(problem.graph.n_edges, 1.0)
+    walks = WalkEngine(problem).walk(_rules(problem, local_keep=0.5, local_add=0.1), trail, 1, seed=2)
+    values = trail.values()
+    crossed = walks.edges(0)
+    np.testing.assert_allclose(values[crossed], 0.6)
+    assert np.all(np.delete(values, crossed) == 1.0)
+
+
+def test_pre_choice_additions_touch_every_edge_leaving_a_visited_node():
+    problem = ColonyProblem(open_grid(6))
+    g = problem.graph
+    trail = Pheromone(g.n_edges, 1.0, lo=0.2)
+    pre = np.where(np.arange(g.n_edges) % 2 == 0, 0.5, -2.0)
+    walks = WalkEngine(problem).walk(_rules(problem, pre_add=pre, q0=1.0), trail, 1, seed=2)  # no backtracking
+    assert walks.steps[0] == len(walks.edges(0))
+    left = np.isin(problem.sources, problem.sources[walks.edges(0)])
+    values = trail.values()
+    np.testing.assert_allclose(values[left], np.maximum(1.0 + pre[left], 0.2))
+    assert np.all(values[~left] == 1.0)
+
+
+def test_zero_weight_edges_are_not_allowed():
+    problem = ColonyProblem(open_grid(5))
+    g = problem.graph
+    rules = _rules(problem)
+    banned = g.indices == 6  # cell (1, 1): never entered
+    mul = np.where(banned, 0.0, rules.weight_mul)
+    walks = WalkEngine(problem).walk(replace(rules, weight_mul=mul), Pheromone(g.n_edges, 1.0), 20, seed=4)
+    assert walks.reached.all() and not np.isin(6, g.indices[walks.flat])
+
+
+def test_turn_limit_is_respected_and_validated():
+    scenario = open_grid(10, vehicle=VehicleModel(max_turn_deg=45.0))
+    problem = ColonyProblem(scenario)
+    walks = WalkEngine(problem).walk(replace(_rules(problem), turn=problem.turn_table),
+                                     Pheromone(problem.graph.n_edges, 1.0), 10, seed=9)
+    assert walks.reached.any()
+    for a in np.flatnonzero(walks.reached):
+        path = problem.walk_points(walks.edges(a))
+        assert validate_path(scenario, path)
+
+
+def test_walk_points_add_exact_endpoints_off_centre():
+    scenario = walled_grid()
+    problem = ColonyProblem(scenario)
+    walks = WalkEngine(problem).walk(_rules(problem), Pheromone(problem.graph.n_edges, 1.0), 1, seed=0)
+    path = problem.walk_points(walks.edges(0))
+    assert np.array_equal(path[0], scenario.start) and np.array_equal(path[1], [1.5, 1.5])  # start is off-centre
+    assert np.array_equal(path[-1], scenario.goal) and len(path) == len(walks.edges(0)) + 2
+    assert validate_path(scenario, path)
+
+
+def test_buffers_grow_for_long_walks():
+    problem = ColonyProblem(open_grid(64))
+    engine = WalkEngine(problem)
+    g = problem.graph
+    flat_rules = WalkRules.product(1.0, np.ones(g.n_edges), 1.0, max_steps=10**9)  # no heuristic: long walks
+    walks = engine.walk(flat_rules, Pheromone(g.n_edges, 1.0), 8, seed=1)
+    assert walks.reached.all() and walks.flat.size > 1024
+    for a in range(8):
+        _check_walk(problem, walks.edges(a))
+
+
+# ------------------------------------------------------------------ the colony loop
+def test_evaluation_budget_shrinks_the_last_colony():
+    planner = pathzoo.make_planner("aco.as", n_ants=10)
+    calls = []
+    result = planner.plan(walled_grid(), budget=Budget(evaluations=25), rng=np.random.default_rng(0),
+                          progress=lambda *a: calls.append(a))
+    assert result.evaluations == 25 and result.iterations == 3
+    assert [c[:2] for c in calls] == [(1, 10), (2, 20), (3, 25)]
+
+
+def test_unlimited_budget_runs_the_iterations_parameter():
+    result = pathzoo.make_planner("aco.as", iterations=4, n_ants=3).plan(
+        walled_grid(), budget=Budget(), rng=np.random.default_rng(0))
+    assert result.iterations == 4 and result.evaluations == 12
+
+
+def test_time_budget_is_respected_on_a_large_map():
+    occ = np.zeros((300, 300), bool)
+    occ[20:280, 150] = True
+    scenario = pathzoo.Scenario(id="big", kind="grid2d", occupancy=occ, cell_size=1.0, start=(0.5, 150.5),
+                                goal=(299.5, 150.5))
+    scenario.graph  # built outside the timed call
+    planner = pathzoo.make_planner("aco.as", n_ants=50, beta=0.0)  # blind ants: long walks
+    planner.plan(scenario, budget=Budget(iterations=1, time_s=5.0), rng=np.random.default_rng(0))  # compile
+    started = time.perf_counter()
+    result = planner.plan(scenario, budget=Budget(time_s=0.5), rng=np.random.default_rng(0))
+    assert time.perf_counter() - started < 1.0 and result.iterations >= 1
+
+
+def test_progress_reports_best_so_far():
+    calls = []
+    result = pathzoo.make_planner("aco.as", n_ants=2).plan(
+        hill(), budget=Budget(iterations=30), rng=np.random.default_rng(1), progress=lambda *a: calls.append(a))
+    costs = [c[2] for c in calls]
+    assert len(calls) == 30 and all(b <= a for a, b in zip(costs, costs[1:]))
+    assert result.solved and math.isclose(costs[-1], float(np.linalg.norm(np.diff(
+        result.path, axis=0), axis=1).sum()), rel_tol=0.2)
+
+
+def test_start_and_goal_in_one_cell():
+    scenario = open_grid(4).with_endpoints((0.2, 0.3), (0.7, 0.9))
+    result = pathzoo.make_planner("aco.acs").plan(scenario, budget=Budget(iterations=3), rng=np.random.default_rng(0))
+    assert result.solved and validate_path(scenario, result.path) and result.evaluations == 0
+
+
+@pytest.mark.parametrize("walls", [False, True])
+def test_reached_flag_matches_totals(walls):
+    problem = ColonyProblem(walled_grid() if walls else open_grid(6))
+    walks = WalkEngine(problem).walk(_rules(problem), Pheromone(problem.graph.n_edges, 1.0), 5, seed=0)
+    assert np.all((walks.flags == REACHED) == np.isfinite(walks.totals(problem.graph.length)))
