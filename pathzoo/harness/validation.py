@@ -25,6 +25,7 @@ import numpy as np
 from pathzoo.core.scenario import Scenario
 from pathzoo.grid.segments import first_blocked_cell_2d, segment_blocked_3d, to_cell_units
 from pathzoo.grid.terrain import segment_profile
+from pathzoo.metrics.geometry import turn_angles
 
 __all__ = ["Validation", "validate_path", "segment_problem", "path_times", "ENDPOINT_TOLERANCE_CELLS"]
 
@@ -104,16 +105,6 @@ def path_times(scenario: Scenario, path: np.ndarray) -> np.ndarray:
     return np.concatenate([[0.0], np.cumsum(seg)]) / scenario.vehicle.cruise_speed
 
 
-def _turn_angles_deg(path: np.ndarray) -> np.ndarray:
-    d = np.diff(path[:, :2], axis=0)
-    d = d[np.hypot(d[:, 0], d[:, 1]) > 0]
-    if len(d) < 2:
-        return np.zeros(0)
-    heading = np.arctan2(d[:, 1], d[:, 0])
-    turn = np.abs((np.diff(heading) + np.pi) % (2 * np.pi) - np.pi)
-    return np.degrees(turn)
-
-
 def validate_path(scenario: Scenario, path: object, times: object = None) -> Validation:
     """Check a planner's path against the scenario; see the module docstring.
 
@@ -155,7 +146,7 @@ def validate_path(scenario: Scenario, path: object, times: object = None) -> Val
         problem = segment_problem(scenario, arr[k], arr[k + 1], float(t[k]), float(t[k + 1]))
         if problem is not None:
             return Validation(False, f"segment {k}: {problem}")
-    turns = _turn_angles_deg(arr)
+    turns = np.degrees(turn_angles(arr[:, :2]))  # horizontal heading changes
     if len(turns) and turns.max() > scenario.vehicle.max_turn_deg + _ANGLE_EPS_DEG:
         return Validation(False, f"a heading change of {turns.max():.3f} deg exceeds the turn limit {scenario.vehicle.max_turn_deg}")
     return Validation(True)

@@ -1,0 +1,125 @@
+"""The exact reference optimum: Dijkstra on a scenario's neighbourhood graph, cached per scenario.
+
+The harness uses it twice: as the denominator of the ``length_ratio`` metric,
+and as a witness when a planner claims that no path exists (the claim is
+rejected when the reference path exists *and* passes the validator).
+
+Endpoints are handled like the exact planners do: the search runs from the
+start cell to the goal cell; a start or goal lying on its cell centre (to
+1e-9 cells) replaces it, otherwise it is joined to it by a straight connector.
+For cell-centre endpoints (every MovingAI problem) the length is therefore the
+exact optimum of the graph; otherwise it is the optimum through the endpoint
+cells' centres.
+"""
+
+from __future__ import annotations
+
+import math
+import threading
+import weakref
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+if TYPE_CHECKING:
+    from pathzoo.core.scenario import Scenario
+
+__all__ = ["ReferencePath", "reference_path", "reference_length", "GRAPH_REFERENCE_KINDS"]
+
+GRAPH_REFERENCE_KINDS: frozenset[str] = frozenset({"grid2d", "terrain", "air3d"})
+"""Kinds whose graph optimum is the right reference for path length.
+
+``dynamic`` is excluded: the static graph ignores the moving obstacles, so
+its optimum is only a lower bound there.
+"""
+
+_CENTRE_TOL_CELLS = 1e-9
+
+
+@dataclass(frozen=True, eq=False)
+class ReferencePath:
+    """The graph-optimal path of a scenario.
+
+    Attributes
+    ----------
+    path : ndarray of shape (N, d)
+        World coordinates from exactly ``scenario.start`` to exactly ``scenario.goal``.
+    length : float
+        Its 3-D length in metres, measured like the ``length`` metric.
+    nodes : ndarray of int64
+        The graph nodes (cells) it visits.
+    """
+
+    path: np.ndarray
+    length: float
+    nodes: np.ndarray
+
+
+_cache: "weakref.WeakKeyDictionary[Scenario, ReferencePath | None]" = weakref.WeakKeyDictionary()
+_lock = threading.Lock()
+
+
+def _with_endpoints(scenario: "Scenario", centres: np.ndarray) -> np.ndarray:
+    tol = _CENTRE_TOL_CELLS * float(np.min(scenario.cell_sizes))
+    head = [] if np.max(np.abs(centres[0] - scenario.start)) <= tol else [scenario.start]
+    tail = [] if np.max(np.abs(centres[-1] - scenario.goal)) <= tol else [scenario.goal]
+    inner = centres.copy()
+    if not head:
+        inner[0] = scenario.start
+    if not tail:
+        inner[-1] = scenario.goal
+    return np.vstack([*(p[None, :] for p in head), inner, *(p[None, :] for p in tail)])
+
+
+def _compute(scenario: "Scenario") -> ReferencePath | None:
+    # imported here: pathzoo.metrics imports this module for length_ratio, and
+    # registering the metrics must not pull in scipy
+    from scipy.sparse.csgraph import dijkstra
+
+    from pathzoo.metrics.geometry import path_pieces
+
+    graph = scenario.graph
+    source, target = scenario.start_node, scenario.goal_node
+    dist, pred = dijkstra(graph.to_sparse("length"), directed=True, indices=source, return_predecessors=True)
+    if not math.isfinite(float(dist[target])):
+        return None
+    nodes = [target]
+    while nodes[-1] != source:
+        nodes.append(int(pred[nodes[-1]]))
+    node_arr = np.array(nodes[::-1], dtype=np.int64)
+    path = _with_endpoints(scenario, scenario.point_of(node_arr))
+    lengths, _ = path_pieces(scenario, path)
+    path.setflags(write=False)
+    node_arr.setflags(write=False)
+    return ReferencePath(path=path, length=float(lengths.sum()), nodes=node_arr)
+
+
+def reference_path(scenario: "Scenario") -> ReferencePath | None:
+    """The shortest path on ``scenario.graph``, or ``None`` when the goal cell is unreachable.
+
+    Computed once per scenario object (Dijkstra from the start cell with
+    :func:`scipy.sparse.csgraph.dijkstra`) and cached while the scenario lives.
+    """
+    with _lock:
+        if scenario in _cache:
+            return _cache[scenario]
+    ref = _compute(scenario)
+    with _lock:
+        _cache[scenario] = ref
+    return ref
+
+
+def reference_length(scenario: "Scenario") -> float:
+    """The reference length in metres for ``length_ratio``, or NaN when there is none.
+
+    ``scenario.reference_length`` when set (e.g. from a MovingAI ``.scen``
+    file); otherwise the graph optimum for the kinds in
+    :data:`GRAPH_REFERENCE_KINDS`; NaN for other kinds and unreachable goals.
+    """
+    if scenario.reference_length is not None:
+        return float(scenario.reference_length)
+    if scenario.kind not in GRAPH_REFERENCE_KINDS:
+        return math.nan
+    ref = reference_path(scenario)
+    return math.nan if ref is None else ref.length

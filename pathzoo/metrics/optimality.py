@@ -1,0 +1,44 @@
+"""The optimality metric: path length relative to the exact reference length."""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from pathzoo.grid.reference import reference_length
+from pathzoo.metrics.base import PathMetric
+from pathzoo.metrics.geometry import path_pieces
+
+if TYPE_CHECKING:
+    from pathzoo.core.results import RunRecord
+    from pathzoo.core.scenario import Scenario
+
+__all__ = ["LengthRatio"]
+
+
+class LengthRatio(PathMetric):
+    """Path length divided by the reference length (1 = as short as the graph optimum).
+
+    The reference is :func:`pathzoo.grid.reference.reference_length`: the
+    scenario's ``reference_length`` when set, else the Dijkstra optimum on the
+    8-connected (terrain: 3-D; air: ``max_step``) graph. Any-angle paths are
+    not bound to the graph and may score below 1. NaN when there is no
+    reference (``dynamic`` scenarios without ``reference_length``).
+    """
+
+    id = "length_ratio"
+    unit = "1"
+    direction = "min"
+    summary = "length / exact graph optimum (any-angle paths may be < 1)"
+
+    def measure(self, scenario: "Scenario", path: np.ndarray, record: "RunRecord") -> float:
+        """``length / reference``; 1 when both are 0, NaN without a reference."""
+        ref = reference_length(scenario)
+        length = float(path_pieces(scenario, path)[0].sum())
+        if math.isnan(ref):
+            return math.nan
+        if ref == 0.0:
+            return 1.0 if length == 0.0 else math.inf
+        return length / ref
