@@ -9,7 +9,7 @@ from matplotlib.axes import Axes
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
-__all__ = ["new_axes", "save_figure", "png_bytes"]
+__all__ = ["new_axes", "save_figure", "png_bytes", "legend_below"]
 
 
 def new_axes(ax: Axes | None = None, figsize: tuple[float, float] = (6.0, 5.0)) -> Axes:
@@ -34,3 +34,8 @@ def png_bytes(fig: Figure, *, dpi: int = 110) -> bytes:
     buf = io.BytesIO()
     fig.savefig(buf, format="png", dpi=dpi)
     return buf.getvalue()
+
+
+def legend_below(ax: Axes, ncol: int = 4) -> None:
+    """Put ``ax``'s legend under the axes, centred, without a frame."""
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=ncol, fontsize="small", frameon=False)

@@ -20,7 +20,7 @@ from matplotlib.colors import LightSource, ListedColormap, Normalize
 from matplotlib.patches import Circle
 
 from pathzoo.core.scenario import Scenario
-from pathzoo.plotting.figure import new_axes, save_figure
+from pathzoo.plotting.figure import legend_below, new_axes, save_figure
 
 __all__ = ["plot_scenario", "save_scenario_png", "draw_path", "map_extent", "scenario_figsize"]
 
@@ -195,7 +195,7 @@ def plot_scenario(
     ax.set_ylabel("y [m]")
     ax.set_title(scenario.id if title is None else title)
     if legend:
-        ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=4, fontsize="small", frameon=False)
+        legend_below(ax)
     return ax
 
 

@@ -1,0 +1,77 @@
+"""Box plots of one metric per scenario and configuration, with success rates shown beside the boxes."""
+
+from __future__ import annotations
+
+import warnings
+from typing import Sequence
+
+import pandas as pd
+import seaborn as sns
+from matplotlib import MatplotlibDeprecationWarning
+from matplotlib.axes import Axes
+
+from pathzoo.analysis.frame import Direction, metric_info, with_config
+from pathzoo.analysis.formatting import format_percent
+from pathzoo.plotting.figure import new_axes
+
+__all__ = ["plot_metric_boxes"]
+
+
+def plot_metric_boxes(
+    runs: pd.DataFrame,
+    metric: str = "length",
+    ax: Axes | None = None,
+    *,
+    scenarios: Sequence[str] | None = None,
+    direction: Direction | None = None,
+    unit: str | None = None,
+) -> Axes:
+    """Box plot of ``metric`` over successful runs: scenarios on the x axis, one box per configuration.
+
+    A configuration's success rate is printed above its box when it is
+    below 100 % (a box of 2 runs out of 20 must not look like a result), and
+    "0%" marks a configuration with no successful run at all.
+
+    Parameters
+    ----------
+    runs : DataFrame
+        One row per run.
+    metric : str
+        Metric id.
+    ax : Axes, optional
+        Where to draw; a new figure by default.
+    scenarios : sequence of str, optional
+        Scenarios to show, in order (default: all, sorted).
+    direction, unit : optional
+        Overrides of the registered metric facts (used in the axis label).
+    """
+    info = metric_info(metric, direction, unit)
+    df = with_config(runs, metric)
+    order = sorted(df["scenario"].unique()) if scenarios is None else list(scenarios)
+    df = df[df["scenario"].isin(order)]
+    hue_order = sorted(df["config"].unique())
+    ax = new_axes(ax, (max(5.0, 1.2 + 0.35 * len(order) * len(hue_order)), 4.2))
+    good = df[df["success"]]
+    with warnings.catch_warnings():  # seaborn 0.13 still passes matplotlib's deprecated ``vert``
+        warnings.simplefilter("ignore", MatplotlibDeprecationWarning)
+        sns.boxplot(data=good, x="scenario", y=metric, hue="config", order=order, hue_order=hue_order, ax=ax,
+                    palette="colorblind", fliersize=2.5, linewidth=1.0)
+    rate = df.groupby(["scenario", "config"])["success"].mean()
+    width = 0.8 / max(len(hue_order), 1)
+    ymax = good[metric].max() if len(good) else 1.0
+    for i, sc in enumerate(order):
+        for j, cfg in enumerate(hue_order):
+            r = rate.get((sc, cfg))
+            if r is None or r >= 1.0:
+                continue
+            top = good.loc[(good["scenario"] == sc) & (good["config"] == cfg), metric].max()
+            y = ymax if pd.isna(top) else top
+            ax.annotate(format_percent(r), (i - 0.4 + (j + 0.5) * width, y), xytext=(0, 3),
+                        textcoords="offset points", ha="center", va="bottom", fontsize="x-small", color="#b00000")
+    ax.set_ylabel(f"{info.label} ({info.better}; successful runs)")
+    ax.set_xlabel("scenario")
+    if len(order) > 4:
+        ax.tick_params(axis="x", labelrotation=30)
+    if ax.get_legend() is not None:
+        sns.move_legend(ax, "upper left", bbox_to_anchor=(1.01, 1.0), title="planner", fontsize="small", frameon=False)
+    return ax

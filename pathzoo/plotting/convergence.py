@@ -1,0 +1,76 @@
+"""Convergence curves: median best cost with its interquartile band against iterations, evaluations or time."""
+
+from __future__ import annotations
+
+import pandas as pd
+import seaborn as sns
+from matplotlib.axes import Axes
+
+from pathzoo.analysis.anytime import AnytimeAxis, convergence_curves
+from pathzoo.core.errors import InvalidParameterError
+from pathzoo.plotting.figure import new_axes
+
+__all__ = ["plot_convergence", "AXIS_LABELS"]
+
+AXIS_LABELS = {"iteration": "iteration", "evaluations": "evaluations", "time_s": "time [s]"}
+
+
+def plot_convergence(
+    history: pd.DataFrame,
+    runs: pd.DataFrame,
+    scenario: str | None = None,
+    *,
+    x: AnytimeAxis = "iteration",
+    ax: Axes | None = None,
+    log: bool = False,
+    n_points: int = 100,
+) -> Axes:
+    """Median best cost (line) and interquartile band (shaded) of each configuration on one scenario.
+
+    The curves come from :func:`pathzoo.analysis.anytime.convergence_curves`:
+    each run's step curve sampled on a common grid, unsuccessful runs and
+    times before a run's first solution counting as "no solution" (so a
+    curve starts only once at least half of the runs hold a solution). The y
+    axis is each planner's own objective; see that module for why curves of
+    planners with different objectives compare only in shape.
+
+    Parameters
+    ----------
+    history, runs : DataFrame
+        History rows and the runs frame.
+    scenario : str, optional
+        Required when the runs cover several scenarios.
+    x : {"iteration", "evaluations", "time_s"}
+        Horizontal axis.
+    ax : Axes, optional
+        Where to draw.
+    log : bool
+        Logarithmic x axis (and grid).
+    n_points : int
+        Grid size.
+    """
+    scenarios = sorted(runs["scenario"].unique())
+    if scenario is None:
+        if len(scenarios) != 1:
+            raise InvalidParameterError(f"scenario is required when runs cover {len(scenarios)} scenarios")
+        scenario = scenarios[0]
+    elif scenario not in scenarios:
+        raise InvalidParameterError(f"scenario '{scenario}' has no runs")
+    sub = runs[runs["scenario"] == scenario]
+    curves = convergence_curves(history[history["run_key"].isin(sub["run_key"])], sub, x=x, n_points=n_points,
+                                log=log)
+    ax = new_axes(ax, (6.0, 4.0))
+    configs = sorted(curves["config"].unique())
+    colors = dict(zip(configs, sns.color_palette("colorblind", len(configs))))
+    for cfg, c in curves.groupby("config", sort=True):
+        ax.plot(c["x"], c["median"], color=colors[cfg], lw=1.8, label=f"{cfg} (n={c['n_runs'].iloc[0]})")
+        ax.fill_between(c["x"], c["q25"], c["q75"], color=colors[cfg], alpha=0.2, lw=0)
+    if log:
+        ax.set_xscale("log")
+    ax.set_xlabel(AXIS_LABELS[x])
+    ax.set_ylabel("best cost (planner's objective)")
+    ax.set_title(f"{scenario}: median and IQR of best cost")
+    ax.grid(alpha=0.3)
+    if configs:
+        ax.legend(fontsize="small", frameon=False)
+    return ax

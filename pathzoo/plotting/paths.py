@@ -1,0 +1,48 @@
+"""Several planners' paths drawn over one scenario's map or hillshaded terrain."""
+
+from __future__ import annotations
+
+from typing import Mapping
+
+import numpy as np
+import seaborn as sns
+from matplotlib import patheffects
+from matplotlib.axes import Axes
+
+from pathzoo.core.scenario import Scenario
+from pathzoo.plotting.figure import legend_below
+from pathzoo.plotting.scenario import draw_path, plot_scenario
+
+__all__ = ["plot_paths"]
+
+
+def plot_paths(
+    scenario: Scenario,
+    paths: Mapping[str, np.ndarray],
+    ax: Axes | None = None,
+    *,
+    title: str | None = None,
+) -> Axes:
+    """Draw each labelled path over :func:`~pathzoo.plotting.scenario.plot_scenario`'s view of ``scenario``.
+
+    Paths get distinct colour-blind-safe colours with a white outline, so
+    they stay visible on dark obstacles and on coloured terrain.
+
+    Parameters
+    ----------
+    scenario : Scenario
+        The map.
+    paths : mapping of str to ndarray
+        Label (usually the planner) to an ``(N, 2)`` or ``(N, 3)`` path.
+    ax : Axes, optional
+        Where to draw.
+    title : str, optional
+        Axes title (default: the scenario id).
+    """
+    ax = plot_scenario(scenario, ax=ax, title=title, legend=False)
+    colors = sns.color_palette("colorblind", max(len(paths), 1))
+    outline = [patheffects.withStroke(linewidth=4.0, foreground="white")]
+    for (label, path), color in zip(paths.items(), colors):
+        draw_path(ax, path, label=label, color=color, path_effects=outline)
+    legend_below(ax, ncol=min(4, len(paths) + 2))
+    return ax

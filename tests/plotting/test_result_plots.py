@@ -1,0 +1,85 @@
+"""Box plots, convergence curves, time-to-target ECDFs, CD diagrams and path overlays draw what the data says."""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+import pytest
+from matplotlib.collections import PolyCollection
+
+from pathzoo.analysis.anytime import convergence_curves, time_to_target
+from pathzoo.analysis.ranks import friedman
+from pathzoo.analysis.synthetic import make_runs, random_history, random_runs
+from pathzoo.core import Scenario
+from pathzoo.core.errors import InvalidParameterError
+from pathzoo.plotting.boxplots import plot_metric_boxes
+from pathzoo.plotting.cd_diagram import plot_cd_diagram
+from pathzoo.plotting.convergence import plot_convergence
+from pathzoo.plotting.ecdf import plot_time_to_target_ecdf
+from pathzoo.plotting.figure import png_bytes
+from pathzoo.plotting.paths import plot_paths
+
+LEN = dict(direction="min", unit="m")  # no registry needed
+
+
+@pytest.fixture(scope="module")
+def runs() -> pd.DataFrame:
+    return random_runs(("a", "b", "c"), ("s1", "s2"), n_seeds=8, seed=11)
+
+
+def test_boxes_and_success_annotations():
+    runs = make_runs({"s1": {"a": [1.0, 2.0, 3.0, np.nan], "b": [2.0, 3.0, 4.0, 5.0]},
+                      "s2": {"a": [1.0, 1.0, 1.0, 1.0], "b": [np.nan] * 4}})
+    ax = plot_metric_boxes(runs, "length", **LEN)
+    notes = sorted(t.get_text() for t in ax.texts)
+    assert notes == ["0%", "75%"]
+    assert [t.get_text() for t in ax.get_xticklabels()] == ["s1", "s2"]
+    assert ax.get_ylabel().startswith("length [m] (lower is better")
+    assert png_bytes(ax.figure)[:4] == b"\x89PNG"
+
+
+def test_convergence_lines_are_the_medians(runs):
+    history = random_history(runs)
+    ax = plot_convergence(history, runs, "s1", x="time_s")
+    sub = runs[runs.scenario == "s1"]
+    curves = convergence_curves(history[history.run_key.isin(sub.run_key)], sub, x="time_s")
+    assert len(ax.lines) == 3 and len([c for c in ax.collections if isinstance(c, PolyCollection)]) == 3
+    for line, (_, c) in zip(ax.lines, curves.groupby("config", sort=True)):
+        np.testing.assert_allclose(line.get_ydata(), c["median"].to_numpy())
+    assert ax.get_xlabel() == "time [s]"
+    with pytest.raises(InvalidParameterError, match="scenario is required"):
+        plot_convergence(history, runs)
+    with pytest.raises(InvalidParameterError, match="scenario 'zz'"):
+        plot_convergence(history, runs, "zz")
+
+
+def test_ecdf_reaches_the_share_of_hits(runs):
+    history = random_history(runs, seed=2)
+    ax = plot_time_to_target_ecdf(history, runs, eps=0.05)
+    hits = time_to_target(history, runs, eps=0.05)
+    for line in ax.lines:
+        cfg = line.get_label().split(" (")[0]
+        h = hits[(hits.config == cfg) & hits.comparable]
+        assert line.get_ydata()[-1] == pytest.approx(np.isfinite(h["hit"]).mean())
+        assert f"n={len(h)}" in line.get_label()
+
+
+def test_cd_diagram_labels_ranks_and_cd():
+    rows = {f"s{i}": {"a": [1.0], "b": [2.0], "c": [3.0]} for i in range(5)}
+    res = friedman(make_runs(rows), "length", direction="min")
+    ax = plot_cd_diagram(res)
+    texts = [t.get_text() for t in ax.texts]
+    assert "a (1.00)" in texts and "c (3.00)" in texts and f"CD = {res.cd:.2f}" in texts
+    assert f"p = {res.pvalue:.3g}" in ax.get_title()
+
+
+def test_paths_overlay():
+    sc = Scenario(id="g", kind="grid2d", occupancy=np.zeros((5, 5), bool), cell_size=1.0,
+                  start=[0.5, 0.5], goal=[4.5, 4.5])
+    p1 = np.array([[0.5, 0.5], [4.5, 4.5]])
+    p2 = np.array([[0.5, 0.5], [4.5, 0.5], [4.5, 4.5]])
+    ax = plot_paths(sc, {"one": p1, "two": p2})
+    lines = {ln.get_label(): ln for ln in ax.lines}
+    assert lines["two"].get_xydata().tolist() == p2.tolist()
+    assert lines["one"].get_color() != lines["two"].get_color()
+    assert [t.get_text() for t in ax.get_legend().get_texts()] == ["start", "goal", "one", "two"]
