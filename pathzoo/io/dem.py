@@ -79,6 +79,14 @@ def _finish(
     return DEM(metric, cell_size, record)
 
 
+def _is_number(token: str) -> bool:
+    try:
+        float(token)
+    except ValueError:
+        return False
+    return True
+
+
 def read_asc(path: str | Path, *, units: GridUnits = "auto", nodata: NodataPolicy = "error") -> DEM:
     """Read an ESRI ASCII grid.
 
@@ -108,7 +116,7 @@ def read_asc(path: str | Path, *, units: GridUnits = "auto", nodata: NodataPolic
         raise InvalidScenarioError(f"cannot read: {getattr(exc, 'strerror', None) or exc}", source=src) from None
     header: dict[str, float] = {}
     i = 0
-    while i < len(lines) and lines[i].split() and lines[i].split()[0][0].isalpha():
+    while i < len(lines) and not _is_number(lines[i].split()[0] if lines[i].split() else "0"):
         parts = lines[i].split()
         key = parts[0].lower()
         if key not in ASC_HEADER_KEYS or len(parts) != 2:

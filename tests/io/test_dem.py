@@ -102,6 +102,7 @@ HEADER = "ncols 3\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 5\nNODATA_value -
         (HEADER + "1 2 3\n4 5\n", "data"),
         (HEADER + "1 2 3\n4 5 x\n", "data"),
         (HEADER + "1 2 3\n4 5 nan\n", "data"),
+        (HEADER + "nan 2 3\n4 5 6\n", "data"),
     ],
 )
 def test_malformed_asc_names_file_and_field(tmp_path, text, field):
