@@ -18,5 +18,5 @@ def shared_data() -> Path:
     """
     path = (REPO_ROOT / ".." / "shared" / "data").resolve()
     if not (path / "movingai").is_dir() or not (path / "dem").is_dir():
-        pytest.fail(f"shared test data not found at {path}: clone the shared/ folder beside the repository", pytrace=False)
+        pytest.fail(f"shared test data not found at {path}: put shared/ beside the repository", pytrace=False)
     return path

@@ -72,8 +72,10 @@ def check_shape(
     return tuple(int(n) for n in shape)
 
 
-def relocated(error: InvalidScenarioError, *, source: str | None, field: str | None = None, note: str = "") -> InvalidScenarioError:
-    """The same complaint placed in ``source`` at ``field`` (default: the error's own field), optionally prefixed by ``note``.
+def relocated(
+    error: InvalidScenarioError, *, source: str | None, field: str | None = None, note: str = ""
+) -> InvalidScenarioError:
+    """The same complaint placed in ``source`` at ``field`` (default: the error's own field), prefixed by ``note``.
 
     Lets a reader report an error raised by a checked value or object (which
     knows the field but not the file) at the file and the full field name.

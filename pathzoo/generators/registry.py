@@ -100,7 +100,9 @@ def generate(
     info = GENERATORS.get(name)
     if info is None:
         raise InvalidScenarioError(
-            f"unknown generator {name!r}; known: {', '.join(sorted(GENERATORS))}", source=source, field=f"{table}.generator"
+            f"unknown generator {name!r}; known: {', '.join(sorted(GENERATORS))}",
+            source=source,
+            field=f"{table}.generator",
         )
     unknown = sorted(set(params) - set(info.parameters))
     if unknown:

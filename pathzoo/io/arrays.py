@@ -49,7 +49,8 @@ def read_npz(path: str | Path) -> dict[str, np.ndarray]:
             try:
                 arrays[name] = loaded[name]
             except ValueError as exc:  # object arrays inside the archive
-                what = "holds pickled Python objects, which pathzoo never loads" if "pickle" in str(exc) else f"is unreadable: {exc}"
+                pickled = "pickle" in str(exc)
+                what = "holds pickled Python objects, which pathzoo never loads" if pickled else f"is unreadable: {exc}"
                 raise InvalidScenarioError(f"array {name!r} {what}", source=src, field=name) from None
             except zipfile.BadZipFile as exc:
                 raise InvalidScenarioError(f"array {name!r} is unreadable: {exc}", source=src, field=name) from None
@@ -104,12 +105,16 @@ def as_occupancy(array: np.ndarray, *, ndim: int, source: str, field: str) -> np
     more likely an elevation put in the wrong place than an occupancy map).
     """
     if array.ndim != ndim or array.size == 0:
-        raise InvalidScenarioError(f"must be a non-empty {ndim}-D array, got shape {array.shape}", source=source, field=field)
+        raise InvalidScenarioError(
+            f"must be a non-empty {ndim}-D array, got shape {array.shape}", source=source, field=field
+        )
     if array.dtype == bool:
         occ = array.astype(bool, copy=True)
     elif array.dtype.kind in "iu":
         if not np.isin(array, (0, 1)).all():
-            raise InvalidScenarioError("integer occupancy must hold only 0 (free) and 1 (blocked)", source=source, field=field)
+            raise InvalidScenarioError(
+                "integer occupancy must hold only 0 (free) and 1 (blocked)", source=source, field=field
+            )
         occ = array.astype(bool)
     else:
         raise InvalidScenarioError(
@@ -127,9 +132,13 @@ def as_elevation(array: np.ndarray, *, nodata: NodataPolicy, source: str, field:
     obstacles. Returns a read-only ``float64`` array.
     """
     if array.ndim != 2 or array.size == 0:
-        raise InvalidScenarioError(f"must be a non-empty 2-D array, got shape {array.shape}", source=source, field=field)
+        raise InvalidScenarioError(
+            f"must be a non-empty 2-D array, got shape {array.shape}", source=source, field=field
+        )
     if array.dtype.kind not in "iuf":
-        raise InvalidScenarioError(f"dtype {array.dtype} is not an elevation grid; use numbers", source=source, field=field)
+        raise InvalidScenarioError(
+            f"dtype {array.dtype} is not an elevation grid; use numbers", source=source, field=field
+        )
     elev = array.astype(np.float64, copy=True)
     missing = ~np.isfinite(elev)
     if missing.any():

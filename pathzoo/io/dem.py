@@ -143,7 +143,9 @@ def read_asc(path: str | Path, *, units: GridUnits = "auto", nodata: NodataPolic
     for axis in ("x", "y"):
         given = [k for k in (f"{axis}llcorner", f"{axis}llcenter") if k in header]
         if len(given) != 1:
-            raise InvalidScenarioError("the header needs exactly one of them", source=src, field=f"{axis}llcorner/{axis}llcenter")
+            raise InvalidScenarioError(
+                "the header needs exactly one of them", source=src, field=f"{axis}llcorner/{axis}llcenter"
+            )
         corner[axis] = header[given[0]] - (0.5 * cell if given[0].endswith("center") else 0.0)
     try:
         values = np.array(" ".join(lines[i:]).split(), dtype=np.float64)

@@ -18,7 +18,9 @@ _MAX_DEGREE_CELL = 0.1
 """Coarsest cell (degrees) that ``auto`` takes for geographic; 0.1 degree is about 11 km."""
 
 
-def detect_units(cell_x: float, cell_y: float, x_range: tuple[float, float], y_range: tuple[float, float] | None) -> str:
+def detect_units(
+    cell_x: float, cell_y: float, x_range: tuple[float, float], y_range: tuple[float, float] | None
+) -> str:
     """Guess whether a grid is geographic.
 
     ``"degrees"`` when both cell sizes are at most 0.1, the x coordinates lie

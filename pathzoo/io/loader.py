@@ -32,7 +32,9 @@ def load_scenario_file(path: str | Path) -> Scenario:
     if suffix == ".toml":
         return read_scenario_toml(path)
     if suffix == ".scen":
-        raise InvalidScenarioError("holds a list of problems; load it with load_scenarios / load_scenario_files", source=src)
+        raise InvalidScenarioError(
+            "holds a list of problems; load it with load_scenarios / load_scenario_files", source=src
+        )
     if suffix in _BARE_MAPS:
         raise InvalidScenarioError(
             f"a bare {suffix} map has no start and goal (nor kind or cell size); write a scenario TOML with "

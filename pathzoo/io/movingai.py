@@ -161,7 +161,9 @@ def scenarios_from_scen(path: str | Path) -> list[Scenario]:
         if name not in first:
             map_path = path.parent / name
             if not map_path.is_file():
-                raise InvalidScenarioError(f"{where}map file not found next to the .scen: {map_path}", source=src, field="map")
+                raise InvalidScenarioError(
+                    f"{where}map file not found next to the .scen: {map_path}", source=src, field="map"
+                )
             occupancy = read_map(map_path)
             occupancy.setflags(write=False)
             records[name] = file_record(map_path)

@@ -72,7 +72,7 @@ def test_npy_dem_has_no_cell_size_and_nan_needs_a_policy(tmp_path):
     assert dem.cell_size is None and np.array_equal(dem.elevation, z)
     z[1, 2] = np.nan
     np.save(tmp_path / "z.npy", z)
-    with pytest.raises(InvalidScenarioError, match=r"z.npy: field 'elevation': 1 cells are NaN .*nodata = \"obstacle\""):
+    with pytest.raises(InvalidScenarioError, match=r"z.npy: field 'elevation': 1 cells are NaN .*nodata = \"obstacle"):
         read_elevation(tmp_path / "z.npy")
     assert np.isnan(read_elevation(tmp_path / "z.npy", nodata="obstacle").elevation[1, 2])
 

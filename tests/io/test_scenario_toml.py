@@ -258,7 +258,7 @@ def test_rules_with_soil_from_files_and_inline(tmp_path):
 @pytest.mark.parametrize(
     "change, pattern",
     [
-        (("kind = \"grid2d\"", "kind = \"grid2d\"\ncolour = 1"), r"field 'colour': unknown key; allowed here: cell_size"),
+        (("kind = \"grid2d\"", "kind = \"grid2d\"\ncolour = 1"), r"field 'colour': unknown key; allowed here: "),
         (("file = \"arena.map\"", "file = \"arena.map\"\nscale = 2"), r"field 'map.scale': unknown key"),
         (("[metadata]", "[vehicle]\nwheels = 4\n[metadata]"), r"field 'vehicle': unknown key\(s\) \['wheels'\]"),
         (("[metadata]", "[vehicle]\nmass_kg = -3\n[metadata]"), r"field 'vehicle.mass_kg': must be > 0"),
@@ -296,7 +296,8 @@ def test_map_file_problems_are_reported_at_map_file(tmp_path):
     np.save(tmp_path / "f.npy", np.zeros((3, 3)))
     np.save(tmp_path / "obj.npy", np.array([None], dtype=object), allow_pickle=True)
     base = 'id = "x"\nkind = "grid2d"\nstart = [0.5, 0.5]\ngoal = [1.5, 0.5]\n[map]\n'
-    fails(write(tmp_path, base + 'file = "ragged.map"\n', "a.toml"), r"field 'map.file': .*ragged.map: field 'map row 1'")
+    fails(write(tmp_path, base + 'file = "ragged.map"\n', "a.toml"),
+          r"field 'map.file': .*ragged.map: field 'map row 1'")
     fails(write(tmp_path, base + 'file = "f.npy"\n', "b.toml"), r"field 'map.file': .*f.npy: .*dtype float64")
     fails(write(tmp_path, base + 'file = "obj.npy"\n', "c.toml"), r"field 'map.file': .*obj.npy: .*pickled")
     fails(write(tmp_path, base + 'file = "f.npy"\nkey = "a"\n', "d.toml"), r"field 'map.file': .*'key'")
@@ -319,5 +320,6 @@ def test_no_endpoints_and_no_seed(tmp_path, arena):
 
 
 def test_missing_map_table(tmp_path):
-    fails(write(tmp_path, 'id = "x"\nkind = "grid2d"\nstart = [0.5, 0.5]\ngoal = [0.5, 0.5]\n'), r"field 'map': missing")
+    fails(write(tmp_path, 'id = "x"\nkind = "grid2d"\nstart = [0.5, 0.5]\ngoal = [0.5, 0.5]\n'),
+          r"field 'map': missing")
     fails(write(tmp_path, 'id = "x"\nkind = "terrain"\n[map]\nfile = "a.map"\n', "t.toml"), r"field 'elevation'")
