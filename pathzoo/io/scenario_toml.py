@@ -123,17 +123,13 @@ def _occupancy(table: Table, base: Path, cell_size: float, ndim: int) -> tuple[n
         raise table.error("file", "an .asc file is an elevation grid; put it under [elevation]")
     path = _data_file(table, base, _OCCUPANCY_SUFFIXES)
     key = table.string("key", default=None)
+    is_map = path.suffix.lower() == ".map"
+    if is_map and key is not None:
+        raise table.error("key", "applies to .npz files only")
     try:
-        if path.suffix.lower() == ".map":
-            if key is not None:
-                raise table.error("key", "applies to .npz files only")
-            grid = read_map(path)
-        else:
-            grid = load_array(path, key=key)
+        grid = read_map(path) if is_map else load_array(path, key=key)
         occ = as_occupancy(grid, ndim=ndim, source=str(path), field=key or "map")
     except InvalidScenarioError as exc:
-        if exc.source == table.source:
-            raise
         raise _in_data_file(exc, table, "file") from None
     return occ, {**file_record(path), **({"key": key} if key else {})}
 
@@ -165,12 +161,29 @@ def _soil_array(rules: Table, key: str, base: Path, shape: tuple[int, ...]) -> n
     return arr
 
 
+def _pairs(table: Table, key: str) -> list[tuple[float, ...]]:
+    """A list of number pairs, e.g. ``[[upper_slope_deg, weight], ...]`` or ``[[x, y], ...]``."""
+    if key not in table:
+        raise table.error(key, "missing")
+    value = table.data[key]
+    if not isinstance(value, list) or not value:
+        raise table.error(key, f"must be a non-empty list of [a, b] pairs, got {value!r}")
+    return [Table({key: row}, table.source, table.name).vector(key, (2,)) for row in value]
+
+
 def _rules(table: Table, base: Path, shape: tuple[int, ...]) -> TerrainRules:
     table.reject_unknown(f.name for f in fields(TerrainRules))
     data = dict(table.data)
     for key in ("soil_strength", "soil_types"):
         if key in data:
             data[key] = _soil_array(table, key, base, shape)
+    if "slope_weights" in data:
+        data["slope_weights"] = _pairs(table, "slope_weights")
+    if "min_soil_strength" in data:
+        table.number("min_soil_strength")
+    names = data.get("soil_names", [])
+    if not isinstance(names, list) or not all(isinstance(n, str) for n in names):
+        raise table.error("soil_names", f"must be a list of strings, got {names!r}")
     return TerrainRules.from_mapping(data, source=table.source)
 
 
@@ -183,10 +196,21 @@ def _moving_obstacles(top: Table) -> tuple[MovingObstacle, ...]:
         entry = f"moving_obstacles[{i}]"
         if not isinstance(item, dict):
             raise top.error(entry, "must be a table")
-        Table(item, top.source, entry).reject_unknown(f.name for f in fields(MovingObstacle))
+        table = Table(item, top.source, entry)
+        table.reject_unknown(f.name for f in fields(MovingObstacle))
         try:
-            obstacles.append(MovingObstacle(**item))
+            obstacles.append(
+                MovingObstacle(
+                    radius=table.number("radius"),
+                    waypoints=_pairs(table, "waypoints"),
+                    speed=table.number("speed"),
+                    mode=table.string("mode", default="pingpong"),
+                    phase_s=table.number("phase_s", default=0.0),
+                )
+            )
         except InvalidScenarioError as exc:
+            if exc.source is not None:
+                raise
             name = (exc.field or "").removeprefix("moving_obstacles.")
             raise relocated(exc, source=top.source, field=f"{entry}.{name}") from None
     return tuple(obstacles)

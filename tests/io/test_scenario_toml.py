@@ -221,6 +221,11 @@ def test_dynamic_with_moving_obstacles(tmp_path):
           r"field 'moving_obstacles\[1\].radius': must be > 0")
     fails(write(tmp_path, DYNAMIC.replace("speed = 0.0", "speed = 0.0\ncolour = 'red'"), "c.toml"),
           r"field 'moving_obstacles\[1\].colour': unknown key")
+    fails(write(tmp_path, DYNAMIC.replace("radius = 0.5", "radius = 'big'"), "t.toml"),
+          r"field 'moving_obstacles\[1\].radius': must be a number, got 'big'")
+    fails(write(tmp_path, DYNAMIC.replace("speed = 0.0", ""), "m.toml"), r"field 'moving_obstacles\[1\].speed': missing")
+    fails(write(tmp_path, DYNAMIC.replace("[[5, 2]]", "[[5, 'a']]"), "w.toml"),
+          r"field 'moving_obstacles\[1\].waypoints': must be a number")
 
 
 def test_rules_with_soil_from_files_and_inline(tmp_path):
@@ -249,6 +254,9 @@ def test_rules_with_soil_from_files_and_inline(tmp_path):
     assert s.blocked.sum() == 4 and s.blocked[2:4, 2:4].all()
     assert s.rules.soil_names == ("sand", "clay", "rock") and s.rules.soil_types[1, 0] == 0
     assert s.rules.slope_weight(0.0) == 1.0
+    fails(write(tmp_path, text.replace("[90, 2.0]", "[90, 'x']"), "sw.toml"), r"field 'rules.slope_weights': must be")
+    fails(write(tmp_path, text.replace("= 20.0", "= 'x'"), "min.toml"), r"field 'rules.min_soil_strength': must be")
+    fails(write(tmp_path, text.replace('"rock"]', '3]'), "names.toml"), r"field 'rules.soil_names': must be a list")
     np.save(tmp_path / "rci.npy", rci[:5])
     fails(write(tmp_path, text, "shape.toml"), r"field 'rules.soil_strength': shape \(5, 6\) differs")
     fails(write(tmp_path, text.replace('"rci.npy"', "[[1, 2], [3]]"), "ragged.toml"),
