@@ -105,7 +105,10 @@ def load_scenario(id_or_path: str | Path) -> Scenario:
         return load_scenario_file(Path(text))
     from pathzoo.plugins.manager import get_registry
 
-    entry = get_registry().get("scenarios", text)
+    try:
+        entry = get_registry().get("scenarios", text)
+    except UnknownPluginError as exc:
+        raise UnknownPluginError(f"{exc} (and no file named '{text}' exists)") from None
     return entry.obj.load()
 
 
