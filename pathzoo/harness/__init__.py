@@ -1,1 +1,51 @@
-"""The experiment harness: run planners x scenarios x seeds, validate, measure and store."""
+"""The experiment harness: run planners x scenarios x seeds, validate, measure and store.
+
+The public names are loaded lazily, so ``pathzoo.harness.validation`` (used by
+every scenario) stays cheap to import:
+
+- :class:`~pathzoo.harness.experiment.Experiment`,
+  :class:`~pathzoo.harness.specs.PlannerSpec`;
+- :func:`~pathzoo.harness.runner.run_experiment`;
+- :func:`~pathzoo.harness.store.read_runs`, :func:`~pathzoo.harness.store.read_history`,
+  :func:`~pathzoo.harness.store.read_path`, :func:`~pathzoo.harness.store.read_record`,
+  :func:`~pathzoo.harness.store.read_experiments`,
+  :class:`~pathzoo.harness.store.ResultsDatabaseError`;
+- :func:`~pathzoo.harness.validation.validate_path`.
+"""
+
+from __future__ import annotations
+
+import importlib
+from typing import Any
+
+__all__ = [
+    "Experiment",
+    "PlannerSpec",
+    "ResultsDatabaseError",
+    "read_experiments",
+    "read_history",
+    "read_path",
+    "read_record",
+    "read_runs",
+    "run_experiment",
+    "validate_path",
+]
+
+_WHERE = {
+    "Experiment": "experiment",
+    "PlannerSpec": "specs",
+    "ResultsDatabaseError": "store",
+    "read_experiments": "store",
+    "read_history": "store",
+    "read_path": "store",
+    "read_record": "store",
+    "read_runs": "store",
+    "run_experiment": "runner",
+    "validate_path": "validation",
+}
+
+
+def __getattr__(name: str) -> Any:
+    if name in _WHERE:
+        return getattr(importlib.import_module(f"pathzoo.harness.{_WHERE[name]}"), name)
+    raise AttributeError(f"module 'pathzoo.harness' has no attribute {name!r}")

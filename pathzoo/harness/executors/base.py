@@ -1,0 +1,41 @@
+"""The executor interface: submit run tasks, get futures of their outcomes (concurrent.futures style)."""
+
+from __future__ import annotations
+
+import abc
+from concurrent.futures import Future
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from pathzoo.harness.specs import RunTask
+    from pathzoo.harness.worker import RunOutcome
+
+__all__ = ["RunExecutor"]
+
+
+class RunExecutor(abc.ABC):
+    """Where runs execute.
+
+    :meth:`submit` returns a :class:`concurrent.futures.Future` that always
+    resolves to a :class:`~pathzoo.harness.worker.RunOutcome`: planner
+    exceptions, hard-limit kills and dead workers are outcomes (``crash``,
+    ``timed_out``), not future exceptions. The runner keeps at most
+    :attr:`capacity` runs in flight, so a run starts soon after it is submitted.
+    Use executors as context managers; :meth:`shutdown` stops every worker.
+    """
+
+    capacity: int = 1
+    """How many runs execute at the same time."""
+
+    @abc.abstractmethod
+    def submit(self, task: "RunTask") -> "Future[RunOutcome]":
+        """Schedule one run."""
+
+    def shutdown(self) -> None:
+        """Stop the workers; runs still in flight are abandoned (their futures cancelled)."""
+
+    def __enter__(self) -> "RunExecutor":
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.shutdown()

@@ -1,0 +1,409 @@
+"""An experiment: planners x scenarios x seeds with one budget, from Python or a TOML file.
+
+TOML format (every key but the planners and scenarios is optional)::
+
+    [experiment]
+    name = "arena"              # default: the file's stem
+    seed = 0                    # experiment seed; each run's seed derives from it
+    seeds = 10                  # seed indices 0..9, or an explicit list [0, 4, 7]
+    budget = { time_s = 2.0 }   # iterations, evaluations, time_s (default time_s = 10)
+    timeout_s = 60              # hard wall limit per run (default budget time + 30 s)
+    jobs = 4                    # worker processes (default: number of CPUs)
+    db = "results.sqlite"       # result database, relative to this file
+    scenarios = ["movingai.arena.*", "maps/my_scenario.toml"]
+
+    [[planner]]
+    id = "exact.astar"
+
+    [[planner]]
+    id = "aco.gant"
+    params = { ants = 40 }
+
+Scenario entries are registered ids, glob patterns of registered ids
+(``"movingai.arena.*"``) or file paths (anything with a ``/`` or a scenario
+file suffix; relative paths are relative to the TOML file). ``scenarios`` may
+also be written as a top-level key before ``[experiment]``.
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING, Any, Iterable, Mapping, Sequence
+
+from pathzoo.core.budget import Budget
+from pathzoo.core.errors import InvalidExperimentError, PathzooError
+from pathzoo.core.scenario import Scenario
+from pathzoo.harness.specs import PlannerSpec, RunTask, ScenarioSpec, run_key, run_seed
+
+if TYPE_CHECKING:
+    from pathzoo.core.planner import Planner
+
+__all__ = ["Experiment", "DEFAULT_BUDGET", "TIMEOUT_MARGIN_S", "DEFAULT_TIMEOUT_NO_TIME_S"]
+
+DEFAULT_BUDGET = Budget(time_s=10.0)
+"""Budget when none is given."""
+TIMEOUT_MARGIN_S = 30.0
+"""Default hard limit = ``budget.time_s`` + this margin."""
+DEFAULT_TIMEOUT_NO_TIME_S = 300.0
+"""Default hard limit when the budget has no time limit."""
+
+_EXPERIMENT_KEYS = ("name", "seed", "seeds", "budget", "timeout_s", "jobs", "db", "scenarios")
+
+
+def _looks_like_path(text: str) -> bool:
+    from pathzoo import _looks_like_path as looks
+
+    return looks(text)
+
+
+def _resolve_scenarios(items: Sequence["str | Path | Scenario | ScenarioSpec"], base: Path | None) -> tuple[ScenarioSpec, ...]:
+    from pathzoo import load_scenarios
+    from pathzoo.plugins.manager import get_registry
+
+    specs: dict[str, ScenarioSpec] = {}
+
+    def add(spec: ScenarioSpec) -> None:
+        prev = specs.get(spec.id)
+        if prev is not None and prev.cache_key != spec.cache_key:
+            raise InvalidExperimentError(f"two different scenarios share the id '{spec.id}'")
+        specs.setdefault(spec.id, spec)
+
+    if isinstance(items, (str, Path, Scenario, ScenarioSpec)):
+        items = [items]
+    for item in items:
+        if isinstance(item, ScenarioSpec):
+            add(item)
+        elif isinstance(item, Scenario):
+            add(ScenarioSpec.of_object(item))
+        elif isinstance(item, Path) or (isinstance(item, str) and _looks_like_path(item)):
+            path = Path(item).expanduser()
+            if base is not None and not path.is_absolute():
+                path = base / path
+            location = str(path.resolve())
+            for sc in load_scenarios(Path(location)):
+                add(ScenarioSpec(sc.id, sc.kind, "file", location))
+        elif isinstance(item, str):
+            registry = get_registry()
+            for sid in registry.match("scenarios", item):
+                entry = registry.get("scenarios", sid)
+                kind = getattr(entry.obj, "kind", "") or entry.obj.load().kind
+                add(ScenarioSpec(sid, kind, "registry", sid))
+        else:
+            raise InvalidExperimentError(f"a scenario must be an id, a glob pattern, a path or a Scenario, got {item!r}")
+    if not specs:
+        raise InvalidExperimentError("no scenarios given")
+    return tuple(specs.values())
+
+
+def _resolve_seeds(seeds: int | Iterable[int]) -> tuple[int, ...]:
+    if isinstance(seeds, bool):
+        raise InvalidExperimentError(f"seeds must be a count or a list of seed indices, got {seeds!r}")
+    if isinstance(seeds, int):
+        if seeds < 1:
+            raise InvalidExperimentError(f"seeds must be >= 1, got {seeds}")
+        return tuple(range(seeds))
+    try:
+        out = tuple(seeds)
+    except TypeError:
+        raise InvalidExperimentError(f"seeds must be a count or a list of seed indices, got {seeds!r}") from None
+    if not out or any(isinstance(s, bool) or not isinstance(s, int) or s < 0 for s in out):
+        raise InvalidExperimentError(f"seed indices must be a non-empty list of integers >= 0, got {list(out)!r}")
+    if len(set(out)) != len(out):
+        raise InvalidExperimentError(f"seed indices must be distinct, got {list(out)!r}")
+    return out
+
+
+def _check_timeout(value: Any) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or value <= 0:
+        raise InvalidExperimentError(f"timeout_s must be a positive number of seconds, got {value!r}")
+    return float(value)
+
+
+def _check_name(value: Any) -> str:
+    if not isinstance(value, str) or not value.strip():
+        raise InvalidExperimentError(f"name must be a non-empty string, got {value!r}")
+    return value
+
+
+def _check_seed(value: Any) -> int:
+    if isinstance(value, bool) or not isinstance(value, int):
+        raise InvalidExperimentError(f"seed must be an integer, got {value!r}")
+    return value
+
+
+def _check_jobs(value: Any) -> int | None:
+    if value is not None and (isinstance(value, bool) or not isinstance(value, int) or value < 1):
+        raise InvalidExperimentError(f"jobs must be a positive integer, got {value!r}")
+    return value
+
+
+_FIELD_CHECKS = {
+    "name": _check_name,
+    "seed": _check_seed,
+    "seeds": lambda v: _resolve_seeds(v),
+    "timeout_s": _check_timeout,
+    "jobs": _check_jobs,
+}
+
+
+@dataclass(frozen=True)
+class Experiment:
+    """Planners x scenarios x seeds, run under one budget.
+
+    Build it with :meth:`build` (Python) or :meth:`from_toml` (file), then
+    run it with :func:`pathzoo.harness.runner.run_experiment`.
+
+    Attributes
+    ----------
+    name : str
+        Names the experiment in the result database.
+    seed : int
+        Experiment seed; each run's seed is derived from it and the run key.
+    planners : tuple of PlannerSpec
+        Planner ids with complete validated parameters.
+    scenarios : tuple of ScenarioSpec
+        Resolved scenarios (globs expanded, files read).
+    seeds : tuple of int
+        Seed indices.
+    budget : Budget
+        Per-run planning budget.
+    timeout_s : float
+        Hard per-run wall-clock limit.
+    jobs : int, optional
+        Default number of workers for this experiment (from the TOML file).
+    db : Path, optional
+        Default result database (from the TOML file).
+    source : str, optional
+        The TOML file it was read from.
+    """
+
+    name: str
+    seed: int
+    planners: tuple[PlannerSpec, ...]
+    scenarios: tuple[ScenarioSpec, ...]
+    seeds: tuple[int, ...]
+    budget: Budget = DEFAULT_BUDGET
+    timeout_s: float = DEFAULT_BUDGET.time_s + TIMEOUT_MARGIN_S  # type: ignore[operator]
+    jobs: int | None = None
+    db: Path | None = None
+    source: str | None = field(default=None, compare=False)
+
+    @classmethod
+    def build(
+        cls,
+        *,
+        planners: Sequence["str | Planner | tuple[str, Mapping[str, Any]] | PlannerSpec"],
+        scenarios: Sequence["str | Path | Scenario"],
+        seeds: int | Iterable[int] = 5,
+        budget: Budget | None = None,
+        timeout_s: float | None = None,
+        name: str = "default",
+        seed: int = 0,
+        jobs: int | None = None,
+        db: str | Path | None = None,
+        _source: str | None = None,
+    ) -> "Experiment":
+        """Validate and resolve an experiment given in Python.
+
+        Parameters
+        ----------
+        planners : sequence
+            Planner ids, ``(id, params)`` pairs or planner instances (kept as
+            id + parameters; workers rebuild them).
+        scenarios : sequence
+            Registered ids, glob patterns of ids, file paths or Scenario objects.
+        seeds : int or iterable of int
+            Count (indices ``0..n-1``) or explicit seed indices.
+        budget : Budget, optional
+            Default ``Budget(time_s=10)``.
+        timeout_s : float, optional
+            Default ``budget.time_s + 30`` s (300 s without a time budget).
+        name, seed : str, int
+            Experiment name and seed.
+        jobs : int, optional
+            Default worker count for :func:`run_experiment`.
+        db : path, optional
+            Default result database for :func:`run_experiment`.
+
+        Raises
+        ------
+        InvalidExperimentError
+            Bad experiment-level values, duplicate planners or conflicting scenario ids.
+        UnknownPluginError, InvalidParameterError, InvalidScenarioError
+            From resolving planners and scenarios.
+        """
+        _check_name(name)
+        _check_seed(seed)
+        _check_jobs(jobs)
+        if isinstance(planners, str):
+            planners = [planners]
+        specs = [PlannerSpec.of(p) for p in planners]
+        if not specs:
+            raise InvalidExperimentError("no planners given")
+        seen: dict[tuple[str, str], int] = {}
+        for i, spec in enumerate(specs):
+            key = (spec.id, spec.params_hash)
+            if key in seen:
+                raise InvalidExperimentError(
+                    f"planner {i} ({spec.id}) repeats planner {seen[key]} with the same parameters"
+                )
+            seen[key] = i
+        budget = DEFAULT_BUDGET if budget is None else budget
+        if not isinstance(budget, Budget):
+            raise InvalidExperimentError(f"budget must be a pathzoo.Budget, got {budget!r}")
+        if timeout_s is None:
+            timeout_s = DEFAULT_TIMEOUT_NO_TIME_S if budget.time_s is None else budget.time_s + TIMEOUT_MARGIN_S
+        timeout_s = _check_timeout(timeout_s)
+        return cls(
+            name=name,
+            seed=seed,
+            planners=tuple(specs),
+            scenarios=_resolve_scenarios(scenarios, None),
+            seeds=_resolve_seeds(seeds),
+            budget=budget,
+            timeout_s=timeout_s,
+            jobs=jobs,
+            db=None if db is None else Path(db),
+            source=_source,
+        )
+
+    @classmethod
+    def from_toml(cls, path: str | Path) -> "Experiment":
+        """Read an experiment file (format in the module docstring).
+
+        Raises
+        ------
+        InvalidExperimentError
+            Naming the file and the field for every problem, including unknown
+            planners, bad parameters and missing scenarios.
+        """
+        path = Path(path)
+        src = str(path)
+
+        def bad(fld: str, msg: str) -> InvalidExperimentError:
+            return InvalidExperimentError(f"{src}: field '{fld}': {msg}")
+
+        def checked(fld: str, fn: Any) -> Any:
+            try:
+                return fn()
+            except PathzooError as exc:
+                raise bad(fld, str(exc)) from None
+
+        try:
+            with path.open("rb") as fh:
+                data = tomllib.load(fh)
+        except OSError as exc:
+            raise InvalidExperimentError(f"{src}: cannot read: {exc.strerror}") from None
+        except tomllib.TOMLDecodeError as exc:
+            raise InvalidExperimentError(f"{src}: not valid TOML: {exc}") from None
+        unknown = sorted(set(data) - {"experiment", "planner", "scenarios"})
+        if unknown:
+            raise InvalidExperimentError(f"{src}: unknown top-level key(s) {unknown}; allowed: experiment, planner, scenarios")
+        exp = data.get("experiment", {})
+        if not isinstance(exp, dict):
+            raise bad("experiment", "must be a table")
+        unknown = sorted(set(exp) - set(_EXPERIMENT_KEYS))
+        if unknown:
+            raise bad("experiment", f"unknown key(s) {unknown}; allowed: {', '.join(_EXPERIMENT_KEYS)}")
+        if "scenarios" in exp and "scenarios" in data:
+            raise bad("scenarios", "given both at top level and in [experiment]")
+        scenarios = exp.get("scenarios", data.get("scenarios"))
+        sfield = "experiment.scenarios" if "scenarios" in exp else "scenarios"
+        if scenarios is None:
+            raise bad("experiment.scenarios", "missing; list scenario ids, glob patterns or files")
+        if not isinstance(scenarios, list) or not scenarios or not all(isinstance(s, str) for s in scenarios):
+            raise bad(sfield, "must be a non-empty list of strings")
+        planner_tables = data.get("planner")
+        if planner_tables is None:
+            raise bad("planner", "missing; add at least one [[planner]] table with an id")
+        if not isinstance(planner_tables, list) or not all(isinstance(p, dict) for p in planner_tables):
+            raise bad("planner", "must be [[planner]] tables")
+        planners: list[PlannerSpec] = []
+        for i, table in enumerate(planner_tables):
+            extra = sorted(set(table) - {"id", "params"})
+            if extra:
+                raise bad(f"planner[{i}]", f"unknown key(s) {extra}; allowed: id, params")
+            pid, params = table.get("id"), table.get("params", {})
+            if not isinstance(pid, str) or not pid:
+                raise bad(f"planner[{i}].id", "must be a planner id string")
+            if not isinstance(params, dict):
+                raise bad(f"planner[{i}].params", "must be a table")
+            planners.append(checked(f"planner[{i}]", lambda: PlannerSpec.of((pid, params))))
+        budget = DEFAULT_BUDGET
+        if "budget" in exp:
+            if not isinstance(exp["budget"], dict):
+                raise bad("experiment.budget", "must be a table such as { time_s = 5 }")
+            budget = checked("experiment.budget", lambda: Budget.from_mapping(exp["budget"], where="budget"))
+        base = path.resolve().parent
+        specs: list[ScenarioSpec] = []
+        for i, item in enumerate(scenarios):
+            specs.extend(checked(f"{sfield}[{i}]", lambda: _resolve_scenarios([item], base)))
+        checked(sfield, lambda: _resolve_scenarios(specs, None))  # ids clashing across entries
+        db = exp.get("db")
+        if db is not None and (not isinstance(db, str) or not db):
+            raise bad("experiment.db", f"must be a file name, got {db!r}")
+        kwargs: dict[str, Any] = {"name": path.stem}
+        for key, check in _FIELD_CHECKS.items():
+            if key in exp:
+                checked(f"experiment.{key}", lambda: check(exp[key]))
+                kwargs[key] = exp[key]
+        return checked(
+            "planner",
+            lambda: cls.build(
+                planners=planners,
+                scenarios=specs,
+                budget=budget,
+                db=None if db is None else base / db,
+                _source=src,
+                **kwargs,
+            ),
+        )
+
+    # ------------------------------------------------------------------ runs
+    def pairs(self) -> list[tuple[PlannerSpec, ScenarioSpec]]:
+        """Supported (planner, scenario) pairs, scenario-major so workers reuse loaded scenarios."""
+        return [(p, s) for s in self.scenarios for p in self.planners if s.kind in p.planner_class.kinds]
+
+    def skipped(self) -> list[tuple[str, str, str]]:
+        """``(planner id, scenario id, scenario kind)`` of every unsupported pair (not run)."""
+        return [(p.id, s.id, s.kind) for s in self.scenarios for p in self.planners if s.kind not in p.planner_class.kinds]
+
+    def tasks(self, plugin_modules: tuple[tuple[str, str], ...] = ()) -> list[RunTask]:
+        """Every run of the experiment, in a deterministic order."""
+        out = []
+        for planner, scenario in self.pairs():
+            version, phash = planner.version, planner.params_hash
+            for index in self.seeds:
+                key = run_key(planner.id, phash, scenario.id, index)
+                out.append(
+                    RunTask(
+                        run_key=key,
+                        experiment=self.name,
+                        planner=planner,
+                        planner_version=version,
+                        params_hash=phash,
+                        scenario=scenario,
+                        seed_index=index,
+                        seed=run_seed(self.seed, key),
+                        budget=self.budget,
+                        timeout_s=self.timeout_s,
+                        plugin_modules=plugin_modules,
+                    )
+                )
+        return out
+
+    def config(self) -> dict[str, Any]:
+        """The experiment as JSON-friendly data (stored with the results)."""
+        return {
+            "name": self.name,
+            "seed": self.seed,
+            "seeds": list(self.seeds),
+            "budget": self.budget.to_dict(),
+            "timeout_s": self.timeout_s,
+            "planners": [{"id": p.id, "params": dict(p.params)} for p in self.planners],
+            "scenarios": [s.describe() for s in self.scenarios],
+            "source": self.source,
+        }

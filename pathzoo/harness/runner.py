@@ -1,0 +1,178 @@
+"""Run an experiment: skip finished runs, execute the rest, judge, store, and report progress.
+
+The flow of one run::
+
+    parent: task --submit--> executor --(worker: rebuild, plan(), time)--> outcome
+    parent: outcome --judge (validate, metrics)--> RunRecord --store (1 transaction)--> hooks, progress
+
+Judging happens in the harness process, on the harness's own copy of the
+scenario, so nothing a planner does in its worker can change the verdict.
+"""
+
+from __future__ import annotations
+
+import importlib.metadata as md
+import logging
+import os
+import warnings
+from concurrent.futures import FIRST_COMPLETED, Future, wait
+from pathlib import Path
+from types import ModuleType
+from typing import TYPE_CHECKING, Any, Iterator
+
+from pathzoo.core.errors import InvalidExperimentError
+from pathzoo.core.status import RunStatus
+from pathzoo.harness.executors import RunExecutor, make_executor
+from pathzoo.harness.judge import judge
+from pathzoo.harness.store import ResultStore, read_runs
+from pathzoo.harness.worker import SCENARIO_CACHE_SIZE, load_cached
+
+if TYPE_CHECKING:
+    import pandas as pd
+
+    from pathzoo.core.metric import Metric
+    from pathzoo.harness.experiment import Experiment
+    from pathzoo.harness.specs import RunTask
+    from pathzoo.harness.worker import RunOutcome
+    from pathzoo.plugins.manager import Registry
+
+__all__ = ["run_experiment", "extra_plugin_modules", "DEFAULT_DB"]
+
+DEFAULT_DB = "pathzoo-results.sqlite"
+"""Result database used when neither the call nor the experiment names one."""
+
+log = logging.getLogger("pathzoo.harness")
+
+
+def extra_plugin_modules(registry: "Registry") -> tuple[tuple[str, str], ...]:
+    """``(name, module)`` of plugins registered by hand (not entry points) that workers must import.
+
+    Only module plugins can be re-imported by name; a plugin object that is
+    not an importable module stays unknown to workers, and its planners crash
+    there with an "unknown planner" message (the ``inline`` executor works).
+    """
+    entry_points = {ep.name for ep in md.entry_points(group="pathzoo")}
+    return tuple(
+        (name, plugin.__name__)
+        for name, plugin in registry.pm.list_name_plugin()
+        if name not in entry_points and isinstance(plugin, ModuleType) and plugin.__name__ != "__main__"
+    )
+
+
+def _call_hook(registry: "Registry", name: str, **kwargs: Any) -> None:
+    try:
+        getattr(registry.pm.hook, name)(**kwargs)
+    except Exception as exc:  # an observer must not stop the experiment
+        warnings.warn(f"observer hook {name} raised {type(exc).__name__}: {exc}", RuntimeWarning, stacklevel=2)
+
+
+def _progress_bar(total: int, name: str, enabled: bool) -> Any:
+    if not enabled:
+        return None
+    from tqdm.auto import tqdm
+
+    return tqdm(total=total, desc=name, unit="run", dynamic_ncols=True)
+
+
+def _execute(
+    executor: RunExecutor,
+    tasks: list["RunTask"],
+    store: ResultStore,
+    metrics: list["Metric"],
+    registry: "Registry",
+    bar: Any,
+) -> None:
+    queue: Iterator[RunTask] = iter(tasks)
+    in_flight: dict[Future[RunOutcome], RunTask] = {}
+    cache_size = max(SCENARIO_CACHE_SIZE, 2 * executor.capacity)
+    failures = 0
+
+    def submit_more() -> None:
+        while len(in_flight) < executor.capacity:
+            task = next(queue, None)
+            if task is None:
+                return
+            _call_hook(registry, "pathzoo_run_started", run_key=task.run_key, planner_id=task.planner.id,
+                       scenario_id=task.scenario.id, seed=task.seed)
+            in_flight[executor.submit(task)] = task
+
+    submit_more()
+    while in_flight:
+        done, _ = wait(list(in_flight), return_when=FIRST_COMPLETED)
+        for future in done:
+            task = in_flight.pop(future)
+            record = judge(task, future.result(), load_cached(task.scenario, cache_size), metrics)
+            store.insert(record)
+            _call_hook(registry, "pathzoo_run_finished", record=record)
+            if record.status is not RunStatus.SOLVED:
+                failures += 1
+            if bar is not None:
+                bar.set_postfix(failures=failures, refresh=False)
+                bar.update(1)
+        submit_more()
+
+
+def run_experiment(
+    experiment: "Experiment",
+    *,
+    db: str | Path | None = None,
+    jobs: int | None = None,
+    executor: "str | RunExecutor" = "process",
+    progress: bool = True,
+) -> "pd.DataFrame":
+    """Run every run of ``experiment`` not yet stored in ``db``; return all its runs.
+
+    Parameters
+    ----------
+    experiment : Experiment
+        What to run.
+    db : path, optional
+        Result database (default: the experiment's ``db``, else
+        :data:`DEFAULT_DB` in the working directory). Created when missing.
+    jobs : int, optional
+        Parallel runs (default: the experiment's ``jobs``, else ``os.cpu_count()``).
+    executor : str or RunExecutor
+        ``"process"`` (default), ``"inline"``, ``"dask"`` or ``"dask:<address>"``
+        (see :func:`pathzoo.harness.executors.make_executor`), or an instance.
+    progress : bool
+        Show a progress bar (runs done, failures, time left) on stderr.
+
+    Returns
+    -------
+    pandas.DataFrame
+        :func:`pathzoo.harness.store.read_runs` for this experiment.
+
+    Notes
+    -----
+    Planner x scenario pairs whose scenario kind the planner does not declare
+    are not run; they are listed once in a warning of the ``pathzoo.harness``
+    logger. Runs already stored (any status) are skipped, so an interrupted
+    experiment resumes where it stopped, without doubled rows.
+    """
+    from pathzoo.plugins.manager import get_registry
+
+    if jobs is not None and (isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1):
+        raise InvalidExperimentError(f"jobs must be a positive integer, got {jobs!r}")
+    db_path = Path(db if db is not None else experiment.db if experiment.db is not None else DEFAULT_DB)
+    n_jobs = jobs or experiment.jobs or os.cpu_count() or 1
+    registry = get_registry()
+    metrics = [entry.obj() for entry in registry.metrics.values()]
+    skipped = experiment.skipped()
+    if skipped:
+        pairs = ", ".join(f"{p} x {s} ({k})" for p, s, k in skipped)
+        log.warning("pathzoo: not running %d unsupported planner x scenario pair(s): %s", len(skipped), pairs)
+    with ResultStore(db_path) as store:
+        store.add_experiment(experiment)
+        finished = store.finished_keys(experiment.name)
+        tasks = [t for t in experiment.tasks(extra_plugin_modules(registry)) if t.run_key not in finished]
+        if tasks:
+            bar = _progress_bar(len(tasks), experiment.name, progress)
+            try:
+                with make_executor(executor, n_jobs) as pool:
+                    _execute(pool, tasks, store, metrics, registry, bar)
+            finally:
+                if bar is not None:
+                    bar.close()
+        n_runs = store.count_runs(experiment.name)
+    _call_hook(registry, "pathzoo_experiment_finished", experiment=experiment.name, db=str(db_path), n_runs=n_runs)
+    return read_runs(db_path, experiment.name)

@@ -1,0 +1,230 @@
+"""What crosses the process boundary: planner and scenario references, and the run task.
+
+A worker receives a :class:`RunTask` and rebuilds everything else: the
+planner from its registered id and parameters (:func:`pathzoo.make_planner`),
+the scenario from its registered id or file. Scenario *objects* given in
+Python have no such reference, so they travel pickled inside the task (they
+are pathzoo's own frozen objects, so unpickling them is trusted).
+"""
+
+from __future__ import annotations
+
+import functools
+import hashlib
+import pickle
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any, Literal, Mapping
+
+from pathzoo.core.budget import Budget
+from pathzoo.core.errors import InvalidExperimentError
+from pathzoo.core.planner import Planner, params_hash
+
+if TYPE_CHECKING:
+    from pathzoo.core.scenario import Scenario
+
+__all__ = ["PlannerSpec", "ScenarioSpec", "RunTask", "run_key", "run_seed", "ScenarioSource"]
+
+ScenarioSource = Literal["registry", "file", "object"]
+
+
+def run_key(planner_id: str, params_hash_: str, scenario_id: str, seed_index: int) -> str:
+    """The deterministic key of one run: ``"<planner>|<params hash>|<scenario>|<seed index>"``.
+
+    Examples
+    --------
+    >>> run_key("exact.astar", "0123456789ab", "demo.rooms", 3)
+    'exact.astar|0123456789ab|demo.rooms|3'
+    """
+    return f"{planner_id}|{params_hash_}|{scenario_id}|{seed_index}"
+
+
+def run_seed(experiment_seed: int, key: str) -> int:
+    """The seed of one run: 63 bits of SHA-256 of the experiment seed and the run key.
+
+    The run's generator is ``numpy.random.default_rng(run_seed(...))``, so a
+    run's randomness depends only on the experiment seed and its own key, not
+    on the order or the process it runs in.
+    """
+    digest = hashlib.sha256(f"{int(experiment_seed)}:{key}".encode()).digest()
+    return int.from_bytes(digest[:8], "little") >> 1
+
+
+@dataclass(frozen=True)
+class PlannerSpec:
+    """A registered planner id and its complete, validated hyperparameters.
+
+    Build it with :meth:`of`, which validates the parameters and fills in the
+    defaults, so equal configurations get equal specs and equal hashes.
+    """
+
+    id: str
+    params: Mapping[str, Any] = field(default_factory=dict)
+
+    @classmethod
+    def of(cls, obj: "str | Planner | tuple[str, Mapping[str, Any]] | PlannerSpec") -> "PlannerSpec":
+        """Normalise a planner id, ``(id, params)`` pair, planner instance or spec.
+
+        Raises
+        ------
+        UnknownPluginError
+            The id is not registered.
+        InvalidParameterError
+            A parameter is unknown or out of range.
+        InvalidExperimentError
+            The object is none of the above, or an instance of a class that is
+            not the one registered under its id (workers rebuild planners by id).
+        """
+        from pathzoo import make_planner
+        from pathzoo.plugins.manager import get_registry
+
+        if isinstance(obj, PlannerSpec):
+            planner_id, params = obj.id, dict(obj.params)
+        elif isinstance(obj, str):
+            planner_id, params = obj, {}
+        elif isinstance(obj, Planner):
+            registered = get_registry().get("planners", obj.id).obj
+            if type(obj) is not registered:
+                raise InvalidExperimentError(
+                    f"planner instance of {type(obj).__qualname__} is not the class registered as '{obj.id}' "
+                    f"({registered.__qualname__}); workers rebuild planners by id, so register it"
+                )
+            planner_id, params = obj.id, obj.get_params()
+        elif isinstance(obj, tuple) and len(obj) == 2 and isinstance(obj[0], str) and isinstance(obj[1], Mapping):
+            planner_id, params = obj[0], dict(obj[1])
+        else:
+            raise InvalidExperimentError(
+                f"a planner must be an id, an (id, params) pair or a Planner instance, got {obj!r}"
+            )
+        return cls(planner_id, make_planner(planner_id, **params).get_params())
+
+    @property
+    def planner_class(self) -> type[Planner]:
+        """The registered class."""
+        from pathzoo.plugins.manager import get_registry
+
+        return get_registry().get("planners", self.id).obj
+
+    @property
+    def version(self) -> str:
+        """The registered class's version."""
+        return self.planner_class.version
+
+    @property
+    def params_hash(self) -> str:
+        """Hash of id, version and parameters (:func:`pathzoo.core.planner.params_hash`)."""
+        return params_hash(self.id, self.version, self.params)
+
+    def build(self) -> Planner:
+        """A fresh planner instance."""
+        from pathzoo import make_planner
+
+        return make_planner(self.id, **self.params)
+
+
+@dataclass(frozen=True, eq=False)
+class ScenarioSpec:
+    """How a worker gets a scenario.
+
+    Attributes
+    ----------
+    id : str
+        The scenario id (part of every run key).
+    kind : str
+        The scenario kind, to skip planners that do not support it.
+    source : {"registry", "file", "object"}
+        Load by registered id, from a file (absolute path in ``location``), or
+        unpickle ``scenario``.
+    location : str
+        The registered id or the file path; empty for objects.
+    scenario : Scenario, optional
+        The object itself (``source == "object"`` only).
+    digest : str
+        For objects, a content hash, so workers can cache them.
+    """
+
+    id: str
+    kind: str
+    source: ScenarioSource
+    location: str = ""
+    scenario: "Scenario | None" = None
+    digest: str = ""
+
+    @classmethod
+    def of_object(cls, scenario: "Scenario") -> "ScenarioSpec":
+        """Reference a Scenario object (it will travel pickled)."""
+        digest = hashlib.blake2b(pickle.dumps(scenario, protocol=5), digest_size=12).hexdigest()
+        return cls(scenario.id, scenario.kind, "object", "", scenario, digest)
+
+    @property
+    def cache_key(self) -> tuple[str, str, str, str]:
+        """Identifies the scenario's content within a process."""
+        return (self.source, self.location, self.id, self.digest)
+
+    def describe(self) -> dict[str, str]:
+        """JSON-friendly description (for the experiments table)."""
+        return {"id": self.id, "kind": self.kind, "source": self.source, "location": self.location}
+
+    def load(self) -> "Scenario":
+        """Load the scenario (uncached; the worker and the runner cache it)."""
+        if self.source == "object":
+            assert self.scenario is not None
+            return self.scenario
+        if self.source == "registry":
+            from pathzoo.plugins.manager import get_registry
+
+            return get_registry().get("scenarios", self.location).obj.load()
+        for scenario in _file_scenarios(self.location):
+            if scenario.id == self.id:
+                return scenario
+        raise InvalidExperimentError(f"{self.location}: no scenario with id '{self.id}' any more")
+
+
+@functools.lru_cache(maxsize=2)
+def _file_scenarios(path: str) -> tuple["Scenario", ...]:
+    from pathzoo import load_scenarios
+
+    return tuple(load_scenarios(path))
+
+
+@dataclass(frozen=True, eq=False)
+class RunTask:
+    """Everything a worker needs for one run, and nothing more.
+
+    Attributes
+    ----------
+    run_key : str
+        See :func:`run_key`.
+    experiment : str
+        The experiment name.
+    planner : PlannerSpec
+        Rebuilt in the worker with :func:`pathzoo.make_planner`.
+    planner_version : str
+        The version the parent saw; a worker with another version refuses the run.
+    params_hash : str
+        Hash of planner id, version and parameters.
+    scenario : ScenarioSpec
+        Loaded (and cached) by the worker.
+    seed_index : int
+        Index of the seed within the experiment.
+    seed : int
+        The run's seed (:func:`run_seed`).
+    budget : Budget
+        The planning budget.
+    timeout_s : float
+        Hard wall-clock limit; the executor kills the run after it.
+    plugin_modules : tuple of (name, module)
+        Plugins registered in the parent that are not entry points (e.g. test
+        planners); workers import and register them before building the planner.
+    """
+
+    run_key: str
+    experiment: str
+    planner: PlannerSpec
+    planner_version: str
+    params_hash: str
+    scenario: ScenarioSpec
+    seed_index: int
+    seed: int
+    budget: Budget
+    timeout_s: float
+    plugin_modules: tuple[tuple[str, str], ...] = ()

@@ -1,0 +1,450 @@
+"""The SQLite result database: one transaction per run, resumable, never destructive.
+
+Layout (schema version 1; ``sqlite3 results.sqlite .schema`` shows it):
+
+- ``pathzoo_schema(version)``: one row; files with another version are refused
+  with a clear error rather than read wrongly or modified;
+- ``experiments``: name (primary key), seed, budget (JSON), timeout_s, the
+  whole configuration (JSON) and the creation time;
+- ``runs``: one row per run, ``UNIQUE(experiment, run_key)``: every
+  :class:`~pathzoo.core.results.RunRecord` field, parameters and versions as
+  JSON, path and times as float64 bytes (C order) with the path's shape as
+  JSON, the metrics as JSON *and* as one ``REAL`` column per metric, named
+  ``"metric:<id>"`` (added with ``ALTER TABLE`` when a new metric appears);
+- ``history``: the convergence points of every run (experiment, run_key,
+  iteration, evaluations, best_cost, time_s).
+
+The file runs in WAL mode, so readers (analysis, ``pathzoo show``) never
+block the harness. A run and its history are written in one transaction
+with ``INSERT OR IGNORE``: a run is either fully stored or not at all, and is
+never stored twice, even if two harnesses race on the same experiment.
+Opening an existing file never drops or rewrites anything.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+import sqlite3
+from contextlib import contextmanager
+from pathlib import Path
+from typing import TYPE_CHECKING, Any, Iterator
+
+import numpy as np
+
+from pathzoo.core.errors import PathzooError
+from pathzoo.core.results import HistoryPoint, RunRecord
+from pathzoo.core.status import RunStatus
+from pathzoo.harness.worker import utc_now
+from pathzoo.metrics.outcome import RETURNED
+
+if TYPE_CHECKING:
+    import pandas as pd
+
+    from pathzoo.harness.experiment import Experiment
+
+__all__ = [
+    "SCHEMA_VERSION",
+    "ResultsDatabaseError",
+    "ResultStore",
+    "RUN_COLUMNS",
+    "read_runs",
+    "read_history",
+    "read_path",
+    "read_record",
+    "read_experiments",
+]
+
+SCHEMA_VERSION = 1
+
+RUN_COLUMNS: tuple[str, ...] = (
+    "run_key", "experiment", "planner", "planner_version", "params_hash", "params", "scenario", "seed_index",
+    "seed", "status", "valid", "invalid_reason", "message", "wall_time_s", "cpu_time_s", "iterations", "evaluations",
+)
+"""The leading columns of :func:`read_runs`; one column per metric id follows."""
+
+_METRIC_ID = re.compile(r"^[A-Za-z0-9_.\-]+$")
+
+_SCHEMA = """
+CREATE TABLE pathzoo_schema (version INTEGER NOT NULL);
+CREATE TABLE experiments (
+    name TEXT PRIMARY KEY,
+    seed INTEGER NOT NULL,
+    budget TEXT NOT NULL,
+    timeout_s REAL NOT NULL,
+    config TEXT NOT NULL,
+    created TEXT NOT NULL
+);
+CREATE TABLE runs (
+    id INTEGER PRIMARY KEY,
+    experiment TEXT NOT NULL REFERENCES experiments(name),
+    run_key TEXT NOT NULL,
+    planner TEXT NOT NULL,
+    planner_version TEXT NOT NULL,
+    params_hash TEXT NOT NULL,
+    params TEXT NOT NULL,
+    scenario TEXT NOT NULL,
+    seed_index INTEGER NOT NULL,
+    seed INTEGER NOT NULL,
+    status TEXT NOT NULL,
+    valid INTEGER NOT NULL,
+    invalid_reason TEXT NOT NULL,
+    message TEXT NOT NULL,
+    wall_time_s REAL,
+    cpu_time_s REAL,
+    iterations INTEGER,
+    evaluations INTEGER,
+    path BLOB,
+    path_shape TEXT,
+    times BLOB,
+    versions TEXT NOT NULL,
+    started_at TEXT NOT NULL,
+    finished_at TEXT NOT NULL,
+    metrics TEXT NOT NULL,
+    UNIQUE (experiment, run_key)
+);
+CREATE TABLE history (
+    experiment TEXT NOT NULL,
+    run_key TEXT NOT NULL,
+    iteration INTEGER NOT NULL,
+    evaluations INTEGER NOT NULL,
+    best_cost REAL,
+    time_s REAL NOT NULL
+);
+CREATE INDEX history_run ON history (experiment, run_key);
+"""
+
+
+class ResultsDatabaseError(PathzooError, RuntimeError):
+    """A result database is missing, not a pathzoo database, of another schema version, or conflicts."""
+
+
+def _metric_column(metric_id: str) -> str:
+    return f'"metric:{metric_id}"'
+
+
+def _connect(path: Path, *, create: bool) -> sqlite3.Connection:
+    if not create and not path.is_file():
+        raise ResultsDatabaseError(f"{path}: no such results database")
+    if create and not path.parent.is_dir():
+        raise ResultsDatabaseError(f"{path}: directory {path.parent} does not exist")
+    try:
+        conn = sqlite3.connect(str(path), timeout=60.0, isolation_level=None)
+        tables = {r[0] for r in conn.execute("SELECT name FROM sqlite_master WHERE type = 'table'")}
+    except sqlite3.DatabaseError as exc:
+        raise ResultsDatabaseError(f"{path}: not a results database ({exc})") from None
+    if not tables:
+        if not create:
+            conn.close()
+            raise ResultsDatabaseError(f"{path}: empty database, no pathzoo results in it")
+        conn.execute("PRAGMA journal_mode = WAL")
+        conn.executescript("BEGIN;" + _SCHEMA + f"INSERT INTO pathzoo_schema VALUES ({SCHEMA_VERSION}); COMMIT;")
+    elif "pathzoo_schema" not in tables:
+        conn.close()
+        raise ResultsDatabaseError(f"{path}: not a pathzoo results database (it has no pathzoo_schema table)")
+    else:
+        row = conn.execute("SELECT version FROM pathzoo_schema").fetchone()
+        version = None if row is None else row[0]
+        if version != SCHEMA_VERSION:
+            conn.close()
+            raise ResultsDatabaseError(
+                f"{path}: written with result schema version {version}; this pathzoo reads version {SCHEMA_VERSION} "
+                "(use the matching pathzoo version, or another database file)"
+            )
+    conn.execute("PRAGMA synchronous = NORMAL")
+    return conn
+
+
+@contextmanager
+def _transaction(conn: sqlite3.Connection) -> Iterator[sqlite3.Connection]:
+    conn.execute("BEGIN IMMEDIATE")
+    try:
+        yield conn
+    except BaseException:
+        conn.execute("ROLLBACK")
+        raise
+    conn.execute("COMMIT")
+
+
+def _blob(arr: np.ndarray | None) -> bytes | None:
+    return None if arr is None else np.ascontiguousarray(arr, dtype=np.float64).tobytes()
+
+
+def _real(value: float) -> float | None:
+    return None if value is None or math.isnan(value) else float(value)
+
+
+class ResultStore:
+    """Writes runs of experiments to one SQLite file (created when missing).
+
+    Use as a context manager; see the module docstring for the layout.
+
+    Raises
+    ------
+    ResultsDatabaseError
+        The file is not a pathzoo database or has another schema version.
+    """
+
+    def __init__(self, path: str | Path) -> None:
+        self.path = Path(path)
+        self.conn = _connect(self.path, create=True)
+        self._metric_columns = {
+            r[1] for r in self.conn.execute("PRAGMA table_info(runs)") if str(r[1]).startswith("metric:")
+        }
+
+    def __enter__(self) -> "ResultStore":
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+    def close(self) -> None:
+        """Close the connection."""
+        self.conn.close()
+
+    def add_experiment(self, experiment: "Experiment") -> None:
+        """Record an experiment, or check that a stored one with its name is compatible.
+
+        The seed, budget and hard limit determine every run's result, so a
+        stored experiment with the same name must have the same ones; planners,
+        scenarios and seeds may grow (their runs get new keys).
+
+        Raises
+        ------
+        ResultsDatabaseError
+            The stored experiment differs in seed, budget or timeout.
+        """
+        budget = json.dumps(experiment.budget.to_dict(), sort_keys=True)
+        row = self.conn.execute(
+            "SELECT seed, budget, timeout_s FROM experiments WHERE name = ?", (experiment.name,)
+        ).fetchone()
+        if row is None:
+            with _transaction(self.conn):
+                self.conn.execute(
+                    "INSERT OR IGNORE INTO experiments VALUES (?, ?, ?, ?, ?, ?)",
+                    (experiment.name, experiment.seed, budget, experiment.timeout_s,
+                     json.dumps(experiment.config(), sort_keys=True), utc_now()),
+                )
+            return
+        stored = {"seed": row[0], "budget": json.loads(row[1]), "timeout_s": row[2]}
+        given = {"seed": experiment.seed, "budget": experiment.budget.to_dict(), "timeout_s": experiment.timeout_s}
+        for name, value in given.items():
+            if stored[name] != value:
+                raise ResultsDatabaseError(
+                    f"{self.path}: experiment '{experiment.name}' is stored with {name} = {stored[name]!r}, "
+                    f"not {value!r}; use another experiment name (or database) for different settings"
+                )
+
+    def finished_keys(self, experiment: str) -> set[str]:
+        """Run keys already stored for an experiment."""
+        return {r[0] for r in self.conn.execute("SELECT run_key FROM runs WHERE experiment = ?", (experiment,))}
+
+    def count_runs(self, experiment: str) -> int:
+        """Number of stored runs of an experiment."""
+        return int(self.conn.execute("SELECT COUNT(*) FROM runs WHERE experiment = ?", (experiment,)).fetchone()[0])
+
+    def _ensure_metric_columns(self, ids: list[str]) -> None:
+        for mid in ids:
+            col = f"metric:{mid}"
+            if col not in self._metric_columns and _METRIC_ID.match(mid):
+                self.conn.execute(f"ALTER TABLE runs ADD COLUMN {_metric_column(mid)} REAL")
+                self._metric_columns.add(col)
+
+    def insert(self, record: RunRecord) -> bool:
+        """Store one run and its history in one transaction; False if the key was already stored."""
+        metric_ids = [m for m in record.metrics if _METRIC_ID.match(m)]
+        self._ensure_metric_columns(metric_ids)
+        returned = record.status in RETURNED
+        values: dict[str, Any] = {
+            "experiment": record.experiment,
+            "run_key": record.run_key,
+            "planner": record.planner_id,
+            "planner_version": record.planner_version,
+            "params_hash": record.params_hash,
+            "params": json.dumps(dict(record.params), sort_keys=True, default=str),
+            "scenario": record.scenario_id,
+            "seed_index": record.seed_index,
+            "seed": record.seed,
+            "status": record.status.value,
+            "valid": int(record.valid),
+            "invalid_reason": record.invalid_reason,
+            "message": record.message,
+            "wall_time_s": _real(record.wall_time_s),
+            "cpu_time_s": _real(record.cpu_time_s),
+            "iterations": record.iterations if returned else None,
+            "evaluations": record.evaluations if returned else None,
+            "path": _blob(record.path),
+            "path_shape": None if record.path is None else json.dumps(list(np.shape(record.path))),
+            "times": _blob(record.times),
+            "versions": json.dumps(dict(record.versions), sort_keys=True),
+            "started_at": record.started_at,
+            "finished_at": utc_now(),
+            "metrics": json.dumps({k: float(v) for k, v in record.metrics.items()}),
+        }
+        for mid in metric_ids:
+            values[f"metric:{mid}"] = _real(record.metrics[mid])
+        cols = ", ".join(f'"{c}"' for c in values)
+        marks = ", ".join("?" for _ in values)
+        with _transaction(self.conn):
+            cur = self.conn.execute(f"INSERT OR IGNORE INTO runs ({cols}) VALUES ({marks})", tuple(values.values()))
+            if cur.rowcount == 0:
+                return False
+            self.conn.executemany(
+                "INSERT INTO history VALUES (?, ?, ?, ?, ?, ?)",
+                [(record.experiment, record.run_key, p.iteration, p.evaluations, _real(p.best_cost), p.time_s)
+                 for p in record.history],
+            )
+        return True
+
+
+# ------------------------------------------------------------------ readers
+def _experiment_filter(conn: sqlite3.Connection, path: Path, experiment: str | None) -> tuple[str, tuple[Any, ...]]:
+    if experiment is None:
+        return "", ()
+    known = [r[0] for r in conn.execute("SELECT name FROM experiments ORDER BY name")]
+    if experiment not in known:
+        raise ResultsDatabaseError(
+            f"{path}: no experiment named '{experiment}' (stored: {', '.join(known) or 'none'})"
+        )
+    return " WHERE experiment = ?", (experiment,)
+
+
+def read_runs(db: str | Path, experiment: str | None = None) -> "pd.DataFrame":
+    """One row per run, in the order they were stored.
+
+    Columns: :data:`RUN_COLUMNS` (``params`` as dicts, ``valid`` as bool,
+    ``status`` as the :class:`~pathzoo.core.status.RunStatus` value), then one
+    float column per metric id. ``iterations`` and ``evaluations`` are NaN
+    for crashed and timed-out runs, like the metrics of the same names.
+
+    Raises
+    ------
+    ResultsDatabaseError
+        Missing or foreign file, or unknown experiment.
+    """
+    import pandas as pd
+
+    path = Path(db)
+    conn = _connect(path, create=False)
+    try:
+        where, args = _experiment_filter(conn, path, experiment)
+        base = ", ".join(f'"{c}"' for c in RUN_COLUMNS)
+        rows = conn.execute(f"SELECT {base}, metrics FROM runs{where} ORDER BY id", args).fetchall()
+    finally:
+        conn.close()
+    frame = pd.DataFrame([r[: len(RUN_COLUMNS)] for r in rows], columns=list(RUN_COLUMNS))
+    frame["params"] = [json.loads(p) for p in frame["params"]]
+    frame["valid"] = frame["valid"].astype(bool)
+    for col in ("wall_time_s", "cpu_time_s", "iterations", "evaluations"):
+        frame[col] = pd.to_numeric(frame[col], errors="coerce").astype(float)
+    metrics = [json.loads(r[-1]) for r in rows]
+    ids: dict[str, None] = {}
+    for m in metrics:
+        ids.update(dict.fromkeys(m))
+    for mid in ids:
+        if mid in frame.columns:  # iterations, evaluations: same numbers as the base columns
+            continue
+        frame[mid] = np.array([m.get(mid, math.nan) for m in metrics], dtype=np.float64)
+    return frame
+
+
+def read_history(db: str | Path, experiment: str | None = None) -> "pd.DataFrame":
+    """Convergence points: experiment, run_key, iteration, evaluations, best_cost, time_s."""
+    import pandas as pd
+
+    path = Path(db)
+    conn = _connect(path, create=False)
+    try:
+        where, args = _experiment_filter(conn, path, experiment)
+        rows = conn.execute(f"SELECT * FROM history{where} ORDER BY rowid", args).fetchall()
+    finally:
+        conn.close()
+    frame = pd.DataFrame(rows, columns=["experiment", "run_key", "iteration", "evaluations", "best_cost", "time_s"])
+    frame["best_cost"] = pd.to_numeric(frame["best_cost"], errors="coerce").astype(float)
+    return frame
+
+
+def _run_row(db: str | Path, experiment: str, run_key: str, columns: str) -> tuple[Any, ...]:
+    path = Path(db)
+    conn = _connect(path, create=False)
+    try:
+        _experiment_filter(conn, path, experiment)
+        row = conn.execute(
+            f"SELECT {columns} FROM runs WHERE experiment = ? AND run_key = ?", (experiment, run_key)
+        ).fetchone()
+        if row is None:
+            raise ResultsDatabaseError(f"{path}: experiment '{experiment}' has no run '{run_key}'")
+        if columns == "*":
+            names = [d[0] for d in conn.execute("SELECT * FROM runs LIMIT 0").description]
+            hist = conn.execute(
+                "SELECT iteration, evaluations, best_cost, time_s FROM history "
+                "WHERE experiment = ? AND run_key = ? ORDER BY rowid", (experiment, run_key)
+            ).fetchall()
+            return (dict(zip(names, row)), hist)
+        return tuple(row)
+    finally:
+        conn.close()
+
+
+def _arrays(blob: bytes | None, shape: str | None, times: bytes | None) -> tuple[np.ndarray | None, np.ndarray | None]:
+    path = None if blob is None else np.frombuffer(blob, dtype=np.float64).reshape(json.loads(shape or "[-1]")).copy()
+    t = None if times is None else np.frombuffer(times, dtype=np.float64).copy()
+    return path, t
+
+
+def read_path(db: str | Path, experiment: str, run_key: str) -> tuple[np.ndarray | None, np.ndarray | None]:
+    """The stored ``(path, times)`` of one run (``None`` where the run has none)."""
+    blob, shape, times = _run_row(db, experiment, run_key, "path, path_shape, times")
+    return _arrays(blob, shape, times)
+
+
+def read_record(db: str | Path, experiment: str, run_key: str) -> RunRecord:
+    """The full stored :class:`RunRecord` of one run, history included."""
+    row, hist = _run_row(db, experiment, run_key, "*")
+    path, times = _arrays(row["path"], row["path_shape"], row["times"])
+    nan = math.nan
+    return RunRecord(
+        run_key=row["run_key"],
+        experiment=row["experiment"],
+        planner_id=row["planner"],
+        planner_version=row["planner_version"],
+        params=json.loads(row["params"]),
+        params_hash=row["params_hash"],
+        scenario_id=row["scenario"],
+        seed_index=row["seed_index"],
+        seed=row["seed"],
+        status=RunStatus(row["status"]),
+        valid=bool(row["valid"]),
+        invalid_reason=row["invalid_reason"],
+        message=row["message"],
+        wall_time_s=nan if row["wall_time_s"] is None else row["wall_time_s"],
+        cpu_time_s=nan if row["cpu_time_s"] is None else row["cpu_time_s"],
+        iterations=row["iterations"] or 0,
+        evaluations=row["evaluations"] or 0,
+        path=path,
+        times=times,
+        history=tuple(HistoryPoint(i, e, nan if c is None else c, t) for i, e, c, t in hist),
+        metrics=json.loads(row["metrics"]),
+        versions=json.loads(row["versions"]),
+        started_at=row["started_at"],
+    )
+
+
+def read_experiments(db: str | Path) -> "pd.DataFrame":
+    """Stored experiments: name, seed, budget (dict), timeout_s, created, n_runs, config (dict)."""
+    import pandas as pd
+
+    path = Path(db)
+    conn = _connect(path, create=False)
+    try:
+        rows = conn.execute(
+            "SELECT e.name, e.seed, e.budget, e.timeout_s, e.created, "
+            "(SELECT COUNT(*) FROM runs r WHERE r.experiment = e.name), e.config FROM experiments e ORDER BY e.created"
+        ).fetchall()
+    finally:
+        conn.close()
+    frame = pd.DataFrame(rows, columns=["name", "seed", "budget", "timeout_s", "created", "n_runs", "config"])
+    frame["budget"] = [json.loads(b) for b in frame["budget"]]
+    frame["config"] = [json.loads(c) for c in frame["config"]]
+    return frame
