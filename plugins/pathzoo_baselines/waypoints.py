@@ -73,7 +73,7 @@ class WaypointEncoding:
         control = np.concatenate([ends[0], x.reshape(n, self.k, 2), ends[1]], axis=1)
         if self._basis is None:
             return control
-        pts = np.einsum("mj,njd->nmd", self._basis, control)
+        pts = np.clip(np.einsum("mj,njd->nmd", self._basis, control), 0.0, self.high[:2])  # rounding at the border
         pts[:, 0] = sc.start
         pts[:, -1] = sc.goal
         return pts
