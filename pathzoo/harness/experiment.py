@@ -17,7 +17,7 @@ TOML format (every key but the planners and scenarios is optional)::
 
     [[planner]]
     id = "aco.gant"
-    params = { ants = 40 }
+    params = { n_ants = 40 }
 
 Scenario entries are registered ids, glob patterns of registered ids
 (``"movingai.arena.*"``) or file paths (anything with a ``/`` or a scenario

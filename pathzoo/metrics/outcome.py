@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, ClassVar
 
 from pathzoo.core.metric import Metric
 from pathzoo.core.status import RunStatus
@@ -12,7 +12,7 @@ if TYPE_CHECKING:
     from pathzoo.core.results import RunRecord
     from pathzoo.core.scenario import Scenario
 
-__all__ = ["Success", "PlanningTime", "CpuTime", "Iterations", "Evaluations", "RETURNED"]
+__all__ = ["Success", "RecordValue", "PlanningTime", "CpuTime", "Iterations", "Evaluations", "RETURNED"]
 
 RETURNED: frozenset[RunStatus] = frozenset({RunStatus.SOLVED, RunStatus.INVALID, RunStatus.NO_PATH, RunStatus.FAILED})
 """Statuses of runs whose ``plan()`` returned a result (no crash, no timeout)."""
@@ -31,53 +31,60 @@ class Success(Metric):
         return 1.0 if record.success else 0.0
 
 
-class PlanningTime(Metric):
+class RecordValue(Metric):
+    """A number the harness measured or the planner counted, read from the run record.
+
+    Subclasses name the :class:`~pathzoo.core.results.RunRecord` attribute.
+    The value is NaN unless the run succeeded, or, with ``every_return``,
+    unless ``plan()`` returned at all (no crash, no timeout).
+    """
+
+    attribute: ClassVar[str] = ""
+    every_return: ClassVar[bool] = False
+
+    def compute(self, scenario: "Scenario", record: "RunRecord") -> float:
+        """``record.<attribute>`` or NaN (see the class docstring)."""
+        defined = record.status in RETURNED if self.every_return else record.success
+        return float(getattr(record, self.attribute)) if defined else math.nan
+
+
+class PlanningTime(RecordValue):
     """Wall-clock seconds spent in ``plan()`` by a successful run."""
 
     id = "planning_time"
     unit = "s"
     direction = "min"
     summary = "wall time of plan() (successful runs)"
-
-    def compute(self, scenario: "Scenario", record: "RunRecord") -> float:
-        """``record.wall_time_s``, NaN unless the run succeeded."""
-        return float(record.wall_time_s) if record.success else math.nan
+    attribute = "wall_time_s"
 
 
-class CpuTime(Metric):
+class CpuTime(RecordValue):
     """CPU seconds (all threads of the worker process) spent in ``plan()`` by a successful run."""
 
     id = "cpu_time"
     unit = "s"
     direction = "min"
     summary = "CPU time of plan() (successful runs)"
-
-    def compute(self, scenario: "Scenario", record: "RunRecord") -> float:
-        """``record.cpu_time_s``, NaN unless the run succeeded."""
-        return float(record.cpu_time_s) if record.success else math.nan
+    attribute = "cpu_time_s"
 
 
-class Iterations(Metric):
+class Iterations(RecordValue):
     """Iterations the planner reports, for every run whose ``plan()`` returned (NaN on crash or timeout)."""
 
     id = "iterations"
     unit = "1"
     direction = "min"
     summary = "planner iterations (every run that returned)"
-
-    def compute(self, scenario: "Scenario", record: "RunRecord") -> float:
-        """``record.iterations``; NaN for ``crash`` and ``timeout``."""
-        return float(record.iterations) if record.status in RETURNED else math.nan
+    attribute = "iterations"
+    every_return = True
 
 
-class Evaluations(Metric):
+class Evaluations(RecordValue):
     """Candidate evaluations the planner reports, for every run whose ``plan()`` returned."""
 
     id = "evaluations"
     unit = "1"
     direction = "min"
     summary = "planner evaluations (every run that returned)"
-
-    def compute(self, scenario: "Scenario", record: "RunRecord") -> float:
-        """``record.evaluations``; NaN for ``crash`` and ``timeout``."""
-        return float(record.evaluations) if record.status in RETURNED else math.nan
+    attribute = "evaluations"
+    every_return = True
