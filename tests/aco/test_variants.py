@@ -151,8 +151,8 @@ def test_ggaco_heuristic_and_deposit_follow_eqs_16_to_18():
     assert np.any(d > g.length * 1.05)  # the hill really scales some distances
     rules = planner.walk_rules(problem)
     n = g.degree[g.indices]
-    np.testing.assert_allclose(rules.weight_mul, eta**0.6 * n / (n + 1))
-    np.testing.assert_allclose(rules.pre_add, planner.gain(problem))
+    np.testing.assert_allclose(rules.weight_mul, eta**0.6 * n / (n + 1), rtol=1e-6)
+    np.testing.assert_allclose(rules.pre_add, planner.gain(problem), rtol=1e-6)
     assert rules.tau_exp == 0.4
     state, walks, costs = _colony(planner, scenario)
     expected = np.maximum(state.trail.values() * 0.6, planner.tau_floor)  # evaporate, then the floor
@@ -173,10 +173,10 @@ def test_gant_additive_rule_with_neighbour_factor():
     eta = 1.0 / g.length + problem.scenario.vehicle.cruise_speed / 2.0
     factor = g.degree[g.indices] / (g.degree[g.indices] + 1.0)
     assert rules.tau_exp == 1.0
-    np.testing.assert_allclose(rules.weight_mul, 0.4 * factor)
-    np.testing.assert_allclose(rules.weight_add, 0.6 * eta * factor)
+    np.testing.assert_allclose(rules.weight_mul, 0.4 * factor, rtol=1e-6)
+    np.testing.assert_allclose(rules.weight_add, 0.6 * eta * factor, rtol=1e-6)
     tau = 3.0  # the kernel's weight τ * mul + add is (α τ + β η) N/(N+1), eq. 13
-    np.testing.assert_allclose(tau * rules.weight_mul + rules.weight_add, (0.4 * tau + 0.6 * eta) * factor)
+    np.testing.assert_allclose(tau * rules.weight_mul + rules.weight_add, (0.4 * tau + 0.6 * eta) * factor, rtol=1e-6)
 
 
 def test_gant_backward_ants_lay_inverse_time_plus_inverse_predicted_energy():

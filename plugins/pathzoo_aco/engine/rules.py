@@ -8,7 +8,7 @@ import numpy as np
 
 __all__ = ["WalkRules", "EMPTY"]
 
-EMPTY = np.zeros(0)
+EMPTY = np.zeros(0, dtype=np.float32)
 """Placeholder for an unused per-edge array (the kernel tests ``size > 0``)."""
 
 
@@ -39,7 +39,8 @@ class WalkRules:
     tau_exp : float
         Exponent on the trail.
     weight_mul, weight_add : ndarray of float, shape (E,)
-        Per-edge factors (``weight_add`` may be :data:`EMPTY`).
+        Per-edge factors (``weight_add`` may be :data:`EMPTY`); stored in
+        single precision, like ``pre_add``.
     q0 : float
         Pseudo-random-proportional rule (ACS): with probability ``q0`` take
         the edge of largest weight, otherwise draw by roulette.
@@ -71,6 +72,11 @@ class WalkRules:
     backtrack: bool = True
     max_steps: int = 2**62
     turn: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)))
+
+    def __post_init__(self) -> None:
+        # single precision halves the memory traffic of the walks; weights only set ratios
+        for name in ("weight_mul", "weight_add", "pre_add"):
+            object.__setattr__(self, name, np.ascontiguousarray(getattr(self, name), dtype=np.float32))
 
     @property
     def local_update(self) -> bool:

@@ -55,6 +55,8 @@ def _walk(indptr, indices, offset_id, horizontal, turn,
     has_add = w_add.size > 0
     has_pre = pre_add.size > 0
     do_local = local_keep != 1.0 or local_add != 0.0
+    bounded = lo > 0.0 or hi < np.inf
+    alpha_one = tau_exp == 1.0
     a = first_ant
     if pending >= 0:  # the previous call stopped to grow ``flat`` after this ant reached the goal
         base = offsets[a]
@@ -95,14 +97,14 @@ def _walk(indptr, indices, offset_id, horizontal, turn,
                     f = turn[prev, offset_id[e]]
                     if f <= 0.0:
                         continue
-                t = _trail(x, scale, lo, hi, indices[e] if on_nodes else e)
-                if tau_exp == 1.0:
-                    w = t * w_mul[e]
-                else:
-                    w = t**tau_exp * w_mul[e]
+                t = scale * x[j if on_nodes else e]
+                if bounded:
+                    t = min(max(t, lo), hi)
+                w = t * w_mul[e] if alpha_one else t**tau_exp * w_mul[e]
                 if has_add:
                     w += w_add[e]
-                w *= f
+                if use_turn:
+                    w *= f
                 if w > 0.0:
                     cand_e[nc] = e
                     cand_w[nc] = w
@@ -241,7 +243,7 @@ class WalkEngine:
     def __init__(self, problem: ColonyProblem) -> None:
         g = problem.graph
         self.problem = problem
-        self.stamp = np.full(g.n_nodes, -1, dtype=np.int64)
+        self.stamp = np.full(g.n_nodes, -1, dtype=np.int32)
         self.walk_base = 0
         self.stack_e = np.zeros(problem.n_free + 1, dtype=np.int64)
         self.stack_prev = np.zeros(problem.n_free + 1, dtype=np.int64)
@@ -249,7 +251,8 @@ class WalkEngine:
         self.cand_e = np.zeros(max(kmax, 1), dtype=np.int64)
         self.cand_w = np.zeros(max(kmax, 1))
         self.flat = np.zeros(1024, dtype=np.int64)
-        self.offset_id = g.offset_id.astype(np.int64)
+        self.offset_id = g.offset_id.astype(np.int32)
+        self.indices = g.indices.astype(np.int32)  # half the memory traffic of the int64 CSR arrays
         self.total_steps = 0
 
     def walk(self, rules: WalkRules, trail: Pheromone, n_ants: int, seed: int,
@@ -275,11 +278,14 @@ class WalkEngine:
         offsets = np.zeros(n_ants + 1, dtype=np.int64)
         flags = np.zeros(n_ants, dtype=np.int8)
         steps = np.zeros(n_ants, dtype=np.int64)
+        if self.walk_base + n_ants >= 2**31 - 1:  # the int32 walk stamps would overflow: start afresh
+            self.stamp[:] = -1
+            self.walk_base = 0
         _seed(seed)
         first, pending, total = 0, -1, 0
         while True:
             status, first, total, pending = _walk(
-                g.indptr, g.indices, self.offset_id, p.horizontal_offsets, rules.turn,
+                g.indptr, self.indices, self.offset_id, p.horizontal_offsets, rules.turn,
                 trail.x, trail.scale, trail.lo, trail.hi, trail.on_nodes,
                 rules.tau_exp, rules.weight_mul, rules.weight_add, rules.q0, rules.local_keep, rules.local_add,
                 rules.pre_add, p.start, p.goal, rules.backtrack, rules.max_steps, allowance,
