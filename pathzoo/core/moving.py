@@ -60,6 +60,11 @@ class MovingObstacle:
         object.__setattr__(self, "_cum", cum)
 
     @property
+    def cycle(self) -> tuple[np.ndarray, np.ndarray]:
+        """The closed route driven once per period: points ``(K', 2)`` and their cumulative distance ``(K',)`` in metres."""
+        return self._cycle, self._cum
+
+    @property
     def period_s(self) -> float:
         """Time for one full cycle (``inf`` for a parked obstacle)."""
         total = float(self._cum[-1])

@@ -12,6 +12,7 @@ hooks (see ``docs/aco-engine.md``):
 - :meth:`AntColonyPlanner.before_iteration`: per-iteration schedules;
 - :meth:`AntColonyPlanner.walk_costs`: what "best" means;
 - :meth:`AntColonyPlanner.update_trail`: the pheromone update (required);
+- :meth:`AntColonyPlanner.walk_engine`: the engine that sends the ants;
 - :meth:`AntColonyPlanner.result_extras`: extra numbers for the answer.
 
 The loop: while the budget lasts, send ``n_ants`` ants (fewer in the last
@@ -148,6 +149,10 @@ class AntColonyPlanner(Planner):
         """Update ``state.trail`` after a colony (evaporation and deposits). Every variant defines it."""
         raise NotImplementedError(f"{type(self).__name__} must define update_trail")
 
+    def walk_engine(self, problem: ColonyProblem) -> WalkEngine:
+        """The engine that sends the ants (default: :class:`WalkEngine`; FGDACO's timed walks override it)."""
+        return WalkEngine(problem)
+
     def result_extras(self, state: ColonyState) -> dict[str, Any]:
         """JSON-serialisable extras for the answer (default: none)."""
         return {}
@@ -178,7 +183,7 @@ class AntColonyPlanner(Planner):
         rules = self.walk_rules(problem)
         trail = Pheromone(problem.graph.n_nodes if self.pheromone_on == "nodes" else problem.graph.n_edges,
                           self.initial_trail(problem), on_nodes=self.pheromone_on == "nodes")
-        engine = WalkEngine(problem)
+        engine = self.walk_engine(problem)
         state = self.init_state(problem, rules, trail, engine, rng)
         limit = self.iterations if budget.unlimited else None
         walk_time = 0.0
