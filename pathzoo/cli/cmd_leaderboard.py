@@ -3,8 +3,6 @@
 from __future__ import annotations
 
 import argparse
-import errno
-import sqlite3
 import sys
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -24,32 +22,21 @@ def load_runs(db: str | Path, experiment: str | None) -> "pd.DataFrame":
 
     Raises
     ------
-    FileNotFoundError
-        ``db`` does not exist (it is never created here).
+    ResultsDatabaseError
+        ``db`` is missing or not a results database, or holds no experiment ``experiment``.
     CommandError
-        ``db`` is not a results database, holds no runs of ``experiment``, or
-        holds several experiments and none was chosen.
+        ``db`` holds no experiment, or several and none was chosen.
     """
-    path = Path(db)
-    if not path.is_file():
-        raise FileNotFoundError(errno.ENOENT, "no such results database", str(path))
-    from pathzoo.harness.store import read_runs
+    from pathzoo.harness.store import read_experiments, read_runs
 
-    try:
-        runs = read_runs(path)
-    except sqlite3.DatabaseError as exc:
-        raise CommandError(f"{path}: not a pathzoo results database ({exc})") from None
-    names = sorted(str(n) for n in runs["experiment"].unique())
     if experiment is None:
+        names = [str(n) for n in read_experiments(db)["name"]]
         if len(names) > 1:
-            raise CommandError(f"{path} holds experiments {', '.join(names)}; choose one with --experiment")
+            raise CommandError(f"{db} holds experiments {', '.join(sorted(names))}; choose one with --experiment")
         if not names:
-            raise CommandError(f"{path}: no runs stored yet")
-        return runs
-    if experiment not in names:
-        held = ", ".join(names) if names else "none"
-        raise CommandError(f"{path}: no runs of experiment '{experiment}' (experiments stored: {held})")
-    return runs[runs["experiment"] == experiment]
+            raise CommandError(f"{db}: no experiment stored yet")
+        experiment = names[0]
+    return read_runs(db, experiment)
 
 
 def render_leaderboard(runs: "pd.DataFrame", args: argparse.Namespace) -> str:

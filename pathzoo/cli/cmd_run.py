@@ -14,9 +14,8 @@ from typing import Any
 from pathzoo.cli.cmd_leaderboard import add_table_options, render_leaderboard
 from pathzoo.cli.errors import CommandError
 
-__all__ = ["add_parser", "DEFAULT_DB", "positive_int"]
+__all__ = ["add_parser", "positive_int"]
 
-DEFAULT_DB = "pathzoo-results.sqlite"
 EXECUTORS = ("process", "dask", "inline")
 
 
@@ -42,23 +41,18 @@ def _run(args: argparse.Namespace) -> int:
             if not path.is_file():
                 raise FileNotFoundError(errno.ENOENT, "no such experiment file", str(path))
         from pathzoo.harness.experiment import Experiment
-        from pathzoo.harness.runner import run_experiment
+        from pathzoo.harness.runner import DEFAULT_DB, run_experiment
 
         exp = Experiment.from_toml(path)
     if args.seeds is not None:
         exp = dataclasses.replace(exp, seeds=tuple(range(args.seeds)))
-    executor: Any = args.executor
-    if args.dask_address:
-        from pathzoo.harness.executors import dask_executor
-
-        executor = dask_executor(args.dask_address)
+    executor = f"dask:{args.dask_address}" if args.dask_address else args.executor
+    db = args.db or exp.db or DEFAULT_DB
     try:
-        runs = run_experiment(exp, db=args.db, jobs=args.jobs, executor=executor, progress=not args.no_progress)
+        runs = run_experiment(exp, db=db, jobs=args.jobs, executor=executor, progress=not args.no_progress)
     except KeyboardInterrupt:
-        raise CommandError(
-            f"interrupted; finished runs are stored in {args.db}, run the same command again to resume"
-        ) from None
-    print(f"experiment '{exp.name}': {len(runs)} runs in {args.db}", file=sys.stderr)
+        raise CommandError(f"interrupted; finished runs are stored in {db}, run the same command again to resume") from None
+    print(f"experiment '{exp.name}': {len(runs)} runs stored in {db}", file=sys.stderr)
     sys.stdout.write(render_leaderboard(runs, args))
     return 0
 
@@ -75,7 +69,9 @@ def add_parser(subparsers: Any) -> None:
     parser.add_argument(
         "experiment", nargs="?", metavar="EXPERIMENT.toml", help="experiment file (default: the bundled default.toml)"
     )
-    parser.add_argument("--db", default=DEFAULT_DB, metavar="FILE", help=f"SQLite results file (default: {DEFAULT_DB})")
+    parser.add_argument(
+        "--db", metavar="FILE", help="SQLite results file (default: the experiment's db, else pathzoo-results.sqlite)"
+    )
     parser.add_argument("--jobs", type=positive_int, metavar="N", help="worker processes (default: number of CPUs)")
     parser.add_argument("--executor", choices=EXECUTORS, default="process", help="where runs execute (default: process)")
     parser.add_argument("--dask-address", metavar="ADDR", help="Dask scheduler address, with --executor dask")

@@ -1,0 +1,179 @@
+"""``pathzoo run`` and ``pathzoo leaderboard`` on real (tiny) experiments."""
+
+from __future__ import annotations
+
+import io
+import tomllib
+from importlib import resources
+
+import pandas as pd
+import pytest
+
+from pathzoo.cli.main import main
+from pathzoo.harness import runner
+from pathzoo.harness.store import read_runs
+
+SCENARIO = """
+id = "cli.random"
+kind = "grid2d"
+description = "12x12 random obstacles"
+endpoint_seed = 0
+
+[map]
+generator = "random"
+seed = 1
+shape = [12, 12]
+density = 0.2
+"""
+
+EXPERIMENT = """
+[experiment]
+name = "{name}"
+seeds = 2
+budget = {{ time_s = 5.0 }}
+scenarios = ["random.toml"]
+
+[[planner]]
+id = "exact.astar"
+
+[[planner]]
+id = "exact.thetastar"
+"""
+
+
+def one_error(capsys) -> str:
+    captured = capsys.readouterr()
+    lines = [ln for ln in captured.err.splitlines() if not ln.startswith("pathzoo: plugin '")]
+    assert len(lines) == 1 and lines[0].startswith("pathzoo: error: "), captured.err
+    return lines[0].removeprefix("pathzoo: error: ")
+
+
+@pytest.fixture
+def experiment(tmp_path):
+    (tmp_path / "random.toml").write_text(SCENARIO)
+    path = tmp_path / "tiny.toml"
+    path.write_text(EXPERIMENT.format(name="tiny"))
+    return path
+
+
+def run_cli(capsys, *argv: str) -> str:
+    assert main(list(argv)) == 0
+    return capsys.readouterr().out
+
+
+def test_run_stores_validated_runs_and_prints_the_leaderboard(experiment, tmp_path, capsys):
+    db = tmp_path / "r.sqlite"
+    out = run_cli(capsys, "run", str(experiment), "--db", str(db), "--executor", "inline", "--no-progress")
+    runs = read_runs(db, "tiny")
+    assert len(runs) == 4
+    assert runs["status"].eq("solved").all() and runs["valid"].all(), runs["message"].tolist()
+    assert out.startswith("Leaderboard: length")
+    rows = [ln.split() for ln in out.splitlines() if ln.startswith("cli.random")]
+    medians = runs.groupby("planner")["length"].median().sort_values()
+    assert medians["exact.thetastar"] < medians["exact.astar"]  # any-angle paths are shorter here
+    assert [r[2] for r in rows] == list(medians.index)
+    assert [r[1] for r in rows] == ["1", "2"]
+    assert [float(r[5]) for r in rows] == pytest.approx(list(medians), rel=1e-4)
+    # the same table comes back from the database
+    assert run_cli(capsys, "leaderboard", str(db)) == out
+
+
+def test_run_resumes_and_seeds_override(experiment, tmp_path, capsys):
+    db = tmp_path / "r.sqlite"
+    args = ["run", str(experiment), "--db", str(db), "--executor", "inline", "--no-progress"]
+    run_cli(capsys, *args)
+    first = read_runs(db, "tiny")
+    run_cli(capsys, *args)
+    assert read_runs(db, "tiny")["run_key"].tolist() == first["run_key"].tolist()  # nothing re-run or doubled
+    run_cli(capsys, *args, "--seeds", "3")
+    again = read_runs(db, "tiny")
+    assert len(again) == 6 and sorted(again["seed_index"].unique()) == [0, 1, 2]
+
+
+def test_run_without_argument_runs_the_bundled_default(tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    out = run_cli(capsys, "run", "--seeds", "1", "--executor", "inline", "--no-progress")
+    runs = read_runs(tmp_path / runner.DEFAULT_DB, "default")
+    bundled = tomllib.loads((resources.files("pathzoo.experiments") / "default.toml").read_text())
+    assert set(runs["scenario"]) == set(bundled["experiment"]["scenarios"])
+    assert set(runs["planner"]) == {p["id"] for p in bundled["planner"]}
+    assert (runs["status"] == "solved").all() and runs["valid"].all()
+    for scenario in bundled["experiment"]["scenarios"]:
+        assert scenario in out
+
+
+def test_leaderboard_formats_and_options(experiment, tmp_path, capsys):
+    db = tmp_path / "r.sqlite"
+    run_cli(capsys, "run", str(experiment), "--db", str(db), "--executor", "inline", "--no-progress")
+    csv = pd.read_csv(io.StringIO(run_cli(capsys, "leaderboard", str(db), "--format", "csv")))
+    assert list(csv["config"]) == ["exact.thetastar", "exact.astar"]
+    assert {"median", "sd", "success_rate", "rank"} <= set(csv.columns)
+    assert (csv["success_rate"] == 1.0).all()
+    md = run_cli(capsys, "leaderboard", str(db), "--format", "markdown", "--metric", "turns")
+    assert md.startswith("**Leaderboard: turns") and "| cli.random |" in md
+    ref = run_cli(capsys, "leaderboard", str(db), "--reference", "exact.astar")
+    assert "vs ref" in ref and "reference" in ref
+
+
+def test_leaderboard_needs_experiment_when_db_holds_several(experiment, tmp_path, capsys):
+    db = tmp_path / "r.sqlite"
+    other = tmp_path / "other.toml"  # same folder, so it finds random.toml too
+    other.write_text(EXPERIMENT.format(name="other"))
+    for exp in (experiment, other):
+        run_cli(capsys, "run", str(exp), "--db", str(db), "--executor", "inline", "--no-progress")
+    assert main(["leaderboard", str(db)]) == 2
+    assert one_error(capsys) == f"{db} holds experiments other, tiny; choose one with --experiment"
+    out = run_cli(capsys, "leaderboard", str(db), "--experiment", "other")
+    assert "exact.astar" in out
+    assert main(["leaderboard", str(db), "--experiment", "nope"]) == 2
+    assert one_error(capsys) == f"{db}: no experiment named 'nope' (stored: other, tiny)"
+
+
+def test_leaderboard_of_a_file_that_is_not_a_database(tmp_path, capsys):
+    bogus = tmp_path / "notes.sqlite"
+    bogus.write_text("hello, this is not SQLite\n" * 100)
+    assert main(["leaderboard", str(bogus)]) == 2
+    assert one_error(capsys).startswith(f"{bogus}: not a results database")
+
+
+def test_leaderboard_of_unknown_metric(experiment, tmp_path, capsys):
+    db = tmp_path / "r.sqlite"
+    run_cli(capsys, "run", str(experiment), "--db", str(db), "--executor", "inline", "--no-progress")
+    assert main(["leaderboard", str(db), "--metric", "speediness"]) == 2
+    assert one_error(capsys).startswith("unknown metric 'speediness'")
+
+
+@pytest.mark.parametrize(
+    ("body", "message"),
+    [
+        (EXPERIMENT.format(name="x").replace("exact.astar", "exact.nope"), "field 'planner[0]': unknown planner 'exact.nope'"),
+        (EXPERIMENT.format(name="x").replace("seeds = 2", "seeds = 0"), "field 'experiment.seeds': seeds must be >= 1"),
+        ("this is = not [toml", "not valid TOML"),
+    ],
+)
+def test_bad_experiment_files_are_one_line(tmp_path, capsys, body, message):
+    (tmp_path / "random.toml").write_text(SCENARIO)
+    path = tmp_path / "bad.toml"
+    path.write_text(body)
+    assert main(["run", str(path), "--db", str(tmp_path / "r.sqlite"), "--no-progress"]) == 2
+    line = one_error(capsys)
+    assert line.startswith(str(path)) and message in line
+
+
+def test_executor_options_reach_the_runner(experiment, tmp_path, capsys, monkeypatch):
+    seen = {}
+
+    def fake_run_experiment(exp, *, db, jobs, executor, progress):
+        seen.update(db=db, jobs=jobs, executor=executor, progress=progress, seeds=exp.seeds)
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(runner, "run_experiment", fake_run_experiment)
+    db = tmp_path / "r.sqlite"
+    argv = ["run", str(experiment), "--db", str(db), "--executor", "dask", "--dask-address", "tcp://10.0.0.1:8786",
+            "--jobs", "3", "--seeds", "4", "--no-progress"]
+    assert main(argv) == 2
+    assert seen == {"db": str(db), "jobs": 3, "executor": "dask:tcp://10.0.0.1:8786", "progress": False,
+                    "seeds": (0, 1, 2, 3)}
+    assert one_error(capsys) == (
+        f"interrupted; finished runs are stored in {db}, run the same command again to resume"
+    )
