@@ -7,7 +7,8 @@ from typing import ClassVar, Mapping
 
 import numpy as np
 
-from pathzoo.core import Budget, Param, Planner, PlanResult, ProgressCallback, Scenario
+from pathzoo.core import Budget, Param, PlanResult, ProgressCallback, Scenario
+from pathzoo_baselines.base import BaselinePlanner
 from pathzoo_baselines.encodings import make_encoding
 from pathzoo_baselines.params import ENCODING_PARAMS
 from pathzoo_baselines.search import Search
@@ -29,7 +30,7 @@ def mantegna_steps(rng: np.random.Generator, shape: tuple[int, ...], beta: float
     return u / np.abs(v) ** (1 / beta)
 
 
-class CuckooPlanner(Planner):
+class CuckooPlanner(BaselinePlanner):
     """Cuckoo search (Yang & Deb 2009) over the shared waypoint encoding.
 
     ``nests`` host nests hold candidate paths. Each generation:
@@ -61,7 +62,6 @@ class CuckooPlanner(Planner):
     id: ClassVar[str] = "swarm.cuckoo"
     version: ClassVar[str] = "1"
     summary: ClassVar[str] = "Cuckoo search with Mantegna Lévy flights over K waypoints, penalised length"
-    kinds: ClassVar[frozenset[str]] = frozenset({"grid2d", "terrain"})
     params: ClassVar[Mapping[str, Param]] = {
         **ENCODING_PARAMS,
         "nests": Param(25, "number of host nests n", low=2, high=100_000),

@@ -28,6 +28,7 @@ class FuzzyGaPlanner(GaPlanner):
     id: ClassVar[str] = "evo.fuzzy_ga"
     version: ClassVar[str] = "1"
     summary: ClassVar[str] = "GA whose crossover/mutation rates a fuzzy controller sets (DEAP + scikit-fuzzy)"
+    preload: ClassVar[tuple[str, ...]] = (*GaPlanner.preload, "skfuzzy", "pathzoo_baselines.fuzzy")
     params: ClassVar[Mapping[str, Param]] = {
         **GA_PARAMS,
         "cxpb_min": Param(0.5, "lowest crossover probability the controller may set", low=0.0, high=1.0),

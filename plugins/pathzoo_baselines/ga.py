@@ -7,7 +7,8 @@ from typing import Any, Callable, ClassVar, Mapping
 
 import numpy as np
 
-from pathzoo.core import Budget, InvalidParameterError, Param, Planner, PlanResult, ProgressCallback, Scenario
+from pathzoo.core import Budget, InvalidParameterError, Param, PlanResult, ProgressCallback, Scenario
+from pathzoo_baselines.base import BaselinePlanner
 from pathzoo_baselines.encodings import Encoding, make_encoding
 from pathzoo_baselines.params import CONTINUOUS_ENCODINGS, ENCODING_PARAMS
 from pathzoo_baselines.search import Search, seeded_global_random
@@ -55,7 +56,7 @@ def _deap_types() -> tuple[type, type]:
     return Fitness, Individual
 
 
-class GaPlanner(Planner):
+class GaPlanner(BaselinePlanner):
     """Generational GA with tournament selection, crossover, mutation and elitism (DEAP operators).
 
     Each generation: keep the ``elites`` best; fill the rest by tournament
@@ -79,7 +80,7 @@ class GaPlanner(Planner):
     id: ClassVar[str] = "evo.ga"
     version: ClassVar[str] = "1"
     summary: ClassVar[str] = "Genetic algorithm (DEAP) over waypoint or grid-move paths, penalised length"
-    kinds: ClassVar[frozenset[str]] = frozenset({"grid2d", "terrain"})
+    preload: ClassVar[tuple[str, ...]] = ("deap.algorithms", "deap.base", "deap.tools")
     params: ClassVar[Mapping[str, Param]] = {
         **GA_PARAMS,
         "cxpb": Param(0.9, "probability that a pair of parents is mated", low=0.0, high=1.0),

@@ -6,7 +6,8 @@ from typing import ClassVar, Mapping
 
 import numpy as np
 
-from pathzoo.core import Budget, Param, Planner, PlanResult, ProgressCallback, Scenario
+from pathzoo.core import Budget, Param, PlanResult, ProgressCallback, Scenario
+from pathzoo_baselines.base import BaselinePlanner
 from pathzoo_baselines.encodings import make_encoding
 from pathzoo_baselines.params import ENCODING_PARAMS
 from pathzoo_baselines.search import Search, seeded_global_random
@@ -14,7 +15,7 @@ from pathzoo_baselines.search import Search, seeded_global_random
 __all__ = ["PsoPlanner"]
 
 
-class PsoPlanner(Planner):
+class PsoPlanner(BaselinePlanner):
     """Global-best PSO (Kennedy & Eberhart 1995, inertia weight of Shi & Eberhart 1998) over waypoint paths.
 
     Each particle is a candidate path in the shared continuous encoding
@@ -36,7 +37,7 @@ class PsoPlanner(Planner):
     id: ClassVar[str] = "swarm.pso"
     version: ClassVar[str] = "1"
     summary: ClassVar[str] = "Particle swarm optimisation of K waypoints (pyswarms), penalised length"
-    kinds: ClassVar[frozenset[str]] = frozenset({"grid2d", "terrain"})
+    preload: ClassVar[tuple[str, ...]] = ("pyswarms.backend",)
     params: ClassVar[Mapping[str, Param]] = {
         **ENCODING_PARAMS,
         "particles": Param(50, "swarm size", low=2, high=100_000),
