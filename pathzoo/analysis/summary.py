@@ -9,7 +9,7 @@ import pandas as pd
 
 from pathzoo.analysis.frame import Direction, loss_values, metric_info, with_config
 
-__all__ = ["summarize", "summarize_metrics", "SUMMARY_COLUMNS"]
+__all__ = ["summarize", "summarize_metrics", "median_runs", "SUMMARY_COLUMNS"]
 
 SUMMARY_COLUMNS: tuple[str, ...] = (
     "scenario",
@@ -121,3 +121,23 @@ def summarize_metrics(runs: pd.DataFrame, metrics: Sequence[str] | None = None) 
         return pd.DataFrame(columns=["metric", *SUMMARY_COLUMNS])
     out = pd.concat(parts, ignore_index=True)
     return out[["metric", *SUMMARY_COLUMNS]]
+
+
+def median_runs(runs: pd.DataFrame, metric: str = "length") -> pd.DataFrame:
+    """The most typical successful run of each configuration on each scenario.
+
+    For each (scenario, configuration) with a successful run, the run whose
+    ``metric`` is closest to the median of the successful runs (the lowest
+    seed index on ties). Used to pick which path to draw.
+
+    Returns
+    -------
+    DataFrame
+        ``scenario, config, run_key, seed_index`` and ``metric``.
+    """
+    df = with_config(runs, metric)
+    good = df[df["success"] & np.isfinite(df[metric].astype(float))].copy()
+    good["_gap"] = (good[metric] - good.groupby(["scenario", "config"])[metric].transform("median")).abs()
+    good = good.sort_values(["scenario", "config", "_gap", "seed_index"], kind="stable")
+    best = good.groupby(["scenario", "config"], sort=True).head(1)
+    return best[["scenario", "config", "run_key", "seed_index", metric]].reset_index(drop=True)

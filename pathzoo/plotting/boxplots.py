@@ -12,7 +12,7 @@ from matplotlib.axes import Axes
 
 from pathzoo.analysis.frame import Direction, metric_info, with_config
 from pathzoo.analysis.formatting import format_percent
-from pathzoo.plotting.figure import new_axes
+from pathzoo.plotting.figure import new_axes, planner_colors
 
 __all__ = ["plot_metric_boxes"]
 
@@ -25,6 +25,7 @@ def plot_metric_boxes(
     scenarios: Sequence[str] | None = None,
     direction: Direction | None = None,
     unit: str | None = None,
+    log: bool | None = None,
 ) -> Axes:
     """Box plot of ``metric`` over successful runs: scenarios on the x axis, one box per configuration.
 
@@ -44,6 +45,9 @@ def plot_metric_boxes(
         Scenarios to show, in order (default: all, sorted).
     direction, unit : optional
         Overrides of the registered metric facts (used in the axis label).
+    log : bool, optional
+        Logarithmic y axis. By default only for times (unit ``s``) whose
+        positive values span more than a factor of 30.
     """
     info = metric_info(metric, direction, unit)
     df = with_config(runs, metric)
@@ -55,7 +59,7 @@ def plot_metric_boxes(
     with warnings.catch_warnings():  # seaborn 0.13 still passes matplotlib's deprecated ``vert``
         warnings.simplefilter("ignore", MatplotlibDeprecationWarning)
         sns.boxplot(data=good, x="scenario", y=metric, hue="config", order=order, hue_order=hue_order, ax=ax,
-                    palette="colorblind", fliersize=2.5, linewidth=1.0)
+                    palette=planner_colors(hue_order), fliersize=2.5, linewidth=1.0)
     rate = df.groupby(["scenario", "config"])["success"].mean()
     width = 0.8 / max(len(hue_order), 1)
     ymax = good[metric].max() if len(good) else 1.0
@@ -68,7 +72,13 @@ def plot_metric_boxes(
             y = ymax if pd.isna(top) else top
             ax.annotate(format_percent(r), (i - 0.4 + (j + 0.5) * width, y), xytext=(0, 3),
                         textcoords="offset points", ha="center", va="bottom", fontsize="x-small", color="#b00000")
-    ax.set_ylabel(f"{info.label} ({info.better}; successful runs)")
+    positive = good.loc[good[metric] > 0, metric]
+    if log is None:
+        log = info.unit == "s" and len(positive) > 0 and positive.max() > 30 * positive.min()
+    if log:
+        ax.set_yscale("log")
+    ax.set_ylabel(info.label)
+    ax.set_title(f"{info.id} over successful runs ({info.better})", fontsize="medium")
     ax.set_xlabel("scenario")
     if len(order) > 4:
         ax.tick_params(axis="x", labelrotation=30)

@@ -3,12 +3,11 @@
 from __future__ import annotations
 
 import pandas as pd
-import seaborn as sns
 from matplotlib.axes import Axes
 
 from pathzoo.analysis.anytime import AnytimeAxis, convergence_curves
 from pathzoo.core.errors import InvalidParameterError
-from pathzoo.plotting.figure import new_axes
+from pathzoo.plotting.figure import new_axes, planner_colors
 
 __all__ = ["plot_convergence", "AXIS_LABELS"]
 
@@ -61,7 +60,7 @@ def plot_convergence(
                                 log=log)
     ax = new_axes(ax, (6.0, 4.0))
     configs = sorted(curves["config"].unique())
-    colors = dict(zip(configs, sns.color_palette("colorblind", len(configs))))
+    colors = planner_colors(configs)
     for cfg, c in curves.groupby("config", sort=True):
         ax.plot(c["x"], c["median"], color=colors[cfg], lw=1.8, label=f"{cfg} (n={c['n_runs'].iloc[0]})")
         ax.fill_between(c["x"], c["q25"], c["q75"], color=colors[cfg], alpha=0.2, lw=0)

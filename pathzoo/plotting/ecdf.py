@@ -6,12 +6,11 @@ from typing import Mapping
 
 import numpy as np
 import pandas as pd
-import seaborn as sns
 from matplotlib.axes import Axes
 
 from pathzoo.analysis.anytime import AnytimeAxis, time_to_target
 from pathzoo.plotting.convergence import AXIS_LABELS
-from pathzoo.plotting.figure import legend_below, new_axes
+from pathzoo.plotting.figure import legend_below, new_axes, planner_colors
 
 __all__ = ["plot_time_to_target_ecdf"]
 
@@ -59,7 +58,7 @@ def plot_time_to_target_ecdf(
     hits = time_to_target(history, runs, eps=eps, optimum=optimum, metric=metric, x=x, rtol=rtol)
     ax = new_axes(ax, (6.0, 4.0))
     configs = sorted(hits["config"].unique())
-    colors = dict(zip(configs, sns.color_palette("colorblind", len(configs))))
+    colors = planner_colors(configs)
     finite = hits["hit"][np.isfinite(hits["hit"])]
     positive = finite[finite > 0]
     x_lo = float(positive.min()) if len(positive) else 1.0
@@ -84,7 +83,8 @@ def plot_time_to_target_ecdf(
     ax.set_ylim(-0.02, 1.02)
     ax.set_xlabel(AXIS_LABELS[x])
     ax.set_ylabel("fraction of runs")
-    ax.set_title(f"Reached {metric} within {eps:.0%} of the optimum")
+    ref = "the best known value" if optimum is None else "the optimum"
+    ax.set_title(f"{metric} within {eps:.0%} of {ref}")
     ax.grid(alpha=0.3)
     legend_below(ax, ncol=2)
     return ax

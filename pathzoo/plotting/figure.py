@@ -5,20 +5,26 @@ from __future__ import annotations
 import io
 from pathlib import Path
 
+from typing import Any, Iterable
+
+import seaborn as sns
 from matplotlib.axes import Axes
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
-__all__ = ["new_axes", "save_figure", "png_bytes", "legend_below"]
+__all__ = ["new_figure", "new_axes", "save_figure", "png_bytes", "legend_below", "planner_colors"]
+
+
+def new_figure(figsize: tuple[float, float] = (6.0, 5.0)) -> Figure:
+    """A new Agg-backed figure of ``figsize`` inches with constrained layout (not known to pyplot)."""
+    fig = Figure(figsize=figsize, layout="constrained")
+    FigureCanvasAgg(fig)
+    return fig
 
 
 def new_axes(ax: Axes | None = None, figsize: tuple[float, float] = (6.0, 5.0)) -> Axes:
-    """Return ``ax``, or the Axes of a new Agg-backed figure of ``figsize`` inches."""
-    if ax is not None:
-        return ax
-    fig = Figure(figsize=figsize, layout="constrained")
-    FigureCanvasAgg(fig)
-    return fig.add_subplot()
+    """Return ``ax``, or the Axes of a :func:`new_figure` of ``figsize`` inches."""
+    return ax if ax is not None else new_figure(figsize).add_subplot()
 
 
 def save_figure(fig: Figure, path: str | Path, *, dpi: int = 120) -> Path:
@@ -39,3 +45,9 @@ def png_bytes(fig: Figure, *, dpi: int = 110) -> bytes:
 def legend_below(ax: Axes, ncol: int = 4) -> None:
     """Put ``ax``'s legend under the axes, centred, without a frame."""
     ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=ncol, fontsize="small", frameon=False)
+
+
+def planner_colors(labels: Iterable[str]) -> dict[str, Any]:
+    """One colour-blind-safe colour per label, assigned in sorted order (the same in every figure)."""
+    names = sorted(set(labels))
+    return dict(zip(names, sns.color_palette("colorblind", max(len(names), 1))))

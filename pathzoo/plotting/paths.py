@@ -2,15 +2,14 @@
 
 from __future__ import annotations
 
-from typing import Mapping
+from typing import Any, Mapping
 
 import numpy as np
-import seaborn as sns
 from matplotlib import patheffects
 from matplotlib.axes import Axes
 
 from pathzoo.core.scenario import Scenario
-from pathzoo.plotting.figure import legend_below
+from pathzoo.plotting.figure import legend_below, planner_colors
 from pathzoo.plotting.scenario import draw_path, plot_scenario
 
 __all__ = ["plot_paths"]
@@ -22,6 +21,7 @@ def plot_paths(
     ax: Axes | None = None,
     *,
     title: str | None = None,
+    colors: Mapping[str, Any] | None = None,
 ) -> Axes:
     """Draw each labelled path over :func:`~pathzoo.plotting.scenario.plot_scenario`'s view of ``scenario``.
 
@@ -38,11 +38,13 @@ def plot_paths(
         Where to draw.
     title : str, optional
         Axes title (default: the scenario id).
+    colors : mapping, optional
+        Colour per label (default: :func:`~pathzoo.plotting.figure.planner_colors` of the labels).
     """
     ax = plot_scenario(scenario, ax=ax, title=title, legend=False)
-    colors = sns.color_palette("colorblind", max(len(paths), 1))
+    colors = planner_colors(paths) if colors is None else colors
     outline = [patheffects.withStroke(linewidth=4.0, foreground="white")]
-    for (label, path), color in zip(paths.items(), colors):
-        draw_path(ax, path, label=label, color=color, path_effects=outline)
+    for label, path in paths.items():
+        draw_path(ax, path, label=label, color=colors[label], path_effects=outline)
     legend_below(ax, ncol=min(4, len(paths) + 2))
     return ax

@@ -198,7 +198,7 @@ def test_cliques():
 def test_summarize_metrics_covers_registered_columns():
     runs = random_runs(n_seeds=4)
     out = summarize_metrics(runs)
-    assert set(out["metric"]) == {"length", "energy", "turns", "planning_time", "success"}
+    assert set(out["metric"]) == {"length", "energy", "turns", "planning_time", "success", "iterations", "evaluations"}
     one = out[(out.metric == "energy") & (out.scenario == "s1") & (out.config == "aco.a")].iloc[0]
     vals = runs[(runs.scenario == "s1") & (runs.planner == "aco.a") & (runs.success == 1)]["energy"]
     assert one["median"] == pytest.approx(vals.median()) and one["sd"] == pytest.approx(vals.std())

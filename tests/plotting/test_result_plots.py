@@ -34,7 +34,8 @@ def test_boxes_and_success_annotations():
     notes = sorted(t.get_text() for t in ax.texts)
     assert notes == ["0%", "75%"]
     assert [t.get_text() for t in ax.get_xticklabels()] == ["s1", "s2"]
-    assert ax.get_ylabel().startswith("length [m] (lower is better")
+    assert ax.get_ylabel() == "length [m]" and "lower is better" in ax.get_title()
+    assert ax.get_yscale() == "linear"
     assert png_bytes(ax.figure)[:4] == b"\x89PNG"
 
 

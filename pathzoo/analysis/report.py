@@ -1,0 +1,487 @@
+"""A self-contained HTML report of one experiment: tables, statistics and figures in one offline page.
+
+``index.html`` uses no external CSS, JavaScript, fonts or images. Figures
+are PNGs embedded as base64 data URIs, or, with ``embed=False``, written to
+``figures/`` next to it and linked relatively. The page opens offline in any
+browser. Sections:
+
+1. the experiment: budget, seeds, planners with their parameters, run outcomes;
+2. the leaderboard of the chosen metric (with tests against ``reference``);
+3. the paper-style table against ``reference`` (when one is given);
+4. across scenarios: Friedman test and critical-difference diagram;
+5. box plots of the main metrics;
+6. per scenario: the map with each planner's most typical path (when the
+   scenario can be loaded), and convergence curves;
+7. time to reach within 5 % of the best known length (ECDF);
+8. every metric's median and IQR, and the list of unsuccessful runs.
+"""
+
+from __future__ import annotations
+
+import base64
+import datetime as _dt
+import html
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Callable, Mapping, Sequence
+
+import numpy as np
+import pandas as pd
+
+from pathzoo.analysis.formatting import format_number, render_table
+from pathzoo.analysis.frame import metric_info, with_config
+from pathzoo.analysis.leaderboard import format_leaderboard, leaderboard
+from pathzoo.core.errors import InvalidParameterError, PathzooError
+from pathzoo.core.scenario import Scenario
+
+__all__ = ["write_report", "render_report", "ReportPage", "BOX_METRICS", "TABLE_METRICS"]
+
+BOX_METRICS: tuple[str, ...] = ("length_ratio", "planning_time", "energy", "turns")
+"""Metrics shown as box plots besides the ranked metric (when present and not all NaN)."""
+
+TABLE_METRICS: tuple[str, ...] = (
+    "length", "length_ratio", "planning_time", "cpu_time", "travel_time", "energy", "turns", "turning_angle",
+    "smoothness", "clearance_min", "clearance_mean",
+)  # fmt: skip
+"""Metrics summarised (median and IQR) in the report's metric tables."""
+
+_CSS = """
+body{font-family:-apple-system,"Segoe UI",Helvetica,Arial,sans-serif;margin:0;color:#1d1d1f;background:#fafafa;
+line-height:1.45}
+main{max-width:1180px;margin:0 auto;padding:24px 28px 60px;background:#fff;box-shadow:0 0 12px rgba(0,0,0,.06)}
+h1{font-size:1.7em;margin:.2em 0 .1em}h2{font-size:1.3em;margin-top:2em;border-bottom:2px solid #e3e3e3;
+padding-bottom:.2em}h3{font-size:1.08em;margin-top:1.4em}
+.meta{color:#555;font-size:.92em}.meta code{background:#f2f2f2;padding:0 .3em;border-radius:3px}
+nav{font-size:.92em;margin:1em 0;padding:.6em .9em;background:#f4f6f8;border-radius:6px}
+nav a{margin-right:1.1em;color:#0b5cad;text-decoration:none}
+table.pz-table{border-collapse:collapse;margin:.6em 0 .3em;font-size:.86em;font-variant-numeric:tabular-nums}
+table.pz-table caption{text-align:left;font-weight:600;padding:.3em 0;font-size:1.05em}
+table.pz-table th{background:#eef1f4;text-align:left;padding:.35em .7em;border-bottom:2px solid #cfd6dd;
+white-space:nowrap}
+table.pz-table td{padding:.3em .7em;border-bottom:1px solid #e6e6e6;white-space:nowrap}
+table.pz-table tbody tr:nth-child(even){background:#fafbfc}
+table.pz-table td:not(:first-child){text-align:right}
+.pz-note{color:#555;font-size:.84em;margin:.25em 0;max-width:60em}
+.scroll{overflow-x:auto}
+figure{margin:1em 0 1.6em}figure img{max-width:100%;height:auto;border:1px solid #eee}
+figcaption{color:#555;font-size:.86em;margin-top:.3em;max-width:60em}
+.grid{display:flex;flex-wrap:wrap;gap:12px}.grid figure{flex:1 1 460px;margin:.3em 0}
+details{margin:.6em 0}summary{cursor:pointer;font-weight:600}
+.warn{background:#fff6e5;border-left:4px solid #f0a500;padding:.5em .8em;font-size:.9em}
+"""
+
+
+@dataclass
+class ReportPage:
+    """An HTML page being assembled, with the figures it references."""
+
+    embed: bool = True
+    parts: list[str] = field(default_factory=list)
+    files: dict[str, bytes] = field(default_factory=dict)
+
+    def add(self, text: str) -> None:
+        """Append raw HTML."""
+        self.parts.append(text)
+
+    def heading(self, level: int, text: str, anchor: str | None = None) -> None:
+        """Append ``<hN>`` (with an id for the navigation bar)."""
+        ident = f' id="{anchor}"' if anchor else ""
+        self.add(f"<h{level}{ident}>{html.escape(text)}</h{level}>")
+
+    def note(self, text: str, cls: str = "pz-note") -> None:
+        """Append an escaped paragraph."""
+        self.add(f'<p class="{cls}">{html.escape(text)}</p>')
+
+    def table(self, rendered_html: str) -> None:
+        """Append a table from :func:`~pathzoo.analysis.formatting.render_table` (``fmt="html"``)."""
+        self.add(f'<div class="scroll">{rendered_html}</div>')
+
+    def figure(self, ax_or_fig: Any, name: str, caption: str) -> None:
+        """Render a matplotlib Axes or Figure to PNG and append it with a caption."""
+        from pathzoo.plotting.figure import png_bytes
+
+        fig = getattr(ax_or_fig, "figure", ax_or_fig)
+        data = png_bytes(fig)
+        if self.embed:
+            src = "data:image/png;base64," + base64.b64encode(data).decode("ascii")
+        else:
+            fname = f"{len(self.files):02d}-{_slug(name)}.png"
+            self.files[fname] = data
+            src = f"figures/{fname}"
+        alt = html.escape(caption, quote=True)
+        self.add(f'<figure><img src="{src}" alt="{alt}"><figcaption>{html.escape(caption)}</figcaption></figure>')
+
+    def html(self, title: str) -> str:
+        """The complete document."""
+        body = "\n".join(self.parts)
+        return (
+            "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
+            f"<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\"><title>{html.escape(title)}"
+            f"</title><style>{_CSS}</style></head><body><main>\n{body}\n</main></body></html>\n"
+        )
+
+
+def _slug(text: str) -> str:
+    keep = "".join(c if c.isalnum() or c in "-_." else "-" for c in text)
+    return keep.strip("-")[:60] or "figure"
+
+
+def _present(runs: pd.DataFrame, metric: str) -> bool:
+    return metric in runs.columns and bool(pd.to_numeric(runs[metric], errors="coerce").notna().any())
+
+
+def _metric_tables(runs: pd.DataFrame, metrics: Sequence[str]) -> str:
+    from pathzoo.analysis.summary import summarize
+
+    parts = []
+    for m in metrics:
+        s = summarize(runs, m)
+        info = s.attrs["metric"]
+        s["cell"] = [f"{format_number(a)} [{format_number(b)}]" for a, b in zip(s["median"], s["iqr"])]
+        wide = s.pivot(index="scenario", columns="config", values="cell").fillna("–").reset_index()
+        wide.columns.name = None
+        parts.append(render_table(wide, "html", title=f"{info.label}: median [IQR] over successful runs, "
+                                  f"{info.better}"))
+    return "\n".join(parts)
+
+
+def _outcomes(df: pd.DataFrame) -> pd.DataFrame:
+    counts = df.pivot_table(index="config", columns="status", values="run_key", aggfunc="count", fill_value=0)
+    counts.columns.name = None
+    counts = counts.astype(int)
+    counts["runs"] = counts.sum(axis=1)
+    counts["success"] = df.groupby("config")["success"].mean().map(lambda x: f"{100 * x:.0f}%")
+    return counts.reset_index().rename(columns={"config": "planner"})
+
+
+def _failures(df: pd.DataFrame, limit: int = 60) -> tuple[pd.DataFrame, int]:
+    bad = df[~df["success"]].sort_values(["scenario", "config", "seed_index"])
+    reason = [r if isinstance(r, str) and r else m for r, m in zip(bad["invalid_reason"], bad["message"])]
+    table = pd.DataFrame({
+        "scenario": bad["scenario"].astype(str), "planner": bad["config"].astype(str),
+        "seed": bad["seed_index"].astype(str), "status": bad["status"].astype(str),
+        "reason": [str(r)[:140] for r in reason],
+    })
+    return table.head(limit), len(table)
+
+
+def _power_warning(runs: pd.DataFrame, metric: str, reference: str, alpha: float) -> str:
+    """Say so when too few paired runs make every Holm-corrected test unable to reach ``alpha``."""
+    from pathzoo.analysis.stats import pairwise_tests
+
+    tests = pairwise_tests(runs, metric, reference=reference, alpha=alpha)
+    paired = tests[tests["paired"]]
+    if paired.empty:
+        return ""
+    m = int(tests.groupby("scenario").size().max())
+    n = int(paired["n_a"].min())
+    if m * 2.0 ** (1 - n) < alpha:
+        return ""
+    need = math.floor(1 + math.log2(m / alpha)) + 1
+    return (
+        f"Too few runs to show any difference: with {n} paired runs the smallest possible two-sided Wilcoxon "
+        f"p-value is {2.0 ** (1 - n):.3g}, and Holm's correction over {m} comparisons per scenario lifts it to "
+        f"at least {min(1.0, m * 2.0 ** (1 - n)):.3g} ≥ α = {alpha:g}. Run at least {need} seeds."
+    )
+
+
+def render_report(
+    runs: pd.DataFrame,
+    history: pd.DataFrame | None = None,
+    *,
+    metric: str = "length",
+    reference: str | None = None,
+    alpha: float = 0.05,
+    scenarios: Mapping[str, Scenario] | None = None,
+    path_of: Callable[[str], np.ndarray | None] | None = None,
+    title: str = "pathzoo report",
+    meta: Mapping[str, str] | None = None,
+    embed: bool = True,
+    max_scenarios: int = 12,
+) -> ReportPage:
+    """Assemble the report of a runs frame (no database needed).
+
+    Parameters
+    ----------
+    runs : DataFrame
+        One row per run.
+    history : DataFrame, optional
+        Convergence points (``read_history``); without it the anytime
+        sections are left out.
+    metric : str
+        Metric of the leaderboard and the Friedman ranks.
+    reference : str, optional
+        Configuration the others are tested against (leaderboard columns
+        and the paper-style table).
+    alpha : float
+        Significance level.
+    scenarios : mapping, optional
+        Scenario objects by id, for the path figures.
+    path_of : callable, optional
+        ``run_key -> path`` (e.g. from ``read_path``), for the path figures.
+    title : str
+        Page title.
+    meta : mapping, optional
+        Extra lines for the header (label to value).
+    embed : bool
+        Embed figures as data URIs (else they go to ``ReportPage.files``).
+    max_scenarios : int
+        At most this many scenarios get per-scenario figures.
+
+    Returns
+    -------
+    ReportPage
+        Call ``.html(title)`` for the document.
+    """
+    from pathzoo.analysis.paper_table import format_paper_table, paper_table
+    from pathzoo.analysis.ranks import friedman
+    from pathzoo.analysis.summary import median_runs
+    from pathzoo.plotting.boxplots import plot_metric_boxes
+    from pathzoo.plotting.cd_diagram import plot_cd_diagram
+    from pathzoo.plotting.convergence import plot_convergence
+    from pathzoo.plotting.ecdf import plot_time_to_target_ecdf
+    from pathzoo.plotting.figure import new_figure, planner_colors
+    from pathzoo.plotting.paths import plot_paths
+
+    info = metric_info(metric)
+    df = with_config(runs, metric)
+    if df.empty:
+        raise InvalidParameterError("runs is empty: nothing to report")
+    scenario_ids = sorted(df["scenario"].unique())
+    configs = sorted(df["config"].unique())
+    has_history = history is not None and len(history) > 0
+    palette = planner_colors(configs)
+    page = ReportPage(embed=embed)
+
+    page.heading(1, title)
+    lines = dict(meta or {})
+    lines.update({"planners": str(len(configs)), "scenarios": str(len(scenario_ids)), "runs": str(len(df)),
+                  "ranked by": f"{info.label}, {info.better}"})
+    if reference:
+        lines["reference"] = reference
+    lines["generated"] = _dt.datetime.now().astimezone().strftime("%Y-%m-%d %H:%M %Z")
+    page.add('<p class="meta">' + "<br>".join(
+        f"<b>{html.escape(k)}</b>: <code>{html.escape(v)}</code>" for k, v in lines.items()) + "</p>")
+    sections = [("outcomes", "Runs"), ("leaderboard", "Leaderboard")]
+    if reference:
+        sections.append(("comparison", f"Comparison with {reference}"))
+    sections += [("ranks", "Across scenarios"), ("boxes", "Distributions"), ("scenarios", "Per scenario")]
+    if has_history:
+        sections.append(("anytime", "Time to target"))
+    sections += [("metrics", "All metrics"), ("failures", "Unsuccessful runs")]
+    page.add("<nav>" + "".join(f'<a href="#{a}">{html.escape(t)}</a>' for a, t in sections) + "</nav>")
+
+    page.heading(2, "Runs", "outcomes")
+    page.table(render_table(_outcomes(df), "html", title="Run outcomes per planner"))
+    planners = df.drop_duplicates("config")[["config", "planner", "planner_version", "params"]].sort_values("config")
+    page.add("<details><summary>Planner parameters</summary>")
+    page.table(render_table(pd.DataFrame({
+        "planner": planners["config"], "id": planners["planner"], "version": planners["planner_version"].astype(str),
+        "parameters": [str(p) for p in planners["params"]]}), "html"))
+    page.add("</details>")
+
+    page.heading(2, "Leaderboard", "leaderboard")
+    lb = leaderboard(runs, metric, reference=reference, alpha=alpha)
+    page.table(format_leaderboard(lb, "html"))
+    if reference:
+        warning = _power_warning(runs, metric, reference, alpha)
+        if warning:
+            page.note(warning, "warn")
+
+    if reference:
+        page.heading(2, f"Comparison with {reference}", "comparison")
+        shown = [m for m in dict.fromkeys((metric, "planning_time", "energy")) if _present(runs, m)]
+        page.table(format_paper_table(paper_table(runs, reference, shown, alpha=alpha), "html"))
+
+    page.heading(2, "Across scenarios", "ranks")
+    try:
+        fr = friedman(runs, metric, alpha=alpha)
+    except PathzooError as exc:
+        page.note(f"No Friedman test: {exc}.")
+    else:
+        if fr.n_scenarios < 2:
+            page.note("The Friedman test needs at least two scenarios on which every planner ran.")
+        else:
+            page.note(
+                f"Friedman χ² = {fr.statistic:.3f} (p = {fr.pvalue:.3g}); Iman–Davenport F = "
+                f"{fr.iman_davenport:.3f} (p = {fr.iman_davenport_pvalue:.3g}); N = {fr.n_scenarios} scenarios, "
+                f"k = {fr.n_configs} planners; Nemenyi CD = {fr.cd:.3f} at α = {alpha:g}."
+            )
+            if fr.dropped:
+                page.note(f"Left out (not every planner ran there): {', '.join(fr.dropped)}.")
+            page.figure(plot_cd_diagram(fr), "cd",
+                        "Mean ranks of the penalized median per scenario (1 = best). Planners joined by a bar do "
+                        "not differ significantly (Nemenyi).")
+
+    page.heading(2, "Distributions", "boxes")
+    box_metrics = [m for m in dict.fromkeys((metric, *BOX_METRICS)) if _present(runs, m)]
+    page.add('<div class="grid">')
+    for m in box_metrics:
+        mi = metric_info(m)
+        page.figure(plot_metric_boxes(runs, m), f"box-{m}",
+                    f"{mi.label} over successful runs; red numbers are success rates below 100%.")
+    page.add("</div>")
+
+    page.heading(2, "Per scenario", "scenarios")
+    shown_ids = scenario_ids[:max_scenarios]
+    if len(scenario_ids) > max_scenarios:
+        page.note(f"Figures for the first {max_scenarios} of {len(scenario_ids)} scenarios.")
+    typical = median_runs(runs, metric) if path_of is not None else None
+    missing = [s for s in shown_ids if not scenarios or s not in scenarios]
+    if path_of is not None and missing:
+        page.note("No map for " + ", ".join(missing) + ": the scenario could not be rebuilt from the "
+                  "experiment (Scenario objects passed to pathzoo.run are not stored); pass scenarios=.")
+    for sid in shown_ids:
+        page.heading(3, sid)
+        page.add('<div class="grid">')
+        if scenarios and sid in scenarios and typical is not None:
+            picks = typical[typical["scenario"] == sid]
+            paths, colors = {}, {}
+            for row in picks.itertuples(index=False):
+                p = path_of(row.run_key)  # type: ignore[misc]
+                if p is not None and len(p):
+                    label = f"{row.config} (seed {row.seed_index})"
+                    paths[label], colors[label] = p, palette[row.config]
+            page.figure(plot_paths(scenarios[sid], paths, colors=colors), f"paths-{sid}",
+                        f"Each planner's successful run whose {metric} is closest to its median.")
+        if has_history:
+            sub_keys = set(df.loc[df["scenario"] == sid, "run_key"])
+            sub_hist = history[history["run_key"].isin(sub_keys)]  # type: ignore[index]
+            if len(sub_hist):
+                fig = new_figure((5.6, 7.0))
+                ax1, ax2 = fig.subplots(2, 1)
+                plot_convergence(sub_hist, runs, sid, x="iteration", ax=ax1)
+                plot_convergence(sub_hist, runs, sid, x="time_s", ax=ax2, log=True)
+                ax1.set_title(f"{sid}: best cost against iterations", fontsize="medium")
+                ax2.set_title("and against time", fontsize="medium")
+                ax2.get_legend().remove()
+                page.figure(fig, f"conv-{sid}",
+                            "Median best cost (planner's own objective) with interquartile band; a curve starts "
+                            "once at least half of the runs hold a solution.")
+        page.add("</div>")
+
+    if has_history:
+        page.heading(2, "Time to target", "anytime")
+        if _present(runs, "length"):
+            page.figure(plot_time_to_target_ecdf(history, runs, eps=0.05), "ecdf",  # type: ignore[arg-type]
+                        "Share of runs whose best cost came within 5% of the best known length, against time. "
+                        "Only runs whose reported best cost equals their measured length count (planners "
+                        "optimising other objectives are 'not comparable'); unsuccessful runs never arrive.")
+        else:
+            page.note("No length metric stored; no time-to-target view.")
+
+    page.heading(2, "All metrics", "metrics")
+    page.add("<details><summary>Median [IQR] of every metric</summary>")
+    page.add(_metric_tables(runs, [m for m in TABLE_METRICS if _present(runs, m)]))
+    page.add("</details>")
+
+    page.heading(2, "Unsuccessful runs", "failures")
+    fails, n_fail = _failures(df)
+    if n_fail == 0:
+        page.note("Every run succeeded.")
+    else:
+        if n_fail > len(fails):
+            page.note(f"First {len(fails)} of {n_fail}.")
+        page.table(render_table(fails, "html"))
+    page.note("Statistics: docs/statistics.md in the pathzoo sources (ranking rule, tests, pairing, Holm, A12, "
+              "Friedman/Nemenyi).")
+    return page
+
+
+def _load_experiment_scenarios(config: Mapping[str, Any]) -> dict[str, Scenario]:
+    from pathzoo.harness.specs import ScenarioSpec
+
+    out: dict[str, Scenario] = {}
+    for desc in config.get("scenarios", []):
+        if desc.get("source") not in ("registry", "file"):
+            continue
+        try:
+            out[desc["id"]] = ScenarioSpec(desc["id"], desc.get("kind", ""), desc["source"], desc["location"]).load()
+        except (PathzooError, OSError):
+            continue
+    return out
+
+
+def write_report(
+    db: str | Path,
+    out_dir: str | Path,
+    experiment: str | None = None,
+    metric: str = "length",
+    reference: str | None = None,
+    *,
+    alpha: float = 0.05,
+    scenarios: Sequence[Scenario] | Mapping[str, Scenario] | None = None,
+    embed: bool = True,
+    max_scenarios: int = 12,
+) -> Path:
+    """Write ``out_dir/index.html``, the report of one stored experiment.
+
+    Parameters
+    ----------
+    db : path
+        Results database written by the harness.
+    out_dir : path
+        Directory to write (created); ``index.html`` is replaced, other
+        files are left alone.
+    experiment : str, optional
+        Experiment to report; required when ``db`` holds several.
+    metric : str
+        Metric to rank by.
+    reference : str, optional
+        Planner (configuration label) to test the others against.
+    alpha : float
+        Significance level.
+    scenarios : sequence or mapping of Scenario, optional
+        Scenario objects for the maps, when the experiment's scenarios cannot
+        be rebuilt from the database (objects passed to :func:`pathzoo.run`).
+        Scenarios from the registry or from files are rebuilt automatically.
+    embed : bool
+        Embed figures in the HTML (default) or write them to ``out_dir/figures``.
+    max_scenarios : int
+        At most this many scenarios get per-scenario figures.
+
+    Returns
+    -------
+    Path
+        The written ``index.html``.
+
+    Raises
+    ------
+    InvalidParameterError
+        ``db`` holds several experiments and none was chosen, or none at all.
+    """
+    from pathzoo.harness.store import read_experiments, read_history, read_path, read_runs
+
+    exps = read_experiments(db)
+    names = [str(n) for n in exps["name"]]
+    if experiment is None:
+        if len(names) != 1:
+            raise InvalidParameterError(
+                f"{db} holds {len(names)} experiments ({', '.join(sorted(names)) or 'none'}); choose one with experiment="
+            )
+        experiment = names[0]
+    runs = read_runs(db, experiment)
+    history = read_history(db, experiment)
+    row = exps[exps["name"] == experiment].iloc[0]
+    known = _load_experiment_scenarios(row["config"])
+    if scenarios is not None:
+        known.update(scenarios if isinstance(scenarios, Mapping) else {s.id: s for s in scenarios})
+    budget = ", ".join(f"{k}={v}" for k, v in row["budget"].items() if v is not None) or "default"
+    seeds = row["config"].get("seeds", [])
+    meta = {"database": str(Path(db).resolve()), "experiment": experiment, "budget per run": budget,
+            "seeds": str(len(seeds)), "created": str(row["created"])}
+    page = render_report(
+        runs, history, metric=metric, reference=reference, alpha=alpha, scenarios=known,
+        path_of=lambda key: read_path(db, experiment, key)[0], title=f"pathzoo report: {experiment}", meta=meta,
+        embed=embed, max_scenarios=max_scenarios,
+    )
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    if page.files:
+        (out / "figures").mkdir(exist_ok=True)
+        for name, data in page.files.items():
+            (out / "figures" / name).write_bytes(data)
+    index = out / "index.html"
+    index.write_text(page.html(f"pathzoo report: {experiment}"), encoding="utf-8")
+    return index

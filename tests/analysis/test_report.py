@@ -1,0 +1,116 @@
+"""The HTML report: self-contained, every section present, figures embedded or linked, from frames and from a database."""
+
+from __future__ import annotations
+
+import re
+from html.parser import HTMLParser
+
+import numpy as np
+import pytest
+
+import pathzoo
+from pathzoo.analysis.report import render_report, write_report
+from pathzoo.analysis.synthetic import make_runs, random_history, random_runs
+from pathzoo.core import Budget
+from pathzoo.core.errors import InvalidParameterError
+from pathzoo.harness.store import read_path, read_runs
+from pathzoo.testing import check_scenario
+
+
+class Tags(HTMLParser):
+    """Collect start tags and check that every non-void tag is closed."""
+
+    VOID = {"meta", "img", "br", "link", "hr", "input"}
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.tags: list[tuple[str, dict]] = []
+        self.stack: list[str] = []
+
+    def handle_starttag(self, tag, attrs):
+        self.tags.append((tag, dict(attrs)))
+        if tag not in self.VOID:
+            self.stack.append(tag)
+
+    def handle_endtag(self, tag):
+        assert self.stack and self.stack[-1] == tag, f"</{tag}> closes <{self.stack[-1] if self.stack else None}>"
+        self.stack.pop()
+
+
+def parse(doc: str) -> Tags:
+    p = Tags()
+    p.feed(doc)
+    p.close()
+    assert p.stack == []
+    return p
+
+
+def assert_offline(doc: str) -> None:
+    tags = parse(doc).tags
+    names = {t for t, _ in tags}
+    assert not names & {"script", "link", "iframe", "object"}
+    for tag, attrs in tags:
+        for key in ("src", "href"):
+            value = attrs.get(key)
+            if value is not None:
+                assert value.startswith(("data:image/png;base64,", "#", "figures/")), value
+    assert "url(" not in doc and "@import" not in doc
+
+
+def test_report_from_frames_is_self_contained():
+    runs = random_runs(("a", "b"), ("s1", "s2"), n_seeds=8, seed=3)
+    page = render_report(runs, random_history(runs), reference="a", meta={"note": "x<y"}, max_scenarios=1)
+    doc = page.html("t")
+    assert_offline(doc)
+    for anchor in ("outcomes", "leaderboard", "comparison", "ranks", "boxes", "scenarios", "anytime", "metrics",
+                   "failures"):
+        assert f'id="{anchor}"' in doc and f'href="#{anchor}"' in doc
+    assert "x&lt;y" in doc  # escaped
+    assert "Figures for the first 1 of 2 scenarios" in doc
+    imgs = re.findall(r'<img src="data:image/png;base64,', doc)
+    # CD diagram, 4 box plots (length, planning_time, energy, turns), 1 convergence figure, ECDF
+    assert len(imgs) == 7 and page.files == {}
+    assert "Leaderboard: length [m], lower is better" in doc and "w/t/l of a" in doc
+
+
+def test_power_warning_and_empty_runs():
+    few = make_runs({"s1": {"a": [1.0, 1.1, 1.2], "b": [2.0, 2.1, 2.2]},
+                     "s2": {"a": [1.0, 1.1, 1.2], "b": [2.0, 2.1, 2.2]}})
+    doc = render_report(few, reference="a").html("t")
+    assert "Too few runs to show any difference: with 3 paired runs" in doc and "Run at least 6 seeds" in doc
+    enough = make_runs({"s1": {"a": list(np.arange(8.0)), "b": list(np.arange(8.0) + 10)}})
+    assert "Too few runs" not in render_report(enough, reference="a").html("t")
+    with pytest.raises(InvalidParameterError, match="runs is empty"):
+        render_report(few.iloc[:0])
+
+
+@pytest.fixture(scope="module")
+def small_db(tmp_path_factory):
+    db = tmp_path_factory.mktemp("db") / "r.sqlite"
+    sc = check_scenario("grid2d")
+    pathzoo.run(["exact.dijkstra", "exact.astar"], [sc], seeds=3, db=db, budget=Budget(time_s=2.0),
+                executor="inline", progress=False, experiment="tiny")
+    return db, sc
+
+
+def test_write_report_from_database(small_db, tmp_path):
+    db, sc = small_db
+    index = write_report(db, tmp_path / "rep", scenarios=[sc], embed=False)
+    doc = index.read_text(encoding="utf-8")
+    assert_offline(doc)
+    linked = re.findall(r'<img src="(figures/[^"]+)"', doc)
+    assert linked and all((index.parent / f).is_file() for f in linked)
+    assert any("paths" in f for f in linked)  # the map with both planners' paths
+    assert "pathzoo report: tiny" in doc and str(db.resolve()) in doc
+    assert "Every run succeeded." in doc
+    # without the Scenario object the map is missing, and the page says why
+    runs = read_runs(db, "tiny")
+    doc = render_report(runs, path_of=lambda key: read_path(db, "tiny", key)[0]).html("t")
+    assert "No map for testing.grid2d" in doc and "pass scenarios=" in doc
+
+
+def test_write_report_needs_an_experiment_name_when_several(small_db, tmp_path):
+    db, sc = small_db
+    pathzoo.run(["exact.dijkstra"], [sc], seeds=1, db=db, executor="inline", progress=False, experiment="other")
+    with pytest.raises(InvalidParameterError, match="holds 2 experiments"):
+        write_report(db, tmp_path / "x")
