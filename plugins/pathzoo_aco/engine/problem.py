@@ -42,12 +42,12 @@ class ColonyProblem:
         """The scenario's shared neighbourhood graph."""
         return self.scenario.graph
 
-    @property
+    @cached_property
     def start(self) -> int:
         """Node id of the start cell."""
         return self.scenario.start_node
 
-    @property
+    @cached_property
     def goal(self) -> int:
         """Node id of the goal cell."""
         return self.scenario.goal_node

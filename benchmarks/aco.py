@@ -1,0 +1,191 @@
+"""Speed of the ant-colony planners: ant-steps per second, time per iteration, and the papers' settings.
+
+Run from the repository root (``../shared`` must sit beside it)::
+
+    python benchmarks/aco.py               # throughput + G-Ant settings + GGACO on its largest terrain
+    python benchmarks/aco.py --quick       # throughput only
+    python benchmarks/aco.py --all-ggaco   # also the four other GGACO terrain sizes
+
+Throughput: each variant runs a few colonies with its default parameters on a
+100 x 100 random grid and on MovingAI's 8room_000 (512 x 512, its longest
+``.scen`` problem). ``steps/s (cpu)`` is ant-steps per CPU second spent in the
+compiled walks (the "one core" figure, insensitive to other processes);
+``steps/s (wall)`` uses wall time.
+
+Paper settings: the wall time of one ``plan()`` call (graph built beforehand,
+as the papers time the search) next to the time the paper reports, and the
+speed-up. Scenarios come from the registered ``gant.*`` and ``ggaco.*`` packs;
+when a pack is not installed a stand-in of the same size is used and marked.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import time
+from pathlib import Path
+
+import numpy as np
+from scipy.sparse.csgraph import dijkstra
+
+import pathzoo
+from pathzoo import Budget, Scenario, VehicleModel
+from pathzoo.generators import fractal_terrain, random_obstacles
+from pathzoo.harness.validation import validate_path
+from pathzoo.io.movingai import read_map, read_scen
+
+SHARED = Path(__file__).resolve().parents[1] / ".." / "shared" / "data"
+VARIANTS = ("aco.as", "aco.mmas", "aco.acs", "aco.ggaco", "aco.gant")
+
+GANT_TABLE4 = {  # (iterations, population): seconds reported in G-Ant's Table 4
+    (10, 10): 0.8067, (10, 40): 1.0241, (10, 70): 1.2141, (10, 100): 1.4615,
+    (40, 10): 1.6969, (40, 40): 2.5589, (40, 70): 3.0248, (40, 100): 4.3270,
+    (70, 10): 2.7683, (70, 40): 4.5592, (70, 70): 5.6998, (70, 100): 7.2338,
+    (100, 10): 3.5843, (100, 40): 5.4011, (100, 70): 7.6876, (100, 100): 9.3796,
+}
+GANT_TABLE6 = {  # space: (iterations, population, seconds) of G-Ant in Table 6
+    "simple": (30, 20, 671.5), "moderate": (45, 30, 1078.0), "complex": (50, 40, 1368.64),
+}
+GGACO_TABLE2 = {  # case: ((rows, cols) as printed, median seconds of GGACO in Table 2)
+    1: ((2569, 1919), 2950.5), 2: ((3018, 2178), 3267.7), 3: ((1789, 1512), 1922.3),
+    4: ((2789, 2003), 2569.1), 5: ((1568, 1800), 1631.1),
+}
+
+
+def registered(scenario_id: str) -> Scenario | None:
+    """The registered scenario, or None when its pack is not installed."""
+    try:
+        return pathzoo.load_scenario(scenario_id)
+    except pathzoo.UnknownPluginError:
+        return None
+
+
+def grid100() -> Scenario:
+    occ = random_obstacles((100, 100), seed=0, density=0.2)
+    occ[0, 0] = occ[-1, -1] = False
+    return Scenario(id="random100", kind="grid2d", occupancy=occ, cell_size=1.0, start=(0.5, 0.5), goal=(99.5, 99.5))
+
+
+def room512() -> Scenario:
+    path = SHARED / "movingai" / "grid" / "rooms" / "8room_000.map"
+    longest = max(read_scen(str(path) + ".scen"), key=lambda p: p.optimal_length)
+    return Scenario(id="8room_000", kind="grid2d", occupancy=read_map(path), cell_size=1.0,
+                    start=(longest.start_col + 0.5, longest.start_row + 0.5),
+                    goal=(longest.goal_col + 0.5, longest.goal_row + 0.5), reference_length=longest.optimal_length)
+
+
+def terrain_standin(rows: int, cols: int) -> Scenario:
+    """A fractal DEM of the paper's size whose cells steeper than 20 degrees are blocked (traversable map)."""
+    elev = fractal_terrain((rows, cols), seed=1, hurst=0.8, relief=0.01 * max(rows, cols))
+    gy, gx = np.gradient(elev)
+    blocked = np.degrees(np.arctan(np.hypot(gx, gy))) > 20.0
+    blocked[:2, :2] = blocked[-2:, -2:] = False
+    return Scenario(id=f"ggaco-standin-{rows}x{cols}", kind="terrain", occupancy=blocked, cell_size=1.0,
+                    start=(0.5, 0.5), goal=(cols - 0.5, rows - 0.5), elevation=elev,
+                    vehicle=VehicleModel(max_climb_deg=25.0, max_descent_deg=25.0))
+
+
+def optimum(scenario: Scenario) -> float:
+    g = scenario.graph
+    return float(dijkstra(g.to_sparse(), indices=scenario.start_node)[scenario.goal_node])
+
+
+def run(planner_id: str, scenario: Scenario, iterations: int, **params) -> tuple[pathzoo.PlanResult, float]:
+    planner = pathzoo.make_planner(planner_id, **params)
+    started = time.perf_counter()
+    result = planner.plan(scenario, budget=Budget(iterations=iterations), rng=np.random.default_rng(0))
+    wall = time.perf_counter() - started
+    if result.solved and not validate_path(scenario, result.path):
+        raise RuntimeError(f"{planner_id} returned an invalid path on {scenario.id}")
+    return result, wall
+
+
+def length(result: pathzoo.PlanResult) -> float:
+    return float(np.linalg.norm(np.diff(result.path, axis=0), axis=1).sum()) if result.solved else math.nan
+
+
+def throughput(iterations: int) -> None:
+    print("## Throughput (default parameters)\n")
+    print(f"{'planner':10} {'map':10} {'iters':>5} {'ant-steps':>11} {'steps/s (cpu)':>14} {'steps/s (wall)':>15} "
+          f"{'s/iter':>8} {'length':>9} {'optimum':>9}")
+    for scenario in (grid100(), room512()):
+        scenario.graph
+        best = optimum(scenario)
+        for pid in VARIANTS:
+            run(pid, scenario, 1, n_ants=1)  # load the compiled kernel
+            result, wall = run(pid, scenario, iterations)
+            ex = result.extras
+            print(f"{pid:10} {scenario.id:10} {result.iterations:5d} {ex['ant_steps']:11d} "
+                  f"{ex['ant_steps'] / ex['walk_cpu_s']:14.3g} {ex['ant_steps'] / ex['walk_time_s']:15.3g} "
+                  f"{wall / max(result.iterations, 1):8.3f} {length(result):9.1f} {best:9.1f}")
+    print()
+
+
+def paper_row(label: str, planner_id: str, scenario: Scenario, standin: bool, iterations: int, paper_s: float,
+              **params) -> None:
+    result, wall = run(planner_id, scenario, iterations, **params)
+    mark = " (stand-in)" if standin else ""
+    print(f"| {label} | {scenario.id}{mark} | {iterations} x {params.get('n_ants', 'default')} | {wall:.2f} | "
+          f"{paper_s:g} | {paper_s / wall:.0f}x | {length(result):.2f} |")
+
+
+def gant_settings() -> None:
+    print("## G-Ant (Jabbarpour et al. 2017)\n")
+    print("| setting | scenario | iterations x ants | ours (s) | paper (s) | speed-up | our length |")
+    print("|---|---|---|---|---|---|---|")
+    fig7 = registered("gant.fig7")
+    standin = fig7 is None
+    if fig7 is None:
+        occ = np.zeros(100, bool)
+        occ[np.random.default_rng(0).choice(np.arange(1, 99), 16, replace=False)] = True
+        fig7 = Scenario(id="gant-fig7", kind="grid2d", occupancy=occ.reshape(10, 10), cell_size=1.0,
+                        start=(0.5, 0.5), goal=(9.5, 9.5))
+    fig7.graph
+    run("aco.gant", fig7, 1, n_ants=1)
+    for (iters, ants), paper_s in GANT_TABLE4.items():
+        paper_row("Table 4", "aco.gant", fig7, standin, iters, paper_s, n_ants=ants)
+    for space, (iters, ants, paper_s) in GANT_TABLE6.items():
+        scenario = registered(f"gant.{space}.1")
+        if scenario is None:
+            print(f"| Table 6 | gant.{space}.1 not installed | | | {paper_s:g} | | |")
+            continue
+        scenario.graph
+        paper_row("Table 6", "aco.gant", scenario, False, iters, paper_s, n_ants=ants)
+    print()
+
+
+def ggaco_settings(cases: tuple[int, ...]) -> None:
+    print("## GGACO (Sangeetha & Ravichandran 2024/25), default parameters (1000 iterations x 20 ants)\n")
+    print("| setting | scenario | iterations x ants | ours (s) | paper (s) | speed-up | our length |")
+    print("|---|---|---|---|---|---|---|")
+    packs = {s.id: s for s in (pathzoo.list_plugins("scenarios")) if s.id.startswith("ggaco.")}
+    for case in cases:
+        (rows, cols), paper_s = GGACO_TABLE2[case]
+        found = [sid for sid, entry in packs.items() if sid.startswith(f"ggaco.case{case}")]
+        scenario = registered(found[0]) if found else None
+        standin = scenario is None
+        if scenario is None:
+            scenario = terrain_standin(rows, cols)
+        started = time.perf_counter()
+        scenario.graph
+        print(f"<!-- graph of {scenario.id}: {scenario.graph.n_edges} edges built in "
+              f"{time.perf_counter() - started:.1f} s -->")
+        paper_row(f"Table 2, case {case}", "aco.ggaco", scenario, standin, 1000, paper_s)
+    print()
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="throughput only")
+    parser.add_argument("--all-ggaco", action="store_true", help="all five GGACO terrain sizes")
+    parser.add_argument("--iterations", type=int, default=3, help="colonies per throughput run")
+    args = parser.parse_args()
+    throughput(args.iterations)
+    if args.quick:
+        return
+    gant_settings()
+    ggaco_settings((1, 2, 3, 4, 5) if args.all_ggaco else (1,))
+
+
+if __name__ == "__main__":
+    main()
