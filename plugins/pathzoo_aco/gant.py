@@ -39,7 +39,17 @@ from pathzoo_aco.engine import (
 )
 from pathzoo_aco.gant_energy import RlsEwmaPredictor, synthetic_drive
 
-__all__ = ["GreenAnt", "GantState"]
+__all__ = ["GreenAnt", "GantState", "green_heuristic", "PHI", "ENERGY_FLOOR"]
+
+PHI = Param(2.0, "φ, the UGV's maximum speed normalising v in η (G-Ant eq. 14, GGACO eq. 16), m/s",
+            low=0.0, low_open=True)
+ENERGY_FLOOR = Param(1.0, "lower bound on an energy E in 1/E, J (zero on steep descents without regeneration)",
+                     low=0.0, low_open=True)
+
+
+def green_heuristic(distance: np.ndarray, speed: float, phi: float) -> np.ndarray:
+    """``η = 1 / distance + v / φ``: G-Ant's eq. 14, reused by GGACO's eq. 16."""
+    return 1.0 / distance + speed / phi
 
 
 @dataclass
@@ -60,20 +70,19 @@ class GreenAnt(AntColonyPlanner):
     kinds = frozenset({"grid2d", "terrain"})
     params = {
         **colony_params(n_ants=100, iterations=100, alpha=0.4, beta=0.6, rho=0.3),
-        "phi": Param(2.0, "φ, the UGV's maximum speed normalising v in η (eq. 14), m/s", low=0.0, low_open=True),
+        "phi": PHI,
         "tau0": Param(0.0, "initial trail on every link", low=0.0),
         "lambda_ff": Param(0.98, "RLS forgetting factor λ_ff", low=0.0, high=1.0, low_open=True),
         "lambda_u": Param(0.98, "EWMA weight λ_u of the residual chart (eq. 9)", low=0.0, high=1.0, low_open=True),
         "dt": Param(10.0, "sampling interval Δt of the power data, s", low=0.0, low_open=True),
         "samples": Param(100, "power samples of the calibration drive", low=3),
         "noise": Param(0.1, "noise SD of the generated power as a fraction of its mean (eq. 4's ε)", low=0.0),
-        "energy_floor_j": Param(1.0, "lower bound on a route's predicted energy, J (1/Ê must stay finite)",
-                                low=0.0, low_open=True),
+        "energy_floor_j": ENERGY_FLOOR,
     }
 
     def heuristic(self, problem: ColonyProblem) -> np.ndarray:
         """Eq. 14: ``η_ij = 1 / ll_ij + v_ij / φ`` with ``ll`` the 3-D link length and ``v`` the cruise speed."""
-        return 1.0 / problem.graph.length + problem.scenario.vehicle.cruise_speed / self.phi
+        return green_heuristic(problem.graph.length, problem.scenario.vehicle.cruise_speed, self.phi)
 
     def walk_rules(self, problem: ColonyProblem) -> WalkRules:
         """Eq. 13: the additive rule ``(α τ + β η) · N_j / (N_j + 1)``."""

@@ -35,6 +35,7 @@ from pathzoo_aco.engine import (
     colony_params,
     deposit_walks,
 )
+from pathzoo_aco.gant import ENERGY_FLOOR, PHI, green_heuristic
 
 __all__ = ["GGACO", "GgacoState"]
 
@@ -56,10 +57,10 @@ class GGACO(AntColonyPlanner):
     params = {
         **colony_params(n_ants=20, iterations=1000, alpha=0.4, beta=0.6, rho=0.4),
         "lam": Param(1.0, "λ of the gain sigmoid, 0 <= λ <= 1 (eqs. 12, 14)", low=0.0, high=1.0),
-        "phi": Param(2.0, "φ, the UGV's maximum speed normalising v in η (eq. 16), m/s", low=0.0, low_open=True),
+        "phi": PHI,
         "tau_floor": Param(1e-3, "lowest trail value (τ0 = 0 and the subtracted gains would reach 0 or less)",
                            low=0.0, low_open=True),
-        "energy_floor_j": Param(1.0, "lower bound on an edge's energy in 1/E (eq. 18), J", low=0.0, low_open=True),
+        "energy_floor_j": ENERGY_FLOOR,
         "objective": Param("energy", "which walk is best: least energy (eq. 6) or length (eq. 5)",
                            choices=("energy", "length")),
     }
@@ -71,7 +72,7 @@ class GGACO(AntColonyPlanner):
 
     def heuristic(self, problem: ColonyProblem) -> np.ndarray:
         """Eq. 16: ``η_ij = 1 / d_ij + v_ij / φ`` with ``v`` the vehicle's cruise speed."""
-        return 1.0 / self.slope_distance(problem) + problem.scenario.vehicle.cruise_speed / self.phi
+        return green_heuristic(self.slope_distance(problem), problem.scenario.vehicle.cruise_speed, self.phi)
 
     def gain(self, problem: ColonyProblem) -> np.ndarray:
         """Signed gain per edge (eqs. 11-14): ``+Gain_ij`` toward the neighbour(s) nearest ``D``, ``-Gain_ij`` otherwise.
