@@ -1,0 +1,24 @@
+"""The ``scenarios`` plugin: registers every bundled scenario pack (see ``docs/scenarios.md``)."""
+
+from __future__ import annotations
+
+from typing import Sequence
+
+from pathzoo.plugins.entries import ScenarioEntry
+from pathzoo.plugins.hookspecs import hookimpl
+
+__all__ = ["pathzoo_register_scenarios", "PACKS"]
+
+PACKS: tuple[str, ...] = ("gant", "dsaco", "iaca", "fgdaco", "ggaco", "movingai")
+"""The pack modules of :mod:`pathzoo_scenarios`, in listing order."""
+
+
+@hookimpl
+def pathzoo_register_scenarios() -> Sequence[ScenarioEntry]:
+    """Every scenario of every pack, as lazily loaded entries."""
+    from importlib import import_module
+
+    entries: list[ScenarioEntry] = []
+    for pack in PACKS:
+        entries.extend(import_module(f"pathzoo_scenarios.{pack}").entries())
+    return entries
