@@ -451,29 +451,18 @@ def write_report(
     InvalidParameterError
         ``db`` holds several experiments and none was chosen, or none at all.
     """
-    from pathzoo.harness.store import read_experiments, read_history, read_path, read_runs
+    from pathzoo.analysis.database import load_experiment
+    from pathzoo.harness.store import read_path
 
-    exps = read_experiments(db)
-    names = [str(n) for n in exps["name"]]
-    if experiment is None:
-        if len(names) != 1:
-            raise InvalidParameterError(
-                f"{db} holds {len(names)} experiments ({', '.join(sorted(names)) or 'none'}); choose one with experiment="
-            )
-        experiment = names[0]
-    runs = read_runs(db, experiment)
-    history = read_history(db, experiment)
-    row = exps[exps["name"] == experiment].iloc[0]
-    known = _load_experiment_scenarios(row["config"])
+    exp = load_experiment(db, experiment)
+    known = _load_experiment_scenarios(exp.config)
     if scenarios is not None:
         known.update(scenarios if isinstance(scenarios, Mapping) else {s.id: s for s in scenarios})
-    budget = ", ".join(f"{k}={v}" for k, v in row["budget"].items() if v is not None) or "default"
-    seeds = row["config"].get("seeds", [])
-    meta = {"database": str(Path(db).resolve()), "experiment": experiment, "budget per run": budget,
-            "seeds": str(len(seeds)), "created": str(row["created"])}
+    meta = {"database": str(Path(db).resolve()), "experiment": exp.name, "budget per run": exp.budget_text,
+            "seeds": str(len(exp.config.get("seeds", []))), "created": exp.created}
     page = render_report(
-        runs, history, metric=metric, reference=reference, alpha=alpha, scenarios=known,
-        path_of=lambda key: read_path(db, experiment, key)[0], title=f"pathzoo report: {experiment}", meta=meta,
+        exp.runs, exp.history, metric=metric, reference=reference, alpha=alpha, scenarios=known,
+        path_of=lambda key: read_path(db, exp.name, key)[0], title=f"pathzoo report: {exp.name}", meta=meta,
         embed=embed, max_scenarios=max_scenarios,
     )
     out = Path(out_dir)
@@ -483,5 +472,5 @@ def write_report(
         for name, data in page.files.items():
             (out / "figures" / name).write_bytes(data)
     index = out / "index.html"
-    index.write_text(page.html(f"pathzoo report: {experiment}"), encoding="utf-8")
+    index.write_text(page.html(f"pathzoo report: {exp.name}"), encoding="utf-8")
     return index

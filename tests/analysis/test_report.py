@@ -11,10 +11,8 @@ import pytest
 import pathzoo
 from pathzoo.analysis.report import render_report, write_report
 from pathzoo.analysis.synthetic import make_runs, random_history, random_runs
-from pathzoo.core import Budget
 from pathzoo.core.errors import InvalidParameterError
 from pathzoo.harness.store import read_path, read_runs
-from pathzoo.testing import check_scenario
 
 
 class Tags(HTMLParser):
@@ -82,15 +80,6 @@ def test_power_warning_and_empty_runs():
     assert "Too few runs" not in render_report(enough, reference="a").html("t")
     with pytest.raises(InvalidParameterError, match="runs is empty"):
         render_report(few.iloc[:0])
-
-
-@pytest.fixture(scope="module")
-def small_db(tmp_path_factory):
-    db = tmp_path_factory.mktemp("db") / "r.sqlite"
-    sc = check_scenario("grid2d")
-    pathzoo.run(["exact.dijkstra", "exact.astar"], [sc], seeds=3, db=db, budget=Budget(time_s=2.0),
-                executor="inline", progress=False, experiment="tiny")
-    return db, sc
 
 
 def test_write_report_from_database(small_db, tmp_path):
