@@ -5,7 +5,9 @@ from __future__ import annotations
 import importlib
 from typing import Any, ClassVar
 
-from pathzoo.core import Planner
+from pathzoo.core import Budget, Planner, ProgressCallback, Scenario
+from pathzoo_baselines.encodings import Encoding, make_encoding
+from pathzoo_baselines.search import Search
 
 __all__ = ["BaselinePlanner"]
 
@@ -32,3 +34,9 @@ class BaselinePlanner(Planner):
                 importlib.import_module(module)
             except ImportError:
                 pass
+
+    def _start(self, scenario: Scenario, budget: Budget, progress: ProgressCallback | None) -> tuple[Encoding, Search]:
+        """Check the scenario kind, build the encoding this planner's parameters ask for and start the search."""
+        self.check_supports(scenario)
+        encoding = make_encoding(scenario, self._values)
+        return encoding, Search(scenario, encoding, budget, progress)

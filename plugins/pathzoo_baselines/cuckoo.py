@@ -9,9 +9,7 @@ import numpy as np
 
 from pathzoo.core import Budget, Param, PlanResult, ProgressCallback, Scenario
 from pathzoo_baselines.base import BaselinePlanner
-from pathzoo_baselines.encodings import make_encoding
 from pathzoo_baselines.params import ENCODING_PARAMS
-from pathzoo_baselines.search import Search
 
 __all__ = ["CuckooPlanner", "mantegna_steps"]
 
@@ -79,9 +77,7 @@ class CuckooPlanner(BaselinePlanner):
         progress: ProgressCallback | None = None,
     ) -> PlanResult:
         """Run cuckoo search until the budget is spent; see the class docstring."""
-        self.check_supports(scenario)
-        encoding = make_encoding(scenario, self._values)
-        search = Search(scenario, encoding, budget, progress)
+        encoding, search = self._start(scenario, budget, progress)
         low, high = encoding.low, encoding.high
         nests = encoding.initial(rng, self.nests)
         fitness = search.evaluate(nests)

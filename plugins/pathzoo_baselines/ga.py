@@ -9,9 +9,9 @@ import numpy as np
 
 from pathzoo.core import Budget, InvalidParameterError, Param, PlanResult, ProgressCallback, Scenario
 from pathzoo_baselines.base import BaselinePlanner
-from pathzoo_baselines.encodings import Encoding, make_encoding
+from pathzoo_baselines.encodings import Encoding
 from pathzoo_baselines.params import CONTINUOUS_ENCODINGS, ENCODING_PARAMS
-from pathzoo_baselines.search import Search, seeded_global_random
+from pathzoo_baselines.search import seeded_global_random
 
 __all__ = ["GaPlanner", "RateControl", "GA_PARAMS"]
 
@@ -107,11 +107,9 @@ class GaPlanner(BaselinePlanner):
         progress: ProgressCallback | None = None,
     ) -> PlanResult:
         """Evolve until the budget is spent; see the class docstring."""
-        self.check_supports(scenario)
+        encoding, search = self._start(scenario, budget, progress)
         from deap import algorithms, base, tools
 
-        encoding = make_encoding(scenario, self._values)
-        search = Search(scenario, encoding, budget, progress)
         rates = self._rate_control(encoding)
         _, individual = _deap_types()
         indpb = min(1.0, self.gene_rate / encoding.n_genes)

@@ -8,9 +8,8 @@ import numpy as np
 
 from pathzoo.core import Budget, Param, PlanResult, ProgressCallback, Scenario
 from pathzoo_baselines.base import BaselinePlanner
-from pathzoo_baselines.encodings import make_encoding
 from pathzoo_baselines.params import ENCODING_PARAMS
-from pathzoo_baselines.search import Search, seeded_global_random
+from pathzoo_baselines.search import seeded_global_random
 
 __all__ = ["PsoPlanner"]
 
@@ -56,14 +55,12 @@ class PsoPlanner(BaselinePlanner):
         progress: ProgressCallback | None = None,
     ) -> PlanResult:
         """Run the swarm until the budget is spent; see the class docstring."""
-        self.check_supports(scenario)
+        encoding, search = self._start(scenario, budget, progress)
         from pyswarms.backend.generators import create_swarm
         from pyswarms.backend.handlers import BoundaryHandler, VelocityHandler
         from pyswarms.backend.operators import compute_pbest
         from pyswarms.backend.topology import Star
 
-        encoding = make_encoding(scenario, self._values)
-        search = Search(scenario, encoding, budget, progress)
         bounds = (encoding.low, encoding.high)
         vmax = self.v_max * float(np.max(scenario.extent))
         clamp = (-vmax, vmax)
