@@ -247,32 +247,25 @@ def _require_same(planner: Planner, scenario: Scenario, a: PlanResult, b: PlanRe
 
 
 # ------------------------------------------------------------------ budget
-def check_budget_iterations(planner: Planner, *, budget: Budget = DEFAULT_BUDGET) -> None:
-    """``Budget(iterations=2)`` is never exceeded, neither in the result nor in progress reports."""
-    limit = 2
+def _check_count_limit(planner: Planner, counter: str, limit: int, time_s: float | None) -> None:
+    """Plan with ``Budget(<counter>=limit)`` and require neither the result nor progress to exceed it."""
     scenario = check_scenario(_first_kind(planner))
     progress = _Progress()
-    result = _plan(planner, scenario, Budget(iterations=limit, time_s=budget.time_s), progress)
-    reported = max([int(c[0]) for c in progress.calls], default=0)
-    if result.iterations > limit or reported > limit:
-        raise _fail(
-            planner,
-            f"used {max(result.iterations, reported)} iterations with Budget(iterations={limit}) on {scenario.id}",
-        )
+    result = _plan(planner, scenario, Budget(**{counter: limit, "time_s": time_s}), progress)
+    position = 0 if counter == "iterations" else 1  # place of the count in progress(iteration, evaluations, cost)
+    used = max([int(c[position]) for c in progress.calls] + [getattr(result, counter)])
+    if used > limit:
+        raise _fail(planner, f"used {used} {counter} with Budget({counter}={limit}) on {scenario.id}")
+
+
+def check_budget_iterations(planner: Planner, *, budget: Budget = DEFAULT_BUDGET) -> None:
+    """``Budget(iterations=2)`` is never exceeded, neither in the result nor in progress reports."""
+    _check_count_limit(planner, "iterations", 2, budget.time_s)
 
 
 def check_budget_evaluations(planner: Planner, *, budget: Budget = DEFAULT_BUDGET) -> None:
     """``Budget(evaluations=3)`` is never exceeded, neither in the result nor in progress reports."""
-    limit = 3
-    scenario = check_scenario(_first_kind(planner))
-    progress = _Progress()
-    result = _plan(planner, scenario, Budget(evaluations=limit, time_s=budget.time_s), progress)
-    reported = max([int(c[1]) for c in progress.calls], default=0)
-    if result.evaluations > limit or reported > limit:
-        raise _fail(
-            planner,
-            f"used {max(result.evaluations, reported)} evaluations with Budget(evaluations={limit}) on {scenario.id}",
-        )
+    _check_count_limit(planner, "evaluations", 3, budget.time_s)
 
 
 def check_budget_time(planner: Planner, *, budget: Budget = DEFAULT_BUDGET) -> None:
