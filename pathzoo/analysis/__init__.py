@@ -2,10 +2,36 @@
 
 Every function works on the runs frame of ``pathzoo.harness.store.read_runs``
 (one row per run); see :mod:`pathzoo.analysis.frame` for the shared rules
-(success, configurations, how failed runs are ranked).
+(success, configurations, how failed runs are ranked) and
+``docs/statistics.md`` for the statistics. Names other than the leaderboard
+and summaries are imported on first use, so ``import pathzoo.analysis``
+stays light (scipy.stats and matplotlib load only when needed).
 """
+
+from __future__ import annotations
+
+import importlib
+from typing import Any
 
 from pathzoo.analysis.leaderboard import format_leaderboard, leaderboard
 from pathzoo.analysis.summary import summarize, summarize_metrics
 
-__all__ = ["leaderboard", "format_leaderboard", "summarize", "summarize_metrics"]
+_LAZY = {
+    "pairwise_tests": "pathzoo.analysis.stats",
+    "friedman": "pathzoo.analysis.ranks",
+    "paper_table": "pathzoo.analysis.paper_table",
+    "format_paper_table": "pathzoo.analysis.paper_table",
+    "write_report": "pathzoo.analysis.report",
+    "render_report": "pathzoo.analysis.report",
+    "load_experiment": "pathzoo.analysis.database",
+    "export_ompl": "pathzoo.analysis.ompl_export",
+    "write_ompl_logs": "pathzoo.analysis.ompl_export",
+}
+
+__all__ = ["leaderboard", "format_leaderboard", "summarize", "summarize_metrics", *_LAZY]
+
+
+def __getattr__(name: str) -> Any:
+    if name in _LAZY:
+        return getattr(importlib.import_module(_LAZY[name]), name)
+    raise AttributeError(f"module 'pathzoo.analysis' has no attribute {name!r}")

@@ -145,9 +145,10 @@ def config_labels(runs: pd.DataFrame) -> pd.Series:
 
 
 def with_config(runs: pd.DataFrame, metric: str | None = None) -> pd.DataFrame:
-    """A copy with ``config`` and ``success`` columns added (columns checked first)."""
+    """A copy with ``config`` and ``success`` columns added and ``status`` as plain strings (columns checked first)."""
     require_columns(runs, (*_REQUIRED, metric) if metric else _REQUIRED)
     out = runs.copy()
+    out["status"] = [str(getattr(s, "value", s)) for s in out["status"]]  # RunStatus members or their values
     out["config"] = config_labels(out)
     out["success"] = success_mask(out)
     return out

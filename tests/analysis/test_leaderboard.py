@@ -123,3 +123,20 @@ def test_formats():
     html = format_leaderboard(lb, "html")
     assert html.startswith('<table class="pz-table">') and "<caption>Leaderboard: length [m]" in html
     assert "<td>b|x</td>" in html and "<script" not in html
+
+
+def test_status_enum_members_are_understood():
+    from pathzoo.core import RunStatus
+
+    runs = make_runs({"s": {"a": [1.0, 2.0], "b": [1.0, 2.0]}})
+    runs["status"] = [RunStatus(v) for v in runs["status"]]
+    assert (leaderboard(runs)["success_rate"] == 1.0).all()
+
+
+def test_lazy_package_attributes():
+    import pathzoo.analysis as analysis
+    from pathzoo.analysis.report import write_report
+
+    assert analysis.write_report is write_report and "friedman" in analysis.__all__
+    with pytest.raises(AttributeError, match="no attribute 'nope'"):
+        analysis.nope  # noqa: B018
