@@ -54,7 +54,6 @@ def collision_counts(blocked: np.ndarray, cells: np.ndarray) -> np.ndarray:
     return out
 
 
-
 def _compile() -> None:
     """Compile :func:`collision_counts` for read-only maps now, at import, not inside a timed ``plan()``."""
     blocked = np.zeros((2, 2), dtype=bool)
@@ -63,6 +62,7 @@ def _compile() -> None:
 
 
 _compile()
+
 
 class PathCost:
     """Vectorised penalised cost of polylines on one scenario.

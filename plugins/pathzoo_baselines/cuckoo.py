@@ -20,9 +20,8 @@ def mantegna_steps(rng: np.random.Generator, shape: tuple[int, ...], beta: float
     ``s = u / |v|^(1/beta)`` with ``v ~ N(0, 1)`` and ``u ~ N(0, sigma_u^2)``,
     ``sigma_u = [Γ(1+β) sin(πβ/2) / (Γ((1+β)/2) β 2^((β-1)/2))]^(1/β)``.
     """
-    sigma_u = (
-        math.gamma(1 + beta) * math.sin(math.pi * beta / 2) / (math.gamma((1 + beta) / 2) * beta * 2 ** ((beta - 1) / 2))
-    ) ** (1 / beta)
+    numerator = math.gamma(1 + beta) * math.sin(math.pi * beta / 2)
+    sigma_u = (numerator / (math.gamma((1 + beta) / 2) * beta * 2 ** ((beta - 1) / 2))) ** (1 / beta)
     u = rng.normal(0.0, sigma_u, size=shape)
     v = rng.normal(0.0, 1.0, size=shape)
     return u / np.abs(v) ** (1 / beta)

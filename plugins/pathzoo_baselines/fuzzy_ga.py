@@ -1,4 +1,4 @@
-"""``evo.fuzzy_ga``: the GA of ``evo.ga`` with crossover and mutation rates set each generation by a fuzzy controller."""
+"""``evo.fuzzy_ga``: ``evo.ga`` with crossover and mutation rates set each generation by a fuzzy controller."""
 
 from __future__ import annotations
 
@@ -47,7 +47,9 @@ class FuzzyGaPlanner(GaPlanner):
         for name in ("cxpb", "mutpb"):
             lo, hi = values[f"{name}_min"], values[f"{name}_max"]
             if lo >= hi:
-                raise InvalidParameterError(f"{self.id}: parameter '{name}_min' must be below {name}_max={hi}, got {lo}")
+                raise InvalidParameterError(
+                    f"{self.id}: parameter '{name}_min' must be below {name}_max={hi}, got {lo}"
+                )
 
     def _rate_control(self, encoding: Encoding) -> RateControl:
         """A fresh :class:`~pathzoo_baselines.fuzzy.FuzzyRateController` for one run."""

@@ -103,16 +103,17 @@ def _batch_cost(targets, lengths, width, start, goal, genes, max_turn, weight, p
     return cost, violation
 
 
-
 def _compile() -> None:
     """Compile the walk kernels now, at import, not inside a timed ``plan()``."""
     targets = np.full((1, 8), -1, dtype=np.int64)
     idx = np.zeros(2, dtype=np.int64)
-    _batch_cost(targets, np.zeros((1, 8)), 1, 0, 0, np.zeros((1, 1), dtype=np.int64), 180.0, 1.0, np.full(1, -1), idx, idx)
+    genes = np.zeros((1, 1), dtype=np.int64)
+    _batch_cost(targets, np.zeros((1, 8)), 1, 0, 0, genes, 180.0, 1.0, np.full(1, -1), idx, idx)
     _walk(targets, np.zeros((1, 8)), 0, 0, np.zeros(1, dtype=np.int64), np.full(1, -1), idx, idx.copy())
 
 
 _compile()
+
 
 class MoveEncoding:
     """Candidates as ``L`` compass moves; see the module docstring.

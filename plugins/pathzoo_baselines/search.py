@@ -134,5 +134,6 @@ class Search:
         path = self.encoding.path(self.best_genes)
         verdict = validate_path(self.scenario, path)
         if not verdict:
-            return PlanResult(Status.FAILED, message=f"the best candidate is not a valid path: {verdict.reason}", **common)
+            message = f"the best candidate is not a valid path: {verdict.reason}"
+            return PlanResult(Status.FAILED, message=message, **common)
         return PlanResult(Status.SOLVED, path=path, **common)

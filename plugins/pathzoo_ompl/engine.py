@@ -132,7 +132,7 @@ class _Run:
         return b.time_s is not None and self.clock.elapsed + self.reserve_s >= b.time_s
 
     def step(self, until: float = math.inf) -> bool:
-        """One termination-condition check: count a step and return False, or True once spent (or at ``until`` steps)."""
+        """One termination-condition check: count a step and return False; True once spent or at ``until`` steps."""
         if self.spent() or self.steps >= until:
             return True
         self.steps += 1
@@ -149,7 +149,7 @@ class _Run:
 @numba.njit(cache=True)
 def _cell_unit(v: float, cell_size: float) -> float:
     # one coordinate of pathzoo.grid.segments.to_cell_units (snap within 1e-9 of a multiple of 0.5),
-    # as a scalar numba function; tests/ompl/test_validator.py checks that they agree
+    # as a scalar numba function; tests/ompl/test_ompl_validator.py checks that they agree
     u = v / cell_size
     twice = np.round(u * 2.0)
     return twice / 2.0 if abs(u * 2.0 - twice) < 1e-9 else u
@@ -167,7 +167,6 @@ def segment_clear(blocked: np.ndarray, cell_size: float, x0: float, y0: float, x
     )
 
 
-
 def _compile() -> None:
     """Compile :func:`segment_clear` for read-only maps now, at import, not inside a timed ``plan()``."""
     blocked = np.zeros((2, 2), dtype=bool)
@@ -176,6 +175,7 @@ def _compile() -> None:
 
 
 _compile()
+
 
 class SegmentValidator(ob.MotionValidator):
     """OMPL motion validator applying the harness's segment rule, with the evaluation budget.

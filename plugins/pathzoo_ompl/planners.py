@@ -40,7 +40,9 @@ def _common(iteration_steps: int) -> dict[str, Param]:
 
 _RANGE = Param(0.0, "maximum extension length in metres; 0 lets OMPL choose (20% of the map's larger side)", low=0.0)
 _GOAL_BIAS = Param(0.05, "probability of sampling the goal", low=0.0, high=1.0)
-_REWIRE = Param(1.1, "rewiring factor: multiplies the asymptotically optimal connection radius or k", low=0.0, low_open=True)
+_REWIRE = Param(
+    1.1, "rewiring factor: multiplies the asymptotically optimal connection radius or k", low=0.0, low_open=True
+)
 
 
 class OmplPlanner(Planner):
@@ -192,7 +194,9 @@ class FMTStar(OmplPlanner):
     params: ClassVar[Mapping[str, Param]] = {
         **_common(1000),
         "num_samples": Param(1000, "samples in the batch", low=2, high=10**7),
-        "radius_multiplier": Param(1.1, "multiplier of the asymptotically optimal connection radius", low=0.0, low_open=True),
+        "radius_multiplier": Param(
+            1.1, "multiplier of the asymptotically optimal connection radius", low=0.0, low_open=True
+        ),
     }
 
     def configure(self, planner: Any, scenario: Scenario) -> None:

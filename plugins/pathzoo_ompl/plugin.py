@@ -16,7 +16,7 @@ __all__ = ["pathzoo_register_planners"]
 
 @hookimpl
 def pathzoo_register_planners() -> Sequence[type[Planner]]:
-    """``ompl.rrt``, ``ompl.rrtconnect``, ``ompl.rrtstar``, ``ompl.informed_rrtstar``, ``ompl.prmstar``, ``ompl.bitstar``, ``ompl.fmt``."""
+    """The seven ``ompl.*`` planners of :data:`pathzoo_ompl.planners.OMPL_PLANNERS`."""
     from pathzoo_ompl.planners import OMPL_PLANNERS
 
     return list(OMPL_PLANNERS)

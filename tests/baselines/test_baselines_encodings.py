@@ -55,7 +55,8 @@ def test_grid_walk_follows_graph_edges_without_loops():
     reached = 0
     for g, c, v in zip(genes, cost, violation):
         path = enc.path(g)
-        is_centre = np.all(np.abs(path / scenario.cell_size - 0.5 - np.round(path / scenario.cell_size - 0.5)) < 1e-12, axis=1)
+        offset = path / scenario.cell_size - 0.5
+        is_centre = np.all(np.abs(offset - np.round(offset)) < 1e-12, axis=1)
         assert is_centre[1:-1].all()  # only an exact start or goal may be an extra, off-centre point
         walked = path[is_centre] if v == 0 else path[is_centre][:-1]  # an unfinished walk gets the goal appended
         nodes = scenario.node_of(walked)

@@ -10,7 +10,9 @@ from pathzoo import Budget, Scenario, Status, VehicleModel, make_planner
 from pathzoo.harness.validation import validate_path
 from pathzoo.testing import check_scenario
 
-IDS = ["ompl.rrt", "ompl.rrtconnect", "ompl.rrtstar", "ompl.informed_rrtstar", "ompl.prmstar", "ompl.bitstar", "ompl.fmt"]
+IDS = [
+    "ompl.rrt", "ompl.rrtconnect", "ompl.rrtstar", "ompl.informed_rrtstar", "ompl.prmstar", "ompl.bitstar", "ompl.fmt"
+]
 ANYTIME = {"ompl.rrtstar", "ompl.informed_rrtstar", "ompl.prmstar", "ompl.bitstar"}
 
 
