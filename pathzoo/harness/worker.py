@@ -38,10 +38,21 @@ if TYPE_CHECKING:
     from pathzoo.core.scenario import Scenario
     from pathzoo.harness.specs import RunTask, ScenarioSpec
 
-__all__ = ["RunOutcome", "execute_task", "load_cached", "ensure_plugins", "HistoryRecorder", "SCENARIO_CACHE_SIZE"]
+__all__ = [
+    "RunOutcome",
+    "execute_task",
+    "load_cached",
+    "ensure_plugins",
+    "HistoryRecorder",
+    "SCENARIO_CACHE_SIZE",
+    "SETUP_TIMEOUT_S",
+]
 
 SCENARIO_CACHE_SIZE = 4
 """Scenarios kept loaded per process (runs are ordered scenario by scenario)."""
+
+SETUP_TIMEOUT_S = 900.0
+"""Limit on a run's setup in a worker (plugins, planner, scenario, shared geometry), before ``plan()``."""
 
 TRACEBACK_LINES = 12
 """Lines of traceback kept in a crash message."""

@@ -127,7 +127,7 @@ def test_resume_after_the_harness_is_killed(forged, tmp_path):
         from harness import forged
         get_registry().add_plugin(forged, "forged-test")
         pathzoo.run([("test.honest", {{"delay_s": 0.3}})], ["test.wall"], seeds={n_runs}, db={str(db)!r}, jobs=1,
-                    experiment="killed", progress=False)
+                    experiment="killed", progress=False, executor=sys.argv[1])
     """)
 
     def rows() -> int:
@@ -141,7 +141,7 @@ def test_resume_after_the_harness_is_killed(forged, tmp_path):
         finally:
             conn.close()
 
-    proc = subprocess.Popen([sys.executable, "-c", script], stderr=subprocess.DEVNULL)
+    proc = subprocess.Popen([sys.executable, "-c", script, "process"], stderr=subprocess.DEVNULL)
     deadline = time.monotonic() + 120
     while rows() < 2 and time.monotonic() < deadline and proc.poll() is None:
         time.sleep(0.05)
@@ -149,7 +149,8 @@ def test_resume_after_the_harness_is_killed(forged, tmp_path):
     proc.wait()
     done_before = rows()
     assert 2 <= done_before < n_runs, "the harness must be killed mid-way"
-    subprocess.run([sys.executable, "-c", script], stderr=subprocess.DEVNULL, check=True, timeout=120)
+    # the orphaned worker must not disturb the rerun (inline here only to save the worker start-up time)
+    subprocess.run([sys.executable, "-c", script, "inline"], stderr=subprocess.DEVNULL, check=True, timeout=120)
     conn = sqlite3.connect(db)
     keys = [k for (k,) in conn.execute("SELECT run_key FROM runs WHERE experiment = 'killed'")]
     statuses = {s for (s,) in conn.execute("SELECT status FROM runs")}

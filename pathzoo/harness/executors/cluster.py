@@ -9,10 +9,11 @@ outcome; the harness judges and stores it as with the other executors.
 What it can and cannot guarantee:
 
 - exceptions in ``plan()`` are caught in the task and recorded as ``crash``;
-- a worker *process* that dies is detected by the scheduler, which retries the
-  task on other workers (``distributed.scheduler.allowed-failures``, 3 by
-  default) and then fails it with ``KilledWorker``: the run is recorded as
-  ``crash``, but after several attempts;
+- a worker *process* that dies is detected by the scheduler, which fails the
+  task with ``KilledWorker``: the run is recorded as ``crash``. The local
+  cluster sets ``distributed.scheduler.allowed-failures`` to 0 for this; an
+  external scheduler retries the task on other workers as often as its own
+  setting allows (3 by default) before giving up;
 - the hard limit counts from the moment ``plan()`` starts (the task reports it
   with a worker event), so runs waiting in the cluster's queue never time out;
 - a thread cannot be killed: at the hard limit the run is recorded as
@@ -20,7 +21,9 @@ What it can and cannot guarantee:
   restart the worker that runs it (best effort: this needs a nanny, i.e. a
   worker started by ``dask worker`` or a ``LocalCluster(processes=True)``).
   Without a restart the thread keeps running until ``plan()`` returns, and
-  that worker has one thread less meanwhile;
+  that worker has one thread less meanwhile. Runs that die with such a
+  restarted worker, or with a worker killed by another run before they
+  started, are submitted again (up to 3 attempts), not recorded as crashes;
 - CPU time is process CPU time of the worker, so it is only meaningful with
   one thread per worker (the local cluster uses ``threads_per_worker=1``);
 - file scenarios are read by path on the workers, so the files must be
@@ -48,6 +51,7 @@ __all__ = ["DaskExecutor"]
 
 _STARTED_TOPIC = "pathzoo-run-started"
 _TICK_S = 0.1
+_MAX_ATTEMPTS = 3
 
 
 def _run_on_worker(task: "RunTask") -> RunOutcome:
@@ -55,7 +59,7 @@ def _run_on_worker(task: "RunTask") -> RunOutcome:
     from distributed import get_worker
 
     worker = get_worker()
-    return execute_task(task, on_started=lambda: worker.log_event(_STARTED_TOPIC, task.run_key))
+    return execute_task(task, on_started=lambda: worker.log_event(_STARTED_TOPIC, [task.run_key, worker.address]))
 
 
 @dataclass
@@ -66,6 +70,8 @@ class _Run:
     submitted: float
     started: float = math.nan
     deadline: float = math.inf
+    worker: str = ""
+    attempts: int = 1
 
 
 class DaskExecutor(RunExecutor):
@@ -84,6 +90,7 @@ class DaskExecutor(RunExecutor):
 
     def __init__(self, jobs: int | None = None, *, address: str | None = None, processes: bool = True) -> None:
         try:
+            import dask
             from distributed import Client, LocalCluster
         except ImportError:
             raise PathzooError("the 'dask' executor needs dask.distributed: pip install 'pathzoo[dask]'") from None
@@ -91,14 +98,17 @@ class DaskExecutor(RunExecutor):
         if address:
             self._client = Client(address)
         else:
-            self._cluster = LocalCluster(
-                n_workers=int(jobs or os.cpu_count() or 1), threads_per_worker=1, processes=processes,
-                dashboard_address=None,
-            )
+            # a run that kills its worker is a crash, not a task to retry elsewhere
+            with dask.config.set({"distributed.scheduler.allowed-failures": 0}):
+                self._cluster = LocalCluster(
+                    n_workers=int(jobs or os.cpu_count() or 1), threads_per_worker=1, processes=processes,
+                    dashboard_address=None,
+                )
             self._client = Client(self._cluster)
         self.capacity = max(1, sum(self._client.nthreads().values()))
         self._lock = threading.Lock()
         self._runs: dict[str, _Run] = {}
+        self._restarted: set[str] = set()
         self._closing = threading.Event()
         self._client.subscribe_topic(_STARTED_TOPIC, self._on_started)
         self._watchdog = threading.Thread(target=self._watch, name="pathzoo-dask-watchdog", daemon=True)
@@ -108,11 +118,14 @@ class DaskExecutor(RunExecutor):
         """Submit one run as a Dask task."""
         future: Future[RunOutcome] = Future()
         future.set_running_or_notify_cancel()
-        dask_future = self._client.submit(_run_on_worker, task, pure=False)
-        with self._lock:
-            self._runs[task.run_key] = _Run(task, future, dask_future, time.perf_counter())
-        dask_future.add_done_callback(lambda f, key=task.run_key: self._done(key, f))
+        self._send(_Run(task, future, None, time.perf_counter()))
         return future
+
+    def _send(self, run: _Run) -> None:
+        run.dask_future = self._client.submit(_run_on_worker, run.task, pure=False)
+        with self._lock:
+            self._runs[run.task.run_key] = run
+        run.dask_future.add_done_callback(lambda f, key=run.task.run_key: self._done(key, f))
 
     def shutdown(self) -> None:
         """Cancel outstanding tasks and close the client (and the local cluster)."""
@@ -128,12 +141,13 @@ class DaskExecutor(RunExecutor):
 
     # ------------------------------------------------------------- internals
     def _on_started(self, event: Any) -> None:
-        key = event[1] if isinstance(event, tuple) else event
+        key, worker = event[1]  # (timestamp, [run_key, worker address])
         with self._lock:
             run = self._runs.get(key)
             if run is not None:
                 run.started = time.perf_counter()
                 run.deadline = run.started + run.task.timeout_s
+                run.worker = worker
 
     def _done(self, key: str, dask_future: Any) -> None:
         with self._lock:
@@ -145,6 +159,14 @@ class DaskExecutor(RunExecutor):
         except CancelledError:
             outcome = RunOutcome(key, crash=True, message="dask task was cancelled", started_at=utc_now())
         except Exception as exc:
+            with self._lock:
+                innocent = not run.worker or run.worker in self._restarted
+            if type(exc).__name__ == "KilledWorker" and innocent and run.attempts < _MAX_ATTEMPTS:
+                # its worker died under another run (or was restarted by us) before or while it ran: run it again
+                run.attempts += 1
+                run.started, run.deadline, run.worker = math.nan, math.inf, ""
+                self._send(run)
+                return
             outcome = RunOutcome(key, crash=True, started_at=utc_now(),
                                  message=f"dask task failed: {type(exc).__name__}: {exc}")
         run.future.set_result(outcome)
@@ -161,7 +183,7 @@ class DaskExecutor(RunExecutor):
                     run.task.run_key, timed_out=True, wall_time_s=elapsed, started_at=utc_now(),
                     message=f"dask task abandoned after {elapsed:.3g} s",
                 ))
-                self._restart_worker_of(run.dask_future)
+                threading.Thread(target=self._restart_worker_of, args=(run.dask_future,), daemon=True).start()
 
     def _restart_worker_of(self, dask_future: Any) -> None:
         """Cancel the task and restart the worker running it, if the cluster allows (best effort)."""
@@ -169,6 +191,8 @@ class DaskExecutor(RunExecutor):
             processing = self._client.processing()
             workers = [w for w, keys in processing.items() if dask_future.key in keys]
             dask_future.cancel()
+            with self._lock:
+                self._restarted.update(workers)
             if workers:
                 self._client.restart_workers(workers, raise_for_error=False)
         except Exception:  # restarting is an optimisation; the run is already recorded

@@ -6,8 +6,10 @@ pipes and on the process sentinels at the same time, so it notices at once
 
 - a result (``("done", outcome)``): the future resolves;
 - the start of ``plan()`` (``("started",)``, sent once the planner is built
-  and the scenario is loaded): the hard limit ``timeout_s`` counts from here
-  (before that, from the moment the task was sent);
+  and the scenario is loaded and its graph built): the hard limit
+  ``timeout_s`` counts from here. The setup before it has its own limit,
+  :data:`~pathzoo.harness.worker.SETUP_TIMEOUT_S` (a huge map can take a
+  while to load); a setup past it is recorded as ``crash``;
 - a worker past its hard limit: it gets ``SIGKILL`` (``Process.kill``), the
   run resolves as ``timed_out`` and a fresh worker replaces it;
 - a worker that died (``os._exit``, segfault, ``SIGKILL`` from outside, out
@@ -36,7 +38,7 @@ from typing import TYPE_CHECKING, Any
 
 from pathzoo.core.errors import PathzooError
 from pathzoo.harness.executors.base import RunExecutor
-from pathzoo.harness.worker import RunOutcome, execute_task, utc_now
+from pathzoo.harness.worker import SETUP_TIMEOUT_S, RunOutcome, execute_task, utc_now
 
 if TYPE_CHECKING:
     from multiprocessing.process import BaseProcess
@@ -100,6 +102,7 @@ class _Worker:
     sent_at: float = math.nan
     started_at: str = ""
     deadline: float = math.inf
+    in_setup: bool = False
 
     def finish(self, outcome: RunOutcome) -> None:
         assert self.future is not None
@@ -209,7 +212,8 @@ class ProcessExecutor(RunExecutor):
             worker = idle
             worker.task, worker.future = task, future
             worker.sent_at, worker.started_at = time.perf_counter(), utc_now()
-            worker.deadline = worker.sent_at + task.timeout_s
+            worker.deadline = worker.sent_at + max(task.timeout_s, SETUP_TIMEOUT_S)
+            worker.in_setup = True
             try:
                 worker.conn.send(task)
             except (OSError, EOFError):  # the idle worker had died: retry the task on a fresh one
@@ -232,6 +236,7 @@ class ProcessExecutor(RunExecutor):
             elif message[0] == "started" and worker.task is not None:
                 worker.sent_at = time.perf_counter()
                 worker.deadline = worker.sent_at + worker.task.timeout_s
+                worker.in_setup = False
             else:
                 worker.finish(message[1])
 
@@ -255,10 +260,13 @@ class ProcessExecutor(RunExecutor):
         assert worker.task is not None
         elapsed = time.perf_counter() - worker.sent_at
         worker.process.kill()
-        worker.finish(RunOutcome(
-            worker.task.run_key, timed_out=True, wall_time_s=elapsed, started_at=worker.started_at,
-            message=f"worker killed after {elapsed:.3g} s",
-        ))
+        if worker.in_setup:  # not the planner's time: its plan() never started
+            outcome = RunOutcome(worker.task.run_key, crash=True, started_at=worker.started_at,
+                                 message=f"run setup (planner, scenario and its graph) took over {elapsed:.3g} s")
+        else:
+            outcome = RunOutcome(worker.task.run_key, timed_out=True, wall_time_s=elapsed,
+                                 started_at=worker.started_at, message=f"worker killed after {elapsed:.3g} s")
+        worker.finish(outcome)
         self._retire(worker)
 
     def _monitor(self) -> None:
