@@ -343,16 +343,17 @@ def render_report(
                 if p is not None and len(p):
                     label = f"{row.config} (seed {row.seed_index})"
                     paths[label], colors[label] = p, palette[row.config]
-            page.figure(plot_paths(scenarios[sid], paths, colors=colors), f"paths-{sid}",
-                        f"Each planner's successful run whose {metric} is closest to its median.")
+            caption = (f"Each planner's successful run whose {metric} is closest to its median." if paths
+                       else "No successful run to draw on this map.")
+            page.figure(plot_paths(scenarios[sid], paths, colors=colors), f"paths-{sid}", caption)
         if has_history:
             sub_keys = set(df.loc[df["scenario"] == sid, "run_key"])
             sub_hist = history[history["run_key"].isin(sub_keys)]  # type: ignore[index]
-            if len(sub_hist):
+            if len(sub_hist) and df.loc[df["scenario"] == sid, "success"].any():
                 fig = new_figure((5.6, 7.0))
                 ax1, ax2 = fig.subplots(2, 1)
                 plot_convergence(sub_hist, runs, sid, x="iteration", ax=ax1)
-                plot_convergence(sub_hist, runs, sid, x="time_s", ax=ax2, log=True)
+                plot_convergence(sub_hist, runs, sid, x="time_s", ax=ax2, log=None)
                 ax1.set_title(f"{sid}: best cost against iterations", fontsize="medium")
                 ax2.set_title("and against time", fontsize="medium")
                 ax2.get_legend().remove()

@@ -80,8 +80,10 @@ def plot_metric_boxes(
     ax.set_ylabel(info.label)
     ax.set_title(f"{info.id} over successful runs ({info.better})", fontsize="medium")
     ax.set_xlabel("scenario")
-    if len(order) > 4:
-        ax.tick_params(axis="x", labelrotation=30)
+    if len(order) > 4 or max(len(str(s)) for s in order) > 10:
+        for label in ax.get_xticklabels():
+            label.set_rotation(25)
+            label.set_horizontalalignment("right")
     if ax.get_legend() is not None:
         sns.move_legend(ax, "upper left", bbox_to_anchor=(1.01, 1.0), title="planner", fontsize="small", frameon=False)
     return ax

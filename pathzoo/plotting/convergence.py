@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import pandas as pd
 from matplotlib.axes import Axes
+from matplotlib.ticker import NullFormatter
 
 from pathzoo.analysis.anytime import AnytimeAxis, convergence_curves
 from pathzoo.core.errors import InvalidParameterError
@@ -21,7 +22,7 @@ def plot_convergence(
     *,
     x: AnytimeAxis = "iteration",
     ax: Axes | None = None,
-    log: bool = False,
+    log: bool | None = False,
     n_points: int = 100,
 ) -> Axes:
     """Median best cost (line) and interquartile band (shaded) of each configuration on one scenario.
@@ -43,8 +44,10 @@ def plot_convergence(
         Horizontal axis.
     ax : Axes, optional
         Where to draw.
-    log : bool
-        Logarithmic x axis (and grid).
+    log : bool or None
+        Logarithmic x axis (and grid); ignored when no run holds a solution.
+        ``None`` chooses it when the positive ``x`` values span more than a
+        factor of 20.
     n_points : int
         Grid size.
     """
@@ -56,6 +59,10 @@ def plot_convergence(
     elif scenario not in scenarios:
         raise InvalidParameterError(f"scenario '{scenario}' has no runs")
     sub = runs[runs["scenario"] == scenario]
+    if log is None:
+        xs = history.loc[history["run_key"].isin(sub["run_key"]), x]
+        xs = xs[xs > 0]
+        log = bool(len(xs)) and float(xs.max()) > 20.0 * float(xs.min())
     curves = convergence_curves(history[history["run_key"].isin(sub["run_key"])], sub, x=x, n_points=n_points,
                                 log=log)
     ax = new_axes(ax, (6.0, 4.0))
@@ -64,8 +71,13 @@ def plot_convergence(
     for cfg, c in curves.groupby("config", sort=True):
         ax.plot(c["x"], c["median"], color=colors[cfg], lw=1.8, label=f"{cfg} (n={c['n_runs'].iloc[0]})")
         ax.fill_between(c["x"], c["q25"], c["q75"], color=colors[cfg], alpha=0.2, lw=0)
-    if log:
-        ax.set_xscale("log")
+    if curves["median"].notna().any() or curves["q25"].notna().any():
+        if log:
+            ax.set_xscale("log")
+            ax.xaxis.set_minor_formatter(NullFormatter())
+    else:
+        ax.text(0.5, 0.5, "no run holds a solution", transform=ax.transAxes, ha="center", va="center",
+                color="#888888")
     ax.set_xlabel(AXIS_LABELS[x])
     ax.set_ylabel("best cost (planner's objective)")
     ax.set_title(f"{scenario}: median and IQR of best cost")

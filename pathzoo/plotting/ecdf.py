@@ -7,6 +7,7 @@ from typing import Mapping
 import numpy as np
 import pandas as pd
 from matplotlib.axes import Axes
+from matplotlib.ticker import NullFormatter
 
 from pathzoo.analysis.anytime import AnytimeAxis, time_to_target
 from pathzoo.plotting.convergence import AXIS_LABELS
@@ -78,13 +79,14 @@ def plot_time_to_target_ecdf(
         xs = np.concatenate([[x_lo if log else 0.0], np.maximum(t, x_lo if log else t), [x_hi]])
         ys = np.concatenate([[0.0], frac, [frac[-1] if len(frac) else 0.0]])
         ax.step(xs, ys, where="post", color=colors[cfg], lw=1.8, label=label)
-    if log:
+    if log and len(positive):
         ax.set_xscale("log")
+        ax.xaxis.set_minor_formatter(NullFormatter())
     ax.set_ylim(-0.02, 1.02)
     ax.set_xlabel(AXIS_LABELS[x])
     ax.set_ylabel("fraction of runs")
     ref = "the best known value" if optimum is None else "the optimum"
     ax.set_title(f"{metric} within {eps:.0%} of {ref}")
     ax.grid(alpha=0.3)
-    legend_below(ax, ncol=2)
+    legend_below(ax)
     return ax

@@ -42,9 +42,26 @@ def png_bytes(fig: Figure, *, dpi: int = 110) -> bytes:
     return buf.getvalue()
 
 
-def legend_below(ax: Axes, ncol: int = 4) -> None:
-    """Put ``ax``'s legend under the axes, centred, without a frame."""
-    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=ncol, fontsize="small", frameon=False)
+def legend_below(ax: Axes, ncol: int | None = None) -> None:
+    """Put ``ax``'s legend under it, centred and frameless.
+
+    When ``ax`` is the only plot of its figure (colour bars aside) the
+    legend becomes a figure legend placed "outside lower center", so the
+    constrained layout makes room for it; otherwise it is anchored below the
+    axes. ``ncol`` defaults to as many columns as long labels allow.
+    """
+    handles, labels = ax.get_legend_handles_labels()
+    if not handles:
+        return
+    if ncol is None:
+        ncol = int(min(4, max(1, 64 // (max(len(t) for t in labels) + 8))))
+    fig = ax.figure
+    plots = [a for a in fig.axes if not hasattr(a, "_colorbar")]
+    if plots == [ax] and hasattr(fig, "legend"):
+        fig.legend(handles, labels, loc="outside lower center", ncol=ncol, fontsize="small", frameon=False)
+    else:
+        ax.legend(handles, labels, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=ncol, fontsize="small",
+                  frameon=False)
 
 
 def planner_colors(labels: Iterable[str]) -> dict[str, Any]:

@@ -46,5 +46,5 @@ def plot_paths(
     outline = [patheffects.withStroke(linewidth=4.0, foreground="white")]
     for label, path in paths.items():
         draw_path(ax, path, label=label, color=colors[label], path_effects=outline)
-    legend_below(ax, ncol=min(4, len(paths) + 2))
+    legend_below(ax)
     return ax

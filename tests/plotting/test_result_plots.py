@@ -16,7 +16,7 @@ from pathzoo.plotting.boxplots import plot_metric_boxes
 from pathzoo.plotting.cd_diagram import plot_cd_diagram
 from pathzoo.plotting.convergence import plot_convergence
 from pathzoo.plotting.ecdf import plot_time_to_target_ecdf
-from pathzoo.plotting.figure import png_bytes
+from pathzoo.plotting.figure import new_figure, png_bytes
 from pathzoo.plotting.paths import plot_paths
 
 LEN = dict(direction="min", unit="m")  # no registry needed
@@ -47,7 +47,15 @@ def test_convergence_lines_are_the_medians(runs):
     assert len(ax.lines) == 3 and len([c for c in ax.collections if isinstance(c, PolyCollection)]) == 3
     for line, (_, c) in zip(ax.lines, curves.groupby("config", sort=True)):
         np.testing.assert_allclose(line.get_ydata(), c["median"].to_numpy())
-    assert ax.get_xlabel() == "time [s]"
+    assert ax.get_xlabel() == "time [s]" and ax.get_xscale() == "linear"
+    t = history.loc[history.run_key.isin(sub.run_key), "time_s"]
+    auto = plot_convergence(history, runs, "s1", x="time_s", log=None)
+    assert auto.get_xscale() == ("log" if t.max() > 20 * t[t > 0].min() else "linear")
+    # a scenario where nothing succeeded: no curve, a note, and a linear axis even when log was asked
+    failed = runs[runs.scenario == "s2"].assign(status="failed", valid=False)
+    ax = plot_convergence(history[history.run_key.isin(failed.run_key)], failed, x="time_s", log=True)
+    assert [t.get_text() for t in ax.texts] == ["no run holds a solution"] and ax.get_xscale() == "linear"
+    png_bytes(ax.figure)
     with pytest.raises(InvalidParameterError, match="scenario is required"):
         plot_convergence(history, runs)
     with pytest.raises(InvalidParameterError, match="scenario 'zz'"):
@@ -83,4 +91,10 @@ def test_paths_overlay():
     lines = {ln.get_label(): ln for ln in ax.lines}
     assert lines["two"].get_xydata().tolist() == p2.tolist()
     assert lines["one"].get_color() != lines["two"].get_color()
-    assert [t.get_text() for t in ax.get_legend().get_texts()] == ["start", "goal", "one", "two"]
+    legend = ax.figure.legends[0]  # a figure legend below the map: the figure holds only this plot
+    assert [t.get_text() for t in legend.get_texts()] == ["start", "goal", "one", "two"]
+    # on a figure with several plots the legend stays with its axes
+    fig = new_figure()
+    left, right = fig.subplots(1, 2)
+    plot_paths(sc, {"one": p1}, ax=right)
+    assert right.get_legend() is not None and not fig.legends
