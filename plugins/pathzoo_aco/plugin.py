@@ -18,5 +18,6 @@ def pathzoo_register_planners() -> Sequence[type[Planner]]:
     from pathzoo_aco.gant import GreenAnt
     from pathzoo_aco.ggaco import GGACO
     from pathzoo_aco.mmas import MaxMinAntSystem
+    from pathzoo_aco.fgdaco import FGDACO
 
-    return [AntSystem, MaxMinAntSystem, AntColonySystem, GGACO, GreenAnt]
+    return [AntSystem, MaxMinAntSystem, AntColonySystem, GGACO, GreenAnt, FGDACO]

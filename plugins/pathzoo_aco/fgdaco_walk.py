@@ -1,0 +1,277 @@
+"""Timed ant walks among moving obstacles: FGDACO's walk engine for ``dynamic`` scenarios.
+
+The shared kernel (:mod:`pathzoo_aco.engine.walk`) weighs edges by numbers
+fixed before the colony; among moving obstacles an edge's worth depends on
+*when* the ant would drive it. Here every ant carries its clock: it leaves
+the exact start at ``t = 0``, reaches the start cell's centre after
+``|start - centre| / v`` and every further node after the edge's length over
+the vehicle's cruise speed ``v``, which is how the harness times the path it
+returns (driven without stopping). Backtracking returns the ant to the
+node's earlier time, since the returned path is the walk without its dead
+ends.
+
+For a candidate edge ``i -> j`` left at ``t_i`` and reached at ``t_j``:
+
+- it is **forbidden** when a moving obstacle's centre comes closer than its
+  radius during ``[t_i, t_j]`` (exact, :func:`obstacle_min_distance`; a quick
+  bound skips obstacles that are too far away to matter); an edge into the
+  goal also checks the final piece from the goal cell's centre to the exact
+  goal;
+- otherwise its weight is ``τ^α · priority^β`` where the priority is the
+  planner's precomputed static one, unless a moving obstacle at ``t_j`` is
+  nearer to ``j`` than every static obstacle: then the fuzzy inference is
+  run again with that distance (:func:`priority_one`).
+
+A walk whose tabu list and backtracking exhaust the start's component
+proves the goal unreachable only when no edge was refused for timing; such
+walks end :data:`STUCK` rather than :data:`EXHAUSTED`.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+
+from pathzoo_aco.engine import ABORTED, EXHAUSTED, REACHED, STEP_CAP, STUCK, ColonyProblem, Pheromone, WalkEngine
+from pathzoo_aco.engine import WalkRules, Walks
+from pathzoo_aco.engine.walk import _seed
+from pathzoo_aco.fgdaco_fuzzy import compiled_priority, priority_one
+from pathzoo_aco.fgdaco_moving import obstacle_min_distance, obstacle_position, pack_obstacles
+
+__all__ = ["TimedWalkEngine"]
+
+
+@numba.njit(cache=True)
+def _timed_walk(indptr, indices, offset_id, horizontal, turn, length,
+                x, scale, lo, hi, tau_exp, w_mul, beta,
+                start, goal, backtrack, max_steps, allowance, n_ants, walk_base,
+                stamp, stack_e, stack_prev, stack_t, cand_e, cand_w, gap, near_ids, mu, strength,
+                flat, offsets, flags, steps_out,
+                width, cell, speed, t_head, tail,
+                ob_points, ob_cum, ob_count, ob_speed, ob_phase, ob_radius,
+                target_in, angle_in, clear_in, sensing,
+                vertices, rules, cons, area_w, moment_w):
+    use_turn = turn.shape[0] > 0
+    no_prev = turn.shape[0] - 1
+    n_obs = ob_count.size
+    max_len = 0.0
+    for e in range(length.size):
+        max_len = max(max_len, length[e])
+    total = 0
+    a = 0
+    while a < n_ants:
+        wid = walk_base + a
+        cur = start
+        t_cur = t_head
+        depth = 0
+        prev = no_prev
+        steps = 0
+        flag = REACHED
+        timed_out = False  # some edge was refused because of a moving obstacle
+        stamp[start] = wid
+        gap[:] = -np.inf  # lower bounds on each obstacle's distance (edge to centre of node) now: unknown
+        while cur != goal:
+            if steps >= max_steps:
+                flag = STEP_CAP
+                break
+            if total >= allowance:
+                flag = ABORTED
+                break
+            cx = (cur % width + 0.5) * cell
+            cy = (cur // width + 0.5) * cell
+            n_near = 0  # obstacles that may touch a move from here or come within sensing range of its end
+            for k in range(n_obs):
+                reach = max_len * (1.0 + ob_speed[k] / speed) + sensing
+                if gap[k] < reach:  # the bound says nothing: measure
+                    ox, oy = obstacle_position(ob_points, ob_cum, ob_count, ob_speed, ob_phase, k, t_cur)
+                    gap[k] = math.hypot(cx - ox, cy - oy) - ob_radius[k]
+                    if gap[k] < reach:
+                        near_ids[n_near] = k
+                        n_near += 1
+            nc = 0
+            total_w = 0.0
+            for e in range(indptr[cur], indptr[cur + 1]):
+                j = indices[e]
+                if stamp[j] == wid:
+                    continue
+                f = 1.0
+                if use_turn:
+                    f = turn[prev, offset_id[e]]
+                    if f <= 0.0:
+                        continue
+                dt = length[e] / speed
+                t_next = t_cur + dt
+                jx = (j % width + 0.5) * cell
+                jy = (j // width + 0.5) * cell
+                near = clear_in[j]
+                free = True
+                for q in range(n_near):
+                    k = near_ids[q]
+                    bound = gap[k] - length[e] - ob_speed[k] * dt  # least possible gap during the move
+                    if bound <= 0.0 and obstacle_min_distance(ob_points, ob_cum, ob_count, ob_speed, ob_phase, k,
+                                                              cx, cy, jx, jy, t_cur, t_next) < ob_radius[k]:
+                        free = False
+                        break
+                    if bound < near * sensing:
+                        ox, oy = obstacle_position(ob_points, ob_cum, ob_count, ob_speed, ob_phase, k, t_next)
+                        near = min(near, max(math.hypot(jx - ox, jy - oy) - ob_radius[k], 0.0) / sensing)
+                if free and j == goal and tail[4] > 0.0:
+                    for k in range(n_obs):
+                        if obstacle_min_distance(ob_points, ob_cum, ob_count, ob_speed, ob_phase, k, tail[0], tail[1],
+                                                 tail[2], tail[3], t_next, t_next + tail[4]) < ob_radius[k]:
+                            free = False
+                            break
+                if not free:
+                    timed_out = True
+                    continue
+                if near < clear_in[j]:
+                    prio = priority_one(target_in[j], angle_in[e], near, vertices, rules, cons, area_w, moment_w,
+                                        mu, strength)
+                    h = prio**beta
+                else:
+                    h = w_mul[e]
+                t = min(max(scale * x[e], lo), hi)
+                w = (t if tau_exp == 1.0 else t**tau_exp) * h * f
+                if w > 0.0:
+                    cand_e[nc] = e
+                    cand_w[nc] = w
+                    total_w += w
+                    nc += 1
+            if nc == 0:  # dead end (at this time)
+                if not backtrack:
+                    flag = STUCK
+                    break
+                if depth == 0:
+                    flag = STUCK if timed_out else EXHAUSTED
+                    break
+                depth -= 1
+                cur = indices[stack_e[depth - 1]] if depth > 0 else start
+                t_cur = stack_t[depth - 1] if depth > 0 else t_head
+                gap[:] = -np.inf
+                if use_turn:
+                    prev = stack_prev[depth - 1] if depth > 0 else no_prev
+                steps += 1
+                total += 1
+                continue
+            r = np.random.random() * total_w
+            sel = cand_e[nc - 1]
+            acc = 0.0
+            for c in range(nc):
+                acc += cand_w[c]
+                if r < acc:
+                    sel = cand_e[c]
+                    break
+            t_cur += length[sel] / speed
+            for k in range(n_obs):  # the gap shrinks by at most the distance both have moved
+                gap[k] -= length[sel] * (1.0 + ob_speed[k] / speed)
+            cur = indices[sel]
+            stamp[cur] = wid
+            stack_e[depth] = sel
+            stack_t[depth] = t_cur
+            if use_turn:
+                o = offset_id[sel]
+                if horizontal[o]:
+                    prev = o
+                stack_prev[depth] = prev
+            depth += 1
+            steps += 1
+            total += 1
+        flags[a] = flag
+        steps_out[a] = steps
+        base = offsets[a]
+        if flag == REACHED:
+            flat[base : base + depth] = stack_e[:depth]
+            offsets[a + 1] = base + depth
+        else:
+            offsets[a + 1] = base
+        a += 1
+        if flag == ABORTED or flag == EXHAUSTED:
+            break
+    for b in range(a, n_ants):  # never started
+        flags[b] = ABORTED
+        steps_out[b] = 0
+        offsets[b + 1] = offsets[a]
+    return a, total
+
+
+class TimedWalkEngine(WalkEngine):
+    """Sends ants that keep time and avoid moving obstacles (see the module docstring).
+
+    Supports the product rule ``τ^α η^β`` on edge trails with roulette
+    choice (FGDACO's eq. 10): ``rules.weight_mul`` must hold the static
+    priorities raised to ``beta``.
+
+    Parameters
+    ----------
+    problem : ColonyProblem
+        A 2-D scenario, usually ``dynamic``.
+    target_in, clear_in : ndarray, shape (N,)
+        Per node: normalised distance to the target and to the nearest static obstacle.
+    angle_in : ndarray, shape (E,)
+        Per edge: normalised angle to be turned.
+    sensing_m : float
+        Distance (m) that normalises obstacle distances to ``[0, 1]``.
+    beta : float
+        Exponent on the priority.
+    """
+
+    def __init__(self, problem: ColonyProblem, *, target_in: np.ndarray, angle_in: np.ndarray,
+                 clear_in: np.ndarray, sensing_m: float, beta: float) -> None:
+        super().__init__(problem)
+        s = problem.scenario
+        self.obstacles = pack_obstacles(s.moving_obstacles)
+        self.length = np.ascontiguousarray(problem.graph.length)
+        self.stack_t = np.zeros(problem.n_free + 1)
+        self.gap = np.zeros(self.obstacles.n)
+        self.near_ids = np.zeros(self.obstacles.n, dtype=np.int64)
+        self.mu = np.zeros((3, 3))
+        self.strength = np.zeros(3)
+        self.target_in = np.ascontiguousarray(target_in, dtype=np.float64)
+        self.angle_in = np.ascontiguousarray(angle_in, dtype=np.float64)
+        self.clear_in = np.ascontiguousarray(clear_in, dtype=np.float64)
+        self.sensing_m = float(sensing_m)
+        self.beta = float(beta)
+        speed = s.vehicle.cruise_speed
+        centres = s.point_of(np.array([problem.start, problem.goal]))
+        self.t_head = float(np.linalg.norm(s.start - centres[0])) / speed
+        self.head_free = all(ob.min_distance(s.start, centres[0], 0.0, self.t_head) >= ob.radius
+                             for ob in s.moving_obstacles)
+        tail_time = float(np.linalg.norm(s.goal - centres[1])) / speed
+        self.tail = np.array([*centres[1], *s.goal, tail_time])
+
+    def walk(self, rules: WalkRules, trail: Pheromone, n_ants: int, seed: int,
+             allowance: int = 2**62) -> Walks:
+        """Send ``n_ants`` timed ants from the start (see :meth:`WalkEngine.walk`)."""
+        p = self.problem
+        g = p.graph
+        offsets = np.zeros(n_ants + 1, dtype=np.int64)
+        flags = np.full(n_ants, STUCK, dtype=np.int8)
+        steps = np.zeros(n_ants, dtype=np.int64)
+        if not self.head_free:  # the first piece, exact start -> start cell centre, is always hit
+            return Walks(np.zeros(0, dtype=np.int64), offsets, flags, steps, n_ants)
+        if self.walk_base + n_ants >= 2**31 - 1:  # the int32 walk stamps would overflow: start afresh
+            self.stamp[:] = -1
+            self.walk_base = 0
+        if self.flat.size < n_ants * (p.n_free + 1):
+            self.flat = np.zeros(n_ants * (p.n_free + 1), dtype=np.int64)
+        _seed(seed)
+        ob = self.obstacles
+        cp = compiled_priority()
+        started, total = _timed_walk(
+            g.indptr, self.indices, self.offset_id, p.horizontal_offsets, rules.turn, self.length,
+            trail.x, trail.scale, trail.lo, trail.hi, rules.tau_exp, rules.weight_mul, self.beta,
+            p.start, p.goal, rules.backtrack, rules.max_steps, allowance, n_ants, self.walk_base,
+            self.stamp, self.stack_e, self.stack_prev, self.stack_t, self.cand_e, self.cand_w, self.gap,
+            self.near_ids, self.mu, self.strength,
+            self.flat, offsets, flags, steps,
+            g.shape[1], p.scenario.cell_size, p.scenario.vehicle.cruise_speed, self.t_head, self.tail,
+            ob.points, ob.cum, ob.count, ob.speed, ob.phase, ob.radius,
+            self.target_in, self.angle_in, self.clear_in, self.sensing_m,
+            cp.vertices, cp.rules, cp.consequents, cp.area_w, cp.moment_w,
+        )
+        self.walk_base += n_ants
+        self.total_steps += int(total)
+        used = int(offsets[-1])
+        return Walks(self.flat[:used].copy(), offsets, flags, steps, int(started))
