@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import html
 import math
+import re
 from typing import Literal, Sequence
 
 import pandas as pd
@@ -15,6 +16,9 @@ __all__ = ["TABLE_FORMATS", "TableFormat", "format_number", "format_percent", "r
 TableFormat = Literal["text", "markdown", "csv", "html"]
 TABLE_FORMATS: tuple[str, ...] = ("text", "markdown", "csv", "html")
 MISSING = "–"
+_NUM = r"(-?(\d[\d.]*(e[-+]?\d+)?|inf)%?|–)"
+_NUMERIC = re.compile(rf"^{_NUM}( [↑↓≈]| \[{_NUM}\])?$|^\d+/\d+/\d+$")
+"""Cells shown right-aligned in HTML (``class="num"``): numbers, percentages, marks, w/t/l counts."""
 
 
 def format_number(x: float, digits: int = 5) -> str:
@@ -111,7 +115,8 @@ def _html(header: list[str], rows: list[list[str]], title: str, notes: Sequence[
         parts.append(f"<caption>{e(title)}</caption>")
     parts.append("<thead><tr>" + "".join(f"<th>{e(h)}</th>" for h in header) + "</tr></thead>")
     parts.append("<tbody>")
-    parts += ["<tr>" + "".join(f"<td>{e(c)}</td>" for c in r) + "</tr>" for r in rows]
+    parts += ["<tr>" + "".join(f'<td class="num">{e(c)}</td>' if _NUMERIC.match(c) else f"<td>{e(c)}</td>"
+                               for c in r) + "</tr>" for r in rows]
     parts.append("</tbody></table>")
     parts += [f'<p class="pz-note">{e(n)}</p>' for n in notes]
     return "\n".join(parts) + "\n"

@@ -61,7 +61,7 @@ table.pz-table th{background:#eef1f4;text-align:left;padding:.35em .7em;border-b
 white-space:nowrap}
 table.pz-table td{padding:.3em .7em;border-bottom:1px solid #e6e6e6;white-space:nowrap}
 table.pz-table tbody tr:nth-child(even){background:#fafbfc}
-table.pz-table td:not(:first-child){text-align:right}
+table.pz-table td.num{text-align:right}
 .pz-note{color:#555;font-size:.84em;margin:.25em 0;max-width:60em}
 .scroll{overflow-x:auto}
 figure{margin:1em 0 1.6em}figure img{max-width:100%;height:auto;border:1px solid #eee}

@@ -140,3 +140,10 @@ def test_lazy_package_attributes():
     assert analysis.write_report is write_report and "friedman" in analysis.__all__
     with pytest.raises(AttributeError, match="no attribute 'nope'"):
         analysis.nope  # noqa: B018
+
+
+def test_html_right_aligns_numbers_only():
+    lb = leaderboard(make_runs({"s1": {"a": [1.0, 2.0, nan]}}))
+    html = format_leaderboard(lb, "html")
+    assert "<td>s1</td>" in html and "<td>a</td>" in html
+    assert '<td class="num">67%</td>' in html and '<td class="num">1.5000</td>' in html
