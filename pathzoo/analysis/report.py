@@ -34,6 +34,7 @@ from pathzoo.analysis.frame import metric_info, with_config
 from pathzoo.analysis.leaderboard import format_leaderboard, leaderboard
 from pathzoo.core.errors import InvalidParameterError, PathzooError
 from pathzoo.core.scenario import Scenario
+from pathzoo.core.status import RunStatus
 
 __all__ = ["write_report", "render_report", "ReportPage", "BOX_METRICS", "TABLE_METRICS"]
 
@@ -149,7 +150,8 @@ def _metric_tables(runs: pd.DataFrame, metrics: Sequence[str]) -> str:
 def _outcomes(df: pd.DataFrame) -> pd.DataFrame:
     counts = df.pivot_table(index="config", columns="status", values="run_key", aggfunc="count", fill_value=0)
     counts.columns.name = None
-    counts = counts.astype(int)
+    order = [s.value for s in RunStatus]
+    counts = counts[sorted(counts.columns, key=lambda c: order.index(c) if c in order else len(order))].astype(int)
     counts["runs"] = counts.sum(axis=1)
     counts["success"] = df.groupby("config")["success"].mean().map(lambda x: f"{100 * x:.0f}%")
     return counts.reset_index().rename(columns={"config": "planner"})
