@@ -59,7 +59,9 @@ def _looks_like_path(text: str) -> bool:
     return looks(text)
 
 
-def _resolve_scenarios(items: Sequence["str | Path | Scenario | ScenarioSpec"], base: Path | None) -> tuple[ScenarioSpec, ...]:
+def _resolve_scenarios(
+    items: Sequence["str | Path | Scenario | ScenarioSpec"], base: Path | None
+) -> tuple[ScenarioSpec, ...]:
     from pathzoo import load_scenarios
     from pathzoo.plugins.manager import get_registry
 
@@ -92,7 +94,9 @@ def _resolve_scenarios(items: Sequence["str | Path | Scenario | ScenarioSpec"], 
                 kind = getattr(entry.obj, "kind", "") or entry.obj.load().kind
                 add(ScenarioSpec(sid, kind, "registry", sid))
         else:
-            raise InvalidExperimentError(f"a scenario must be an id, a glob pattern, a path or a Scenario, got {item!r}")
+            raise InvalidExperimentError(
+                f"a scenario must be an id, a glob pattern, a path or a Scenario, got {item!r}"
+            )
     if not specs:
         raise InvalidExperimentError("no scenarios given")
     return tuple(specs.values())
@@ -301,7 +305,9 @@ class Experiment:
             raise InvalidExperimentError(f"{src}: not valid TOML: {exc}") from None
         unknown = sorted(set(data) - {"experiment", "planner", "scenarios"})
         if unknown:
-            raise InvalidExperimentError(f"{src}: unknown top-level key(s) {unknown}; allowed: experiment, planner, scenarios")
+            raise InvalidExperimentError(
+                f"{src}: unknown top-level key(s) {unknown}; allowed: experiment, planner, scenarios"
+            )
         exp = data.get("experiment", {})
         if not isinstance(exp, dict):
             raise bad("experiment", "must be a table")
@@ -369,7 +375,9 @@ class Experiment:
 
     def skipped(self) -> list[tuple[str, str, str]]:
         """``(planner id, scenario id, scenario kind)`` of every unsupported pair (not run)."""
-        return [(p.id, s.id, s.kind) for s in self.scenarios for p in self.planners if s.kind not in p.planner_class.kinds]
+        return [
+            (p.id, s.id, s.kind) for s in self.scenarios for p in self.planners if s.kind not in p.planner_class.kinds
+        ]
 
     def tasks(self, plugin_modules: tuple[tuple[str, str], ...] = ()) -> list[RunTask]:
         """Every run of the experiment, in a deterministic order."""

@@ -52,7 +52,8 @@ def verdict(task: "RunTask", outcome: "RunOutcome", scenario: "Scenario") -> tup
         return RunStatus.INVALID, False, "planner modified the scenario's arrays", outcome.message
     if outcome.status is Status.SOLVED:
         if outcome.path is None:
-            return RunStatus.INVALID, False, f"claimed solved but the path is {outcome.path_error or 'missing'}", outcome.message
+            reason = f"claimed solved but the path is {outcome.path_error or 'missing'}"
+            return RunStatus.INVALID, False, reason, outcome.message
         if outcome.path_error:
             return RunStatus.INVALID, False, f"claimed solved but the {outcome.path_error}", outcome.message
         check = validate_path(scenario, outcome.path, outcome.times)

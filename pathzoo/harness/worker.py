@@ -124,13 +124,18 @@ def describe_exception(exc: BaseException) -> str:
     return head + "\n" + "\n".join(lines)
 
 
+def _same_cost(a: float, b: float) -> bool:
+    return a == b or (math.isnan(a) and math.isnan(b))
+
+
 class HistoryRecorder:
     """The ``progress`` callback given to planners; the harness adds the time.
 
     A point is kept on the first report, whenever ``best_cost`` changes, and
-    for the last report (unless it repeats the last kept one's counts). Reading the curve as "the best cost of the last kept
-    point at or before this iteration" gives back exactly what the planner
-    reported, while reports that change nothing cost no storage.
+    for the last report (unless it repeats the last kept one's counts).
+    Reading the curve as "the best cost of the last kept point at or before
+    this iteration" gives back exactly what the planner reported, while
+    reports that change nothing cost no storage.
     """
 
     def __init__(self) -> None:
@@ -141,14 +146,15 @@ class HistoryRecorder:
     def __call__(self, iteration: int, evaluations: int, best_cost: float) -> None:
         point = HistoryPoint(int(iteration), int(evaluations), float(best_cost), time.perf_counter() - self.t0)
         last = self._last
-        if last is None or not (point.best_cost == last.best_cost or math.isnan(point.best_cost) and math.isnan(last.best_cost)):
+        if last is None or not _same_cost(point.best_cost, last.best_cost):
             self.points.append(point)
         self._last = point
 
     def history(self) -> tuple[HistoryPoint, ...]:
         """The kept points, the last report included."""
         last = self._last
-        if last is not None and (last.iteration, last.evaluations) != (self.points[-1].iteration, self.points[-1].evaluations):
+        if last is not None and (last.iteration, last.evaluations) != (self.points[-1].iteration,
+                                                                       self.points[-1].evaluations):
             return (*self.points, last)
         return tuple(self.points)
 

@@ -17,7 +17,8 @@ def test_build_resolves_planners_scenarios_and_defaults(forged):
         ("test.honest", {"delay_s": 0.0}), ("test.honest", {"delay_s": 0.5}), ("test.sabotage", {"how": "exit"})]
     assert [(s.id, s.source) for s in exp.scenarios] == [("test.wall", "registry"), ("test.street", "object")]
     assert exp.seeds == (0, 1, 2) and exp.budget == Budget(time_s=10.0) and exp.timeout_s == 40.0
-    assert Experiment.build(planners=["test.honest"], scenarios=["test.wall"], budget=Budget(iterations=5)).timeout_s == 300
+    no_time = Experiment.build(planners=["test.honest"], scenarios=["test.wall"], budget=Budget(iterations=5))
+    assert no_time.timeout_s == 300
 
 
 def test_run_keys_and_seeds_are_deterministic(forged):

@@ -53,7 +53,8 @@ def runs(forged, tmp_path_factory) -> tuple[pd.DataFrame, str]:
 def row(frame: pd.DataFrame, planner, scenario="test.wall", **params) -> pd.Series:
     if isinstance(planner, tuple):
         planner, params = planner
-    hits = frame[(frame.planner == planner) & (frame.scenario == scenario) & frame.params.map(lambda p: all(p.get(k) == v for k, v in params.items()))]
+    same_params = frame.params.map(lambda p: all(p.get(k) == v for k, v in params.items()))
+    hits = frame[(frame.planner == planner) & (frame.scenario == scenario) & same_params]
     assert len(hits) == 1, (planner, params)
     return hits.iloc[0]
 

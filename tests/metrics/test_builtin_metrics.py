@@ -21,7 +21,8 @@ def record(path, status=RunStatus.SOLVED, times=None, **kw) -> RunRecord:
         run_key="k", experiment="e", planner_id="p", planner_version="1", params={}, params_hash="h",
         scenario_id="s", seed_index=0, seed=1, status=status, valid=status is RunStatus.SOLVED, invalid_reason="",
         message="", wall_time_s=0.25, cpu_time_s=0.2, iterations=7, evaluations=70,
-        path=None if path is None else np.asarray(path, float), times=None if times is None else np.asarray(times, float),
+        path=None if path is None else np.asarray(path, float),
+        times=None if times is None else np.asarray(times, float),
         history=(), metrics={}, versions={}, started_at="",
     )
     fields.update(kw)
