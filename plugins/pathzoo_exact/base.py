@@ -1,0 +1,199 @@
+"""The common ``plan()`` of the exact planners: batched search, clock checks and endpoint handling.
+
+Endpoints
+---------
+The search runs between the *cells* of ``scenario.start`` and ``scenario.goal``,
+so the node path goes from cell centre to cell centre. The returned path then
+ends exactly at the start and goal points:
+
+- when a point lies within 1e-9 cells of its cell centre it replaces that centre;
+- otherwise it is prepended (start) or appended (goal) as an extra waypoint,
+  joined to its own cell centre by a short *connector* segment.
+
+A point lies inside its cell, so a connector stays inside one free cell and
+touches a neighbouring cell only when the point lies exactly on the cell's
+border, in which case every segment from that point touches it too. On
+terrain and in air volumes a connector can still break a slope or pitch
+limit the graph edges respect. Connectors are therefore checked with the
+validator's own :func:`~pathzoo.harness.validation.segment_problem`; a bad one
+gives ``Status.FAILED`` with the reason, never an invalid "solved" path.
+The reported cost is the graph cost plus the connectors' cost, measured like
+the graph edges (3-D length from :func:`~pathzoo.grid.terrain.segment_profile`,
+energy from eq. 4 of G-Ant through :meth:`VehicleModel.segment_energy`).
+
+Collinear waypoints
+-------------------
+On ``grid2d`` scenarios, waypoints in the middle of a straight run of moves
+are dropped: the polyline is the same set of points, so the closed-cell test
+touches exactly the same cells, and the path is shorter to store and to
+validate. On terrain every cell centre is kept, because the validator cuts a
+long segment into pieces whose slopes differ from those of the graph edges;
+in air volumes too, so that each segment is one checked graph edge.
+
+Budgets
+-------
+Numba code cannot read the clock cheaply, so the search runs in batches of
+:attr:`GraphSearchPlanner.batch_expansions` expansions (about a millisecond
+each) and the Python driver checks ``budget.time_s`` between batches: the time
+limit is overshot by at most one batch. ``budget.evaluations`` caps the number
+of expanded nodes exactly. ``budget.iterations`` is always met, since the
+search is one iteration. With no limit at all the search runs to completion,
+which is bounded by the size of the graph.
+"""
+
+from __future__ import annotations
+
+import abc
+import math
+from typing import Callable, ClassVar
+
+import numpy as np
+
+from pathzoo.core import Budget, Planner, PlanResult, ProgressCallback, Scenario, Status
+from pathzoo.grid.terrain import segment_profile
+from pathzoo.harness.validation import segment_problem
+from pathzoo_exact.kernel import EXHAUSTED, FOUND, HEAP_FULL, RUNNING, SearchState, trace_path
+
+__all__ = ["GraphSearchPlanner", "BatchFn", "connector_cost", "straight_run_ends"]
+
+BatchFn = Callable[[SearchState, int], int]
+"""``batch(state, max_expansions) -> RUNNING | FOUND | EXHAUSTED | HEAP_FULL``."""
+
+_CENTRE_TOL_CELLS = 1e-9
+
+
+def straight_run_ends(cells: np.ndarray) -> np.ndarray:
+    """Mask of the waypoints to keep: both ends and every point where the direction changes.
+
+    Parameters
+    ----------
+    cells : ndarray of int, shape (N, 2)
+        Grid indices of consecutive waypoints.
+    """
+    keep = np.ones(len(cells), dtype=bool)
+    if len(cells) > 2:
+        d = np.diff(cells, axis=0)
+        cross = d[:-1, 0] * d[1:, 1] - d[:-1, 1] * d[1:, 0]
+        dot = np.einsum("ij,ij->i", d[:-1], d[1:])
+        keep[1:-1] = (cross != 0) | (dot <= 0)
+    return keep
+
+
+def connector_cost(scenario: Scenario, p0: np.ndarray, p1: np.ndarray, cost: str) -> float:
+    """Cost of one straight segment, measured like the graph's edges.
+
+    Parameters
+    ----------
+    scenario : Scenario
+        Gives the DEM (terrain), the cell sizes and the vehicle.
+    p0, p1 : ndarray
+        World coordinates of the segment's ends.
+    cost : {"length", "energy"}
+        3-D length in metres, or energy in joules (eq. 4 of G-Ant at cruise speed).
+    """
+    if scenario.dim == 3:
+        d = np.asarray(p1, dtype=np.float64) - np.asarray(p0, dtype=np.float64)
+        lengths = np.array([math.sqrt(float(d @ d))])
+        slopes = np.array([math.atan2(float(d[2]), math.hypot(float(d[0]), float(d[1])))])
+    else:
+        elevation = scenario.elevation if scenario.kind == "terrain" else None
+        lengths, slopes = segment_profile(elevation, p0, p1, scenario.cell_size)
+    if cost == "length":
+        return float(lengths.sum())
+    return float(scenario.vehicle.segment_energy(lengths, slopes).sum())
+
+
+class GraphSearchPlanner(Planner, abc.ABC):
+    """Base of the exact planners: a best-first search on ``scenario.graph``.
+
+    Subclasses provide :meth:`_make_batch`, the numba search they run, and
+    :meth:`_cost_kind`. Everything else (budgets, endpoints, the result) is here.
+    """
+
+    batch_expansions: ClassVar[int] = 16384
+    """Expansions between two looks at the clock."""
+
+    @abc.abstractmethod
+    def _make_batch(self, scenario: Scenario, target: int) -> BatchFn:
+        """Return the function that advances the search on ``scenario`` by one batch."""
+
+    def _cost_kind(self) -> str:
+        """The edge cost minimised, ``"length"`` or ``"energy"``."""
+        return "length"
+
+    def plan(
+        self,
+        scenario: Scenario,
+        *,
+        budget: Budget,
+        rng: np.random.Generator,
+        progress: ProgressCallback | None = None,
+    ) -> PlanResult:
+        """Search the cell graph from the start cell to the goal cell; see the module docstring."""
+        self.check_supports(scenario)
+        clock = budget.start()
+        source, target = scenario.start_node, scenario.goal_node
+        state = SearchState.start(scenario.graph.n_nodes, source)
+        batch = self._make_batch(scenario, target)
+        cap = budget.evaluations
+        while True:
+            step = self.batch_expansions if cap is None else min(self.batch_expansions, cap - state.expanded)
+            status = batch(state, step)
+            if status == HEAP_FULL:
+                state.grow_heap()
+                continue
+            if status != RUNNING:
+                break
+            if cap is not None and state.expanded >= cap:
+                return self._failed(state, f"evaluation budget of {cap} expansions exhausted before the goal")
+            if clock.exhausted():
+                return self._failed(state, f"time budget of {budget.time_s} s exhausted before the goal")
+        if status == EXHAUSTED:
+            return PlanResult(
+                Status.NO_PATH,
+                iterations=1,
+                evaluations=state.expanded,
+                message="the goal cell is not reachable from the start cell in the neighbourhood graph",
+            )
+        assert status == FOUND
+        return self._solved(scenario, state, target, progress)
+
+    def _failed(self, state: SearchState, message: str) -> PlanResult:
+        return PlanResult(Status.FAILED, iterations=1, evaluations=state.expanded, message=message)
+
+    def _solved(
+        self, scenario: Scenario, state: SearchState, target: int, progress: ProgressCallback | None
+    ) -> PlanResult:
+        nodes = trace_path(state.parent, target)
+        if scenario.kind == "grid2d":
+            nodes = nodes[straight_run_ends(np.stack(np.unravel_index(nodes, scenario.shape), axis=1))]
+        centres = list(scenario.point_of(nodes))
+        tol = _CENTRE_TOL_CELLS * scenario.cell_sizes
+        start, goal = scenario.start.copy(), scenario.goal.copy()
+        start_on_centre = bool(np.all(np.abs(start - centres[0]) <= tol))
+        goal_on_centre = bool(np.all(np.abs(goal - centres[-1]) <= tol))
+        inner = centres[1:] if start_on_centre else centres
+        if goal_on_centre and inner:
+            inner = inner[:-1]
+        path = np.array([start, *inner, goal])
+        cost = float(state.g[target])
+        kind = self._cost_kind()
+        connectors = []
+        if not start_on_centre:
+            connectors.append((path[0], path[1]))
+        if not goal_on_centre:
+            connectors.append((path[-2], path[-1]))
+        for p0, p1 in connectors:
+            problem = segment_problem(scenario, p0, p1)
+            if problem is not None:
+                return self._failed(state, f"connector between an endpoint and its cell centre is not allowed: {problem}")
+            cost += connector_cost(scenario, p0, p1, kind)
+        if progress is not None:
+            progress(1, state.expanded, cost)
+        return PlanResult(
+            Status.SOLVED,
+            path=path,
+            iterations=1,
+            evaluations=state.expanded,
+            extras={"cost": kind, "best_cost": cost, "graph_cost": float(state.g[target])},
+        )

@@ -1,0 +1,313 @@
+"""Numba kernel shared by the exact planners: a binary heap and a resumable A* search.
+
+Dijkstra is this A* with the zero heuristic. The search state lives in plain
+NumPy arrays (:class:`SearchState`), so the Python driver can run the search
+in batches of expansions and look at the clock between batches.
+
+The heap is *lazy*: a node whose cost improves is pushed again instead of
+having its key decreased, and stale entries are skipped when popped (the
+node is already closed). On grids this is about 1.5 times faster than an
+indexed heap with decrease-key, because sifting moves fewer arrays. The heap
+starts small (a search front is much smaller than the graph) and the kernel
+returns :data:`HEAP_FULL` when an expansion might not fit, so the driver
+doubles it and resumes.
+
+Heap order is ``f`` ascending, ties broken towards the larger ``g`` (the node
+deeper along its path), which keeps A* on open grids from expanding whole
+plateaus of equal ``f``. Ties never change the optimal cost, only which of
+several optimal paths is returned.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Callable
+
+import numba
+import numpy as np
+
+__all__ = [
+    "SearchState",
+    "H_ZERO",
+    "H_OCTILE",
+    "H_EUCLID",
+    "RUNNING",
+    "FOUND",
+    "EXHAUSTED",
+    "HEAP_FULL",
+    "heuristic",
+    "goal_cell",
+    "heap_push",
+    "heap_pop",
+    "astar_batch",
+    "trace_path",
+    "run_batch",
+]
+
+H_ZERO = 0
+"""Zero heuristic (Dijkstra)."""
+H_OCTILE = 1
+"""Octile distance on the ``x, y`` axes (``z`` ignored)."""
+H_EUCLID = 2
+"""Euclidean distance on the ``x, y, z`` axes."""
+
+RUNNING = 0
+"""The batch ended before the search did."""
+FOUND = 1
+"""The target was expanded: its ``g`` is optimal."""
+EXHAUSTED = 2
+"""The open list ran empty: the target is unreachable."""
+HEAP_FULL = 3
+"""The heap has no room for another expansion: grow it (:meth:`SearchState.grow_heap`) and resume."""
+
+_SQRT2_M1 = math.sqrt(2.0) - 1.0
+
+
+@dataclass
+class SearchState:
+    """Mutable arrays of one search, resumed batch after batch.
+
+    Attributes
+    ----------
+    g : ndarray of float64, shape (N,)
+        Best known cost from the source (``inf`` when unseen).
+    parent : ndarray of int64, shape (N,)
+        Predecessor on the best known path (``-1`` for the source and unseen nodes).
+    closed : ndarray of bool, shape (N,)
+        Whether each node has been expanded.
+    heap_node, heap_f, heap_g : ndarray
+        The binary heap: node, key ``f`` and tie-breaker ``g`` per slot.
+    counters : ndarray of int64, shape (2,)
+        ``[heap size, expanded nodes]``.
+    """
+
+    g: np.ndarray
+    parent: np.ndarray
+    closed: np.ndarray
+    heap_node: np.ndarray
+    heap_f: np.ndarray
+    heap_g: np.ndarray
+    counters: np.ndarray
+
+    @classmethod
+    def start(cls, n_nodes: int, source: int, heap_capacity: int = 4096) -> "SearchState":
+        """A fresh state with only ``source`` (cost 0) on the open list."""
+        state = cls(
+            g=np.full(n_nodes, np.inf),
+            parent=np.full(n_nodes, -1, dtype=np.int64),
+            closed=np.zeros(n_nodes, dtype=np.bool_),
+            heap_node=np.empty(heap_capacity, dtype=np.int64),
+            heap_f=np.empty(heap_capacity),
+            heap_g=np.empty(heap_capacity),
+            counters=np.zeros(2, dtype=np.int64),
+        )
+        state.g[source] = 0.0
+        state.heap_node[0] = source
+        state.heap_f[0] = 0.0
+        state.heap_g[0] = 0.0
+        state.counters[0] = 1
+        return state
+
+    def grow_heap(self) -> None:
+        """Double the heap's capacity, keeping its entries."""
+        size = int(self.counters[0])
+        for name in ("heap_node", "heap_f", "heap_g"):
+            old = getattr(self, name)
+            new = np.empty(2 * len(old), dtype=old.dtype)
+            new[:size] = old[:size]
+            setattr(self, name, new)
+
+    @property
+    def expanded(self) -> int:
+        """Number of nodes expanded so far."""
+        return int(self.counters[1])
+
+
+@numba.njit(cache=True)
+def heuristic(node: int, goal: np.ndarray, mode: int, dims: np.ndarray, steps: np.ndarray, scale: float) -> float:
+    """Heuristic from ``node`` to the cell ``goal = (x, y, z)`` (column, row, layer).
+
+    ``node`` is a flat id of a grid of shape ``dims = (L, H, W)``; ``steps``
+    holds the metres per cell along ``x, y, z``. The distance (octile or
+    Euclidean, see :data:`H_OCTILE`, :data:`H_EUCLID`) is multiplied by ``scale``.
+    """
+    if mode == H_ZERO:
+        return 0.0
+    w = dims[2]
+    if dims[0] == 1:  # one integer division instead of three on 2-D grids
+        layer = 0
+        rest = node
+    else:
+        layer = node // (dims[1] * w)
+        rest = node - layer * dims[1] * w
+    row = rest // w
+    dx = abs(rest - row * w - goal[0]) * steps[0]
+    dy = abs(row - goal[1]) * steps[1]
+    if mode == H_OCTILE:
+        return scale * (max(dx, dy) + _SQRT2_M1 * min(dx, dy))
+    dz = abs(layer - goal[2]) * steps[2]
+    return scale * math.sqrt(dx * dx + dy * dy + dz * dz)
+
+
+def goal_cell(target: int, dims: np.ndarray) -> np.ndarray:
+    """``(x, y, z)`` = (column, row, layer) of flat node ``target`` in a grid of shape ``dims = (L, H, W)``."""
+    layer, row, col = np.unravel_index(target, tuple(int(d) for d in dims))
+    return np.array([col, row, layer], dtype=np.int64)
+
+
+@numba.njit(cache=True)
+def _sift_up(heap_node: np.ndarray, heap_f: np.ndarray, heap_g: np.ndarray, i: int, node: int, f: float, g: float) -> None:
+    # place (node, f, g) at slot i or above, moving worse parents down
+    while i > 0:
+        p = (i - 1) >> 1
+        pf = heap_f[p]
+        if pf < f or (pf == f and heap_g[p] >= g):
+            break
+        heap_node[i] = heap_node[p]
+        heap_f[i] = pf
+        heap_g[i] = heap_g[p]
+        i = p
+    heap_node[i] = node
+    heap_f[i] = f
+    heap_g[i] = g
+
+
+@numba.njit(cache=True)
+def heap_push(heap_node: np.ndarray, heap_f: np.ndarray, heap_g: np.ndarray, counters: np.ndarray, node: int, f: float, g: float) -> None:
+    """Push ``node`` with key ``f`` (ties: larger ``g`` first)."""
+    i = counters[0]
+    counters[0] = i + 1
+    _sift_up(heap_node, heap_f, heap_g, i, node, f, g)
+
+
+@numba.njit(cache=True)
+def heap_pop(heap_node: np.ndarray, heap_f: np.ndarray, heap_g: np.ndarray, counters: np.ndarray) -> int:
+    """Remove the first entry of a non-empty heap and return its node.
+
+    Bottom-up deletion: the hole left at the root walks down along the better
+    children to a leaf, then the last entry is sifted up from there. The last
+    entry usually belongs near the bottom, so this saves comparisons.
+    """
+    top = heap_node[0]
+    size = counters[0] - 1
+    counters[0] = size
+    if size == 0:
+        return top
+    i = 0
+    while True:
+        c = 2 * i + 1
+        if c >= size:
+            break
+        if c + 1 < size:
+            f1 = heap_f[c + 1]
+            f0 = heap_f[c]
+            if f1 < f0 or (f1 == f0 and heap_g[c + 1] > heap_g[c]):
+                c += 1
+        heap_node[i] = heap_node[c]
+        heap_f[i] = heap_f[c]
+        heap_g[i] = heap_g[c]
+        i = c
+    _sift_up(heap_node, heap_f, heap_g, i, heap_node[size], heap_f[size], heap_g[size])
+    return top
+
+
+@numba.njit(cache=True)
+def astar_batch(
+    indptr: np.ndarray,
+    indices: np.ndarray,
+    weights: np.ndarray,
+    target: int,
+    goal: np.ndarray,
+    mode: int,
+    dims: np.ndarray,
+    steps: np.ndarray,
+    scale: float,
+    g: np.ndarray,
+    parent: np.ndarray,
+    closed: np.ndarray,
+    heap_node: np.ndarray,
+    heap_f: np.ndarray,
+    heap_g: np.ndarray,
+    counters: np.ndarray,
+    max_expansions: int,
+    max_degree: int,
+) -> int:
+    """Run up to ``max_expansions`` expansions of A* on a CSR graph.
+
+    ``target`` is the goal's node id and ``goal`` its cell (:func:`goal_cell`).
+    Nodes are closed when expanded and never reopened, which is exact for a
+    consistent heuristic (and for Dijkstra). ``max_degree`` bounds the pushes
+    of one expansion. Returns :data:`RUNNING`, :data:`FOUND`,
+    :data:`EXHAUSTED` or :data:`HEAP_FULL`.
+    """
+    done = 0
+    while done < max_expansions:
+        if counters[0] == 0:
+            return EXHAUSTED
+        if counters[0] + max_degree > heap_node.shape[0]:
+            return HEAP_FULL
+        u = heap_pop(heap_node, heap_f, heap_g, counters)
+        if closed[u]:
+            continue
+        closed[u] = True
+        counters[1] += 1
+        done += 1
+        if u == target:
+            return FOUND
+        gu = g[u]
+        for e in range(indptr[u], indptr[u + 1]):
+            v = indices[e]
+            cand = gu + weights[e]
+            if cand < g[v] and not closed[v]:
+                g[v] = cand
+                parent[v] = u
+                f = cand + heuristic(v, goal, mode, dims, steps, scale)
+                heap_push(heap_node, heap_f, heap_g, counters, v, f, cand)
+    return EXHAUSTED if counters[0] == 0 else RUNNING
+
+
+@numba.njit(cache=True)
+def trace_path(parent: np.ndarray, target: int) -> np.ndarray:
+    """Node ids from the source to ``target`` following ``parent`` links."""
+    n = 0
+    u = target
+    while u != -1:
+        n += 1
+        u = parent[u]
+    out = np.empty(n, dtype=np.int64)
+    u = target
+    for i in range(n - 1, -1, -1):
+        out[i] = u
+        u = parent[u]
+    return out
+
+
+def run_batch(kernel: Callable[..., int], args: tuple, max_degree: int, state: SearchState, max_expansions: int) -> int:
+    """Advance a search by one batch with a batch kernel.
+
+    Parameters
+    ----------
+    kernel : callable
+        :func:`astar_batch` or a kernel with the same trailing arguments.
+    args : tuple
+        The kernel's leading (problem) arguments.
+    max_degree : int
+        Upper bound on a node's out-degree.
+    state : SearchState
+        The search to advance.
+    max_expansions : int
+        Expansions allowed in this batch.
+    """
+    return kernel(
+        *args,
+        state.g,
+        state.parent,
+        state.closed,
+        state.heap_node,
+        state.heap_f,
+        state.heap_g,
+        state.counters,
+        max_expansions,
+        max_degree,
+    )

@@ -1,0 +1,123 @@
+"""``exact.thetastar``: any-angle Theta* (Nash, Daniel, Koenig and Felner, AAAI 2007) on 2-D grids.
+
+Theta* is A* on the 8-connected cell graph with one change: when a successor
+``s'`` of the expanded node ``s`` can see ``parent(s)``, it is linked to
+``parent(s)`` directly ("path 2", cost ``g(parent(s)) + |parent(s) s'|``);
+otherwise it is linked to ``s`` as in A* ("path 1"). The heuristic is the
+straight-line distance to the goal.
+
+Interpretations:
+
+- Vertices are cell *centres* (the paper uses cell corners); the successors
+  of a node are its edges in ``scenario.graph``, so the first move obeys the
+  same no-corner-cutting rule as every other planner.
+- Line of sight is :func:`pathzoo.grid.segments.segment_blocked_2d`, the
+  closed-cell rule the validator applies, so every returned segment validates.
+- Path 2 is tried whenever the line of sight exists, as in the paper. By the
+  triangle inequality it is never longer than path 1, so every relaxation is
+  at least as good as A*'s; with the consistent straight-line heuristic this
+  gives ``g(s) <= `` the 8-connected optimum for every expanded node, hence a
+  returned length no longer than the grid optimum (not the true any-angle
+  optimum, which Theta* does not guarantee).
+"""
+
+from __future__ import annotations
+
+import math
+from functools import partial
+from typing import ClassVar
+
+import numba
+import numpy as np
+
+from pathzoo.core import Scenario
+from pathzoo.grid.segments import segment_blocked_2d
+from pathzoo_exact.base import BatchFn, GraphSearchPlanner
+from pathzoo_exact.kernel import EXHAUSTED, FOUND, H_EUCLID, HEAP_FULL, RUNNING, goal_cell, heap_pop, heap_push, heuristic, run_batch
+
+__all__ = ["ThetaStarPlanner", "thetastar_batch"]
+
+
+@numba.njit(cache=True)
+def thetastar_batch(
+    indptr: np.ndarray,
+    indices: np.ndarray,
+    weights: np.ndarray,
+    blocked: np.ndarray,
+    target: int,
+    goal: np.ndarray,
+    dims: np.ndarray,
+    steps: np.ndarray,
+    g: np.ndarray,
+    parent: np.ndarray,
+    closed: np.ndarray,
+    heap_node: np.ndarray,
+    heap_f: np.ndarray,
+    heap_g: np.ndarray,
+    counters: np.ndarray,
+    max_expansions: int,
+    max_degree: int,
+) -> int:
+    """Run up to ``max_expansions`` expansions of Theta*; returns a kernel status code.
+
+    ``dims`` is ``(1, H, W)`` and ``steps`` ``(cell_size, cell_size, 0)``;
+    the status codes and ``max_degree`` are those of
+    :func:`pathzoo_exact.kernel.astar_batch`.
+    """
+    w = dims[2]
+    cs = steps[0]
+    done = 0
+    while done < max_expansions:
+        if counters[0] == 0:
+            return EXHAUSTED
+        if counters[0] + max_degree > heap_node.shape[0]:
+            return HEAP_FULL
+        u = heap_pop(heap_node, heap_f, heap_g, counters)
+        if closed[u]:
+            continue
+        closed[u] = True
+        counters[1] += 1
+        done += 1
+        if u == target:
+            return FOUND
+        p = parent[u]
+        pr = p // w
+        pc = p % w
+        for e in range(indptr[u], indptr[u + 1]):
+            v = indices[e]
+            if closed[v]:
+                continue
+            vr = v // w
+            vc = v % w
+            if p >= 0 and not segment_blocked_2d(blocked, pc + 0.5, pr + 0.5, vc + 0.5, vr + 0.5):
+                cand = g[p] + cs * math.hypot(float(vc - pc), float(vr - pr))
+                via = p
+            else:
+                cand = g[u] + weights[e]
+                via = u
+            if cand < g[v]:
+                g[v] = cand
+                parent[v] = via
+                f = cand + heuristic(v, goal, H_EUCLID, dims, steps, 1.0)
+                heap_push(heap_node, heap_f, heap_g, counters, v, f, cand)
+    return EXHAUSTED if counters[0] == 0 else RUNNING
+
+
+class ThetaStarPlanner(GraphSearchPlanner):
+    """Any-angle Theta* on occupancy grids; minimises Euclidean path length.
+
+    No hyperparameters. The path's waypoints are cell centres (plus the exact
+    start and goal), joined by straight segments that touch no blocked cell.
+    """
+
+    id: ClassVar[str] = "exact.thetastar"
+    version: ClassVar[str] = "1"
+    summary: ClassVar[str] = "Theta* any-angle search (Nash et al. 2007); never longer than the grid optimum"
+    kinds: ClassVar[frozenset[str]] = frozenset({"grid2d"})
+
+    def _make_batch(self, scenario: Scenario, target: int) -> BatchFn:
+        graph = scenario.graph
+        dims = np.array((1, *graph.shape), dtype=np.int64)
+        steps = np.array([scenario.cell_size, scenario.cell_size, 0.0])
+        args = (graph.indptr, graph.indices, graph.length, scenario.blocked, target, goal_cell(target, dims), dims, steps)
+        return partial(run_batch, thetastar_batch, args, len(graph.offsets))
