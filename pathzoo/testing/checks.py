@@ -27,6 +27,7 @@ from pathzoo.core.scenario import SCENARIO_KINDS, Scenario
 from pathzoo.core.status import Status
 from pathzoo.harness.validation import validate_path
 from pathzoo.testing.scenarios import check_scenario
+from pathzoo.testing.warmup import warm_up
 
 __all__ = [
     "ConformanceError",
@@ -81,26 +82,6 @@ def _fail(planner: Planner, message: str) -> ConformanceError:
     return ConformanceError(f"{planner.id}: {message}")
 
 
-_WARMED: set[tuple[type, str]] = set()
-
-
-def _warm_up(planner: Planner, kind: str, budget: Budget) -> None:
-    """Plan once per planner class and scenario kind in this process, ignoring the outcome.
-
-    JIT compilation and other first-call costs would otherwise eat into the
-    time cap of whichever check happens to run first, and a run cut short by
-    the clock gives a different answer. Errors are left to the checks.
-    """
-    key = (type(planner), kind)
-    if key in _WARMED:
-        return
-    _WARMED.add(key)
-    try:
-        planner.plan(check_scenario(kind), budget=budget, rng=np.random.default_rng(SEED), progress=None)
-    except Exception:  # noqa: BLE001 - the check that follows makes the same call and reports it
-        return
-
-
 def _plan(
     planner: Planner,
     scenario: Scenario,
@@ -109,7 +90,7 @@ def _plan(
     seed: int = SEED,
 ) -> PlanResult:
     """Call ``plan()`` (after a warm-up) and check that it returned a well-formed :class:`PlanResult`."""
-    _warm_up(planner, scenario.kind, budget)
+    warm_up(planner, scenario.kind, budget)
     result = planner.plan(scenario, budget=budget, rng=np.random.default_rng(seed), progress=progress)
     if not isinstance(result, PlanResult):
         raise _fail(planner, f"plan() returned {type(result).__name__}, not a PlanResult, on {scenario.id}")
@@ -222,7 +203,7 @@ def check_same_seed_same_path(planner: Planner, *, kind: str, budget: Budget = D
     call passes no progress callback, which must not change the result.
     """
     scenario = check_scenario(kind)
-    _warm_up(planner, kind, budget)
+    warm_up(planner, kind, budget)
     saved = random.getstate(), np.random.get_state()
     try:
         random.seed(1)
@@ -275,7 +256,7 @@ def check_budget_time(planner: Planner, *, budget: Budget = DEFAULT_BUDGET) -> N
     compilation is not counted.
     """
     scenario = check_scenario(_first_kind(planner))
-    _warm_up(planner, scenario.kind, budget)
+    warm_up(planner, scenario.kind, budget)
     started = time.perf_counter()
     _plan(planner, scenario, Budget(time_s=TIME_BUDGET_S))
     elapsed = time.perf_counter() - started
