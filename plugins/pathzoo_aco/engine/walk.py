@@ -57,6 +57,7 @@ def _walk(indptr, indices, offset_id, horizontal, turn,
     do_local = local_keep != 1.0 or local_add != 0.0
     bounded = lo > 0.0 or hi < np.inf
     alpha_one = tau_exp == 1.0
+    lo_pow = lo**tau_exp
     a = first_ant
     if pending >= 0:  # the previous call stopped to grow ``flat`` after this ant reached the goal
         base = offsets[a]
@@ -81,15 +82,17 @@ def _walk(indptr, indices, offset_id, horizontal, turn,
                 break
             e0 = indptr[cur]
             e1 = indptr[cur + 1]
-            if has_pre:
-                for e in range(e0, e1):
-                    k = indices[e] if on_nodes else e
-                    t = _trail(x, scale, lo, hi, k) + pre_add[e]
-                    x[k] = min(max(t, lo), hi) / scale
             nc = 0
             total_w = 0.0
             for e in range(e0, e1):
                 j = indices[e]
+                k = j if on_nodes else e
+                t = scale * x[k]
+                if bounded:
+                    t = min(max(t, lo), hi)
+                if has_pre:  # added to every edge leaving the cell, before the choice
+                    t = min(max(t + pre_add[e], lo), hi)
+                    x[k] = t / scale
                 if stamp[j] == wid:
                     continue
                 f = 1.0
@@ -97,10 +100,12 @@ def _walk(indptr, indices, offset_id, horizontal, turn,
                     f = turn[prev, offset_id[e]]
                     if f <= 0.0:
                         continue
-                t = scale * x[j if on_nodes else e]
-                if bounded:
-                    t = min(max(t, lo), hi)
-                w = t * w_mul[e] if alpha_one else t**tau_exp * w_mul[e]
+                if alpha_one:
+                    w = t * w_mul[e]
+                elif t <= lo:  # trails resting on the floor share one power
+                    w = lo_pow * w_mul[e]
+                else:
+                    w = t**tau_exp * w_mul[e]
                 if has_add:
                     w += w_add[e]
                 if use_turn:
