@@ -113,6 +113,9 @@ class GraphSearchPlanner(Planner, abc.ABC):
     batch_expansions: ClassVar[int] = 16384
     """Expansions between two looks at the clock."""
 
+    initial_heap_capacity: ClassVar[int] = 4096
+    """Heap slots allocated up front; the heap doubles when full."""
+
     @abc.abstractmethod
     def _make_batch(self, scenario: Scenario, target: int) -> BatchFn:
         """Return the function that advances the search on ``scenario`` by one batch."""
@@ -133,7 +136,7 @@ class GraphSearchPlanner(Planner, abc.ABC):
         self.check_supports(scenario)
         clock = budget.start()
         source, target = scenario.start_node, scenario.goal_node
-        state = SearchState.start(scenario.graph.n_nodes, source)
+        state = SearchState.start(scenario.graph.n_nodes, source, self.initial_heap_capacity)
         batch = self._make_batch(scenario, target)
         cap = budget.evaluations
         while True:

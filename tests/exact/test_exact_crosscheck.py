@@ -148,3 +148,13 @@ def air_scenarios(n: int = 12) -> list[Scenario]:
 def test_air_volume_matches_scipy(planner_id: str, cost: str) -> None:
     scenarios = air_scenarios()
     assert check_against_scipy(scenarios, planner_id, cost) >= len(scenarios) // 2
+
+
+def test_astar_energy_heuristic_prunes_with_an_onboard_load(shared_data: Path) -> None:
+    vehicle = VehicleModel(max_climb_deg=10.0, max_descent_deg=14.0, onboard_power_w=40.0)
+    expanded = {}
+    for planner_id in PLANNERS:
+        planner = pathzoo.make_planner(planner_id, cost="energy")
+        runs = [planner.plan(s, budget=Budget(), rng=np.random.default_rng(0)) for s in hugo_scenarios(shared_data, vehicle)]
+        expanded[planner_id] = sum(r.evaluations for r in runs if r.solved)
+    assert expanded["exact.astar"] < 0.9 * expanded["exact.dijkstra"]
