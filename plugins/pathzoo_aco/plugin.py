@@ -19,5 +19,7 @@ def pathzoo_register_planners() -> Sequence[type[Planner]]:
     from pathzoo_aco.ggaco import GGACO
     from pathzoo_aco.mmas import MaxMinAntSystem
     from pathzoo_aco.fgdaco import FGDACO
+    from pathzoo_aco.dsaco import DSACO
+    from pathzoo_aco.iaca import IACA
 
-    return [AntSystem, MaxMinAntSystem, AntColonySystem, GGACO, GreenAnt, FGDACO]
+    return [AntSystem, MaxMinAntSystem, AntColonySystem, GGACO, GreenAnt, FGDACO, DSACO, IACA]

@@ -1,0 +1,212 @@
+"""aco.dsaco: the dual-strategy ACO of Mai et al. (Intelligence & Robotics, 2023), eqs. 11-23.
+
+Mechanism, with the paper's equations:
+
+- **search heuristic** ``η = S · M · D`` (eqs. 11-13): ``S`` admits a node
+  only at least ``h_c`` above the ground under it, ``M = 1 / (1 + h)``
+  favours low flight and ``D = 1 / (step + distance to the target)`` pulls
+  toward the target (:meth:`DSACO.search_heuristic`);
+- **dual transition** (eqs. 14-15): with probability ``q0`` the ant takes the
+  heaviest ``τ^α η^β``, otherwise it draws by roulette; ``q0`` falls from
+  ``q0_initial`` over the first 70 % of the iterations, then jumps to half of
+  it and rises again (:func:`q0_schedule`, :meth:`DSACO.before_iteration`);
+- **best-ant update** (eqs. 16-18): all trails evaporate and only the
+  iteration's best ant deposits ``Q / ((1 - p) F_now + p F_global)``; trails
+  stay in ``[τmin, τmax]`` (:meth:`DSACO.update_trail`);
+- **p decay** (eq. 19): ``p`` is multiplied by ``γ_p = 0.9`` every 100
+  iterations (:func:`p_schedule`);
+- **fitness** (eqs. 20-23): ``f1 D0 + f2 Dh + f3 DT`` -- length, summed
+  segment heights and summed turning angles -- is what "best" means
+  (:meth:`DSACO.walk_costs`).
+
+Lengths and heights are measured in horizontal cells (the paper's
+kilometres on its 1 km grid). Table 4: m = 10, n = 500, Q = 100, α = 1,
+β = 8, ρ = 0.2, τmax = 0.9, τmin = 0.03, p = 1. See
+``docs/planners/aco.dsaco.md`` for every interpretation.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from typing import Any, Mapping
+
+import numpy as np
+
+from pathzoo.core.errors import InvalidParameterError
+from pathzoo.core.planner import Param
+from pathzoo_aco.engine import (
+    AntColonyPlanner,
+    ColonyProblem,
+    ColonyState,
+    Pheromone,
+    WalkEngine,
+    WalkRules,
+    Walks,
+    colony_params,
+    deposit_walks,
+)
+
+__all__ = ["DSACO", "DsacoState", "q0_schedule", "p_schedule"]
+
+
+def q0_schedule(k: int, k_max: int, q0_initial: float) -> float:
+    """Eq. 15: ``q0`` at (0-based) iteration ``k`` of ``k_max``; iterations past ``k_max`` keep its last value.
+
+    ``q0 = (K - k) / K · q0_initial`` for ``k < k0 = 0.7 K``, and
+    ``(k - k0) / K · q0_initial + q0_initial / 2`` from ``k0`` on.
+    """
+    k = min(k, k_max)
+    k0 = 0.7 * k_max
+    if k < k0:
+        return (k_max - k) / k_max * q0_initial
+    return (k - k0) / k_max * q0_initial + q0_initial / 2.0
+
+
+def p_schedule(t: int, p_initial: float, gamma: float, every: int = 100) -> float:
+    """Eq. 19: the weight ``p`` used at (1-based) iteration ``t``: ``p_initial · γ^floor((t - 1) / every)``."""
+    return p_initial * gamma ** ((t - 1) // every)
+
+
+@dataclass
+class DsacoState(ColonyState):
+    """Colony state plus the per-edge fitness terms (in cells) and the turn angle between moves."""
+
+    edge_length: np.ndarray | None = None
+    edge_height: np.ndarray | None = None
+    turn_angle: np.ndarray | None = None
+
+
+class DSACO(AntColonyPlanner):
+    """DSACO (Mai et al. 2023) with the parameters of its Table 4."""
+
+    id = "aco.dsaco"
+    version = "1"
+    summary = "DSACO (Mai et al. 2023): S·M·D heuristic, q0 schedule, best-ant fitness update, p decay"
+    kinds = frozenset({"air3d", "grid2d"})
+    params = {
+        **colony_params(n_ants=10, iterations=500, alpha=1.0, beta=8.0, rho=0.2),
+        "q": Param(100.0, "pheromone intensity Q (eq. 17)", low=0.0, low_open=True),
+        "tau_max": Param(0.9, "upper trail bound τmax (eq. 18); also τ0", low=0.0, low_open=True),
+        "tau_min": Param(0.03, "lower trail bound τmin (eq. 18)", low=0.0, low_open=True),
+        "p": Param(1.0, "initial weight p of the global best fitness (eq. 17)", low=0.0, high=1.0),
+        "gamma_p": Param(0.9, "decay γ_p of p every 100 iterations (eq. 19)", low=0.0, high=1.0),
+        "q0_initial": Param(0.9, "q0_initial of the q0 schedule (eq. 15; not given in the paper)", low=0.0, high=1.0),
+        "h_c": Param(50.0, "safety height h_c above the ground for S (eq. 11), m", low=0.0),
+        "f1": Param(1.0, "weight of the length D0 (eq. 20; not given)", low=0.0),
+        "f2": Param(0.1, "weight of the summed segment heights Dh (eq. 20; not given)", low=0.0),
+        "f3": Param(1.0, "weight of the summed turning angles DT in radians (eq. 20; not given)", low=0.0),
+        "step_rule": Param("graph", "moves: the scenario's whole neighbourhood graph, or the paper's longitude "
+                           "rule (one cell along x toward the target per step)", choices=("graph", "longitude")),
+    }
+
+    def _check_params(self, values: Mapping[str, Any]) -> None:
+        if values["tau_min"] >= values["tau_max"]:
+            raise InvalidParameterError(
+                f"{self.id}: parameter 'tau_min' must be < tau_max ({values['tau_max']!r}), got {values['tau_min']!r}")
+        if values["f1"] + values["f2"] + values["f3"] == 0.0:
+            raise InvalidParameterError(f"{self.id}: parameters 'f1', 'f2', 'f3' must not all be 0 (fitness of eq. 20)")
+
+    # ------------------------------------------------------------- heuristic
+    @staticmethod
+    def node_height(problem: ColonyProblem) -> np.ndarray:
+        """Flight height ``h`` of every node in horizontal cells (0 on flat maps)."""
+        return problem.node_xyz[:, 2] / problem.scenario.cell_size
+
+    def search_heuristic(self, problem: ColonyProblem) -> np.ndarray:
+        """Eqs. 11-13 per edge ``i -> j``: ``S_j · M_j · D_ij``.
+
+        ``S_j = 1`` when ``j`` is at least ``h_c`` above the ground under it
+        (always 1 without a ground model), ``M_j = 1 / (1 + h_j)`` and
+        ``D_ij = 1 / (ℓ_ij + sqrt(1 + d_jB²))`` with ``ℓ`` the step and
+        ``d_jB`` the straight distance from ``j`` to the target, all in cells.
+        """
+        s = problem.scenario
+        g = problem.graph
+        h = self.node_height(problem)
+        admitted = np.ones(g.n_nodes, dtype=bool)
+        if s.elevation is not None:
+            ground = np.broadcast_to(s.elevation, s.shape).reshape(-1)
+            admitted = problem.node_xyz[:, 2] >= np.nan_to_num(ground, nan=np.inf) + self.h_c
+        cells = s.cell_size
+        j = g.indices
+        m = 1.0 / (1.0 + h[j])
+        d = 1.0 / (g.length / cells + np.sqrt(1.0 + (problem.goal_distance[j] / cells) ** 2))
+        return np.where(admitted[j], m * d, 0.0) * self.allowed_moves(problem)
+
+    def allowed_moves(self, problem: ColonyProblem) -> np.ndarray:
+        """1 for the edges the step rule allows, 0 for the others (all 1 under ``step_rule="graph"``).
+
+        The longitude rule (section 2.1.2) keeps the moves that advance exactly
+        one cell along ``x`` toward the target's column, with any lateral and
+        vertical step the scenario's graph allows.
+        """
+        g = problem.graph
+        if self.step_rule == "graph":
+            return np.ones(g.n_edges)
+        width = g.shape[-1]
+        direction = np.sign(problem.goal % width - problem.start % width)
+        dx = g.offsets[g.offset_id][:, -1]
+        return ((dx == direction) & (direction != 0)).astype(np.float64)
+
+    def heuristic(self, problem: ColonyProblem) -> np.ndarray:
+        """``η = Q_search = S · M · D`` (eqs. 11-13)."""
+        return self.search_heuristic(problem)
+
+    def walk_rules(self, problem: ColonyProblem) -> WalkRules:
+        """Eq. 14: ``τ^α η^β`` with the deterministic choice of probability ``q0`` (set per iteration)."""
+        return WalkRules.product(self.alpha, self.heuristic(problem), self.beta, q0=self.q0_initial,
+                                 **self.walk_options(problem))
+
+    def before_iteration(self, state: ColonyState) -> WalkRules:
+        """Eq. 15: the iteration's ``q0`` (the schedule spans the ``iterations`` parameter)."""
+        return replace(state.rules, q0=q0_schedule(state.iteration, self.iterations, self.q0_initial))
+
+    # ------------------------------------------------------------- trail and fitness
+    def initial_trail(self, problem: ColonyProblem) -> float:
+        """``τ0 = τmax``."""
+        return self.tau_max
+
+    def init_state(self, problem: ColonyProblem, rules: WalkRules, trail: Pheromone, engine: WalkEngine,
+                   rng: np.random.Generator) -> DsacoState:
+        """Bound the trail to ``[τmin, τmax]`` and precompute the fitness terms of eqs. 21-23."""
+        trail.set_bounds(self.tau_min, self.tau_max)
+        g = problem.graph
+        h = self.node_height(problem)
+        moves = g.offsets[:, ::-1] * problem.scenario.cell_sizes  # world vectors (x, y[, z])
+        unit = moves / np.linalg.norm(moves, axis=1, keepdims=True)
+        turn = np.arccos(np.clip(unit @ unit.T, -1.0, 1.0))
+        return DsacoState(problem, rules, trail, rng, edge_length=g.length / problem.scenario.cell_size,
+                          edge_height=0.5 * (h[problem.sources] + h[g.indices]), turn_angle=turn)
+
+    def fitness_terms(self, state: ColonyState, walks: Walks) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """``(D0, Dh, DT)`` of every walk (eqs. 21-23; ``inf`` for walks that failed).
+
+        ``D0`` sums the segment lengths and ``Dh`` the segment heights (mean
+        of both ends), in cells; ``DT`` sums the angles (radians) between
+        consecutive segments.
+        """
+        assert isinstance(state, DsacoState) and state.turn_angle is not None
+        moves = state.problem.graph.offset_id[walks.flat].astype(np.int64)
+        turns = np.zeros(moves.size)
+        if moves.size > 1:
+            turns[1:] = state.turn_angle[moves[:-1], moves[1:]]
+        turns[walks.offsets[:-1][walks.offsets[:-1] < moves.size]] = 0.0  # no turn into a walk's first segment
+        cum = np.concatenate([[0.0], np.cumsum(turns)])
+        dt = np.where(walks.reached, cum[walks.offsets[1:]] - cum[walks.offsets[:-1]], np.inf)
+        return walks.totals(state.edge_length), walks.totals(state.edge_height), dt
+
+    def walk_costs(self, state: ColonyState, walks: Walks) -> np.ndarray:
+        """Eq. 20: ``Fitness = f1 D0 + f2 Dh + f3 DT``."""
+        d0, dh, dt = self.fitness_terms(state, walks)
+        return self.f1 * d0 + self.f2 * dh + self.f3 * dt
+
+    def update_trail(self, state: ColonyState, walks: Walks, costs: np.ndarray) -> None:
+        """Eqs. 16-19: evaporate everywhere; the iteration-best ant lays ``Q / ((1-p) F_now + p F_global)``."""
+        state.trail.evaporate(self.rho)
+        if not np.isfinite(costs).any():
+            return
+        k = int(np.argmin(costs))
+        p = p_schedule(state.iteration, self.p, self.gamma_p)
+        amount = self.q / ((1.0 - p) * float(costs[k]) + p * state.best_cost)
+        edges = walks.edges(k)
+        deposit_walks(state.trail, state.problem.graph.indices, edges, np.array([0, len(edges)]), np.array([0]), amount)
