@@ -3,11 +3,13 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any
+from typing import Any, Iterable
 
 import numpy as np
 
-__all__ = ["DATA_DIR", "pack_metadata", "cell_centre", "reachable_from", "largest_free_component", "nearest_cell"]
+from pathzoo.core.errors import InvalidParameterError
+
+__all__ = ["DATA_DIR", "check_choice", "pack_metadata", "cell_centre", "largest_free_component", "nearest_cell"]
 
 DATA_DIR = Path(__file__).resolve().parent / "data"
 """Folder of the bundled data files (MovingAI maps, DEMs) with their licences."""
@@ -16,6 +18,13 @@ DATA_DIR = Path(__file__).resolve().parent / "data"
 # neighbours free, so it can always be replaced by two orthogonal moves:
 # 8-connected reachability equals 4-connected reachability.
 _FOUR = np.array([[0, 1, 0], [1, 1, 1], [0, 1, 0]], dtype=bool)
+
+
+def check_choice(value: Any, allowed: Iterable[Any], name: str) -> None:
+    """Raise :class:`InvalidParameterError` naming ``name`` unless ``value`` is one of ``allowed``."""
+    allowed = list(allowed)
+    if value not in allowed:
+        raise InvalidParameterError(f"{name} must be one of {', '.join(map(repr, allowed))}, got {value!r}")
 
 
 def pack_metadata(pack: str, version: int, source: str, **extra: Any) -> dict[str, Any]:
@@ -40,19 +49,8 @@ def cell_centre(row: int, col: int, cell_size: float) -> np.ndarray:
     return np.array([(col + 0.5) * cell_size, (row + 0.5) * cell_size])
 
 
-def reachable_from(free: np.ndarray, row: int, col: int) -> np.ndarray:
-    """Free cells reachable from ``(row, col)`` with 8-connected moves that never cut a corner."""
-    from scipy import ndimage
-
-    labels, _ = ndimage.label(free, structure=_FOUR)
-    lab = labels[row, col]
-    if lab == 0:
-        return np.zeros_like(free, dtype=bool)
-    return labels == lab
-
-
 def largest_free_component(free: np.ndarray) -> np.ndarray:
-    """The largest set of mutually reachable free cells (same move rule as :func:`reachable_from`)."""
+    """The largest set of free cells mutually reachable by 8-connected moves that never cut a corner."""
     from scipy import ndimage
 
     labels, n = ndimage.label(free, structure=_FOUR)

@@ -40,7 +40,7 @@ import numpy as np
 from pathzoo.core import Scenario, VehicleModel
 from pathzoo.generators.peak_terrain import peaks_elevation
 from pathzoo.plugins.entries import ScenarioEntry
-from pathzoo_scenarios.common import pack_metadata
+from pathzoo_scenarios.common import check_choice, pack_metadata
 
 __all__ = [
     "PACK_VERSION",
@@ -111,8 +111,7 @@ def peaks_world_m(environment: str) -> np.ndarray:
 
 def load(environment: str) -> Scenario:
     """Build ``dsaco.<environment>`` for ``environment`` in ``{"simple", "medium", "complex"}``."""
-    if environment not in PEAKS:
-        raise ValueError(f"unknown DSACO environment {environment!r}; allowed: {', '.join(PEAKS)}")
+    check_choice(environment, PEAKS, "environment")
     peaks = PEAKS[environment]
     nx, ny = int(SIZE_KM[0] / H_CELL_KM), int(SIZE_KM[1] / H_CELL_KM)
     nz = int(round(SIZE_KM[2] / V_CELL_KM))

@@ -30,7 +30,7 @@ import numpy as np
 
 from pathzoo.core import MovingObstacle, Scenario, VehicleModel
 from pathzoo.plugins.entries import ScenarioEntry
-from pathzoo_scenarios.common import pack_metadata
+from pathzoo_scenarios.common import check_choice, pack_metadata
 
 __all__ = [
     "PACK_VERSION",
@@ -138,6 +138,7 @@ def moving_obstacles(scenario: int) -> tuple[MovingObstacle, ...]:
 
 def load(scenario: int, dynamic: bool = True) -> Scenario:
     """Build ``fgdaco.scenario<k>`` (``dynamic=True``) or ``fgdaco.scenario<k>_static``."""
+    check_choice(scenario, SCENARIOS, "scenario")
     spec = SCENARIOS[scenario]
     movers = moving_obstacles(scenario) if dynamic else ()
     suffix = "" if dynamic else "_static"

@@ -31,7 +31,7 @@ import numpy as np
 
 from pathzoo.core import Scenario, VehicleModel
 from pathzoo.plugins.entries import ScenarioEntry
-from pathzoo_scenarios.common import cell_centre, pack_metadata
+from pathzoo_scenarios.common import cell_centre, check_choice, pack_metadata
 
 __all__ = [
     "PACK_VERSION",
@@ -122,6 +122,7 @@ def rectangle_layout(
 
 def load_small(name: str) -> Scenario:
     """Build ``gant.fig7`` or ``gant.acopso``."""
+    check_choice(name, SMALL_SPACES, "name")
     spec = SMALL_SPACES[name]
     size, start, goal = int(spec["size"]), spec["start"], spec["goal"]
     occ = small_layout(size, int(spec["obstacles"]), (start, goal), int(spec["seed"]))
@@ -169,6 +170,8 @@ def _large_base(space: str) -> Scenario:
 
 def load_large(space: str, pair: int) -> Scenario:
     """Build ``gant.<space>.<pair>`` (``pair`` in 1..3, the columns of Table 5)."""
+    check_choice(space, LARGE_SPACES, "space")
+    check_choice(pair, range(1, len(TABLE5_PAIRS) + 1), "pair")
     spec = LARGE_SPACES[space]
     (sc, sr), (gc, gr) = TABLE5_PAIRS[pair - 1]
     base = _large_base(space)

@@ -43,9 +43,16 @@ from typing import Any
 
 import numpy as np
 
-from pathzoo.core import Scenario, VehicleModel
+from pathzoo.core import InvalidParameterError, InvalidScenarioError, Scenario, VehicleModel
 from pathzoo.plugins.entries import ScenarioEntry
-from pathzoo_scenarios.common import DATA_DIR, cell_centre, largest_free_component, nearest_cell, pack_metadata
+from pathzoo_scenarios.common import (
+    DATA_DIR,
+    cell_centre,
+    check_choice,
+    largest_free_component,
+    nearest_cell,
+    pack_metadata,
+)
 
 __all__ = [
     "PACK_VERSION",
@@ -119,16 +126,15 @@ def source_dem(source: str) -> tuple[np.ndarray, float, dict[str, Any]]:
     """Elevation (read-only), square cell size in metres and file provenance of a bundled DEM."""
     from pathzoo.io import read_elevation
 
+    check_choice(source, SOURCES, "source")
     if source == "jacksboro":
         from matplotlib.cbook import get_sample_data
 
         path = get_sample_data("jacksboro_fault_dem.npz", asfileobj=False)
     elif source == "frontrange":
         path = DATA_DIR / "dem" / "SRTMGL3_40.09_-105.55_40.21_-105.35.asc"
-    elif source == "hugo":
-        path = DATA_DIR / "dem" / "hugo_site.asc"
     else:
-        raise ValueError(f"unknown DEM source {source!r}; allowed: {', '.join(SOURCES)}")
+        path = DATA_DIR / "dem" / "hugo_site.asc"
     dem = read_elevation(path)
     return dem.elevation, float(dem.cell_size), dict(dem.metadata)
 
@@ -172,9 +178,18 @@ def _build(
     description: str,
     meta: dict[str, Any],
 ) -> Scenario:
+    if not slope_min_deg < slope_max_deg:
+        raise InvalidParameterError(
+            f"slope_min_deg must be below slope_max_deg, got {slope_min_deg!r} and {slope_max_deg!r}"
+        )
     slope = horn_slope_deg(elevation, cell_size)
     free = traversable(slope, slope_min_deg, slope_max_deg) & np.isfinite(elevation)
     region = largest_free_component(free)
+    if not region.any():
+        raise InvalidScenarioError(
+            f"no cell has a slope strictly between {slope_min_deg} and {slope_max_deg} deg", source=sid,
+            field="slope bounds",
+        )
     h, w = free.shape
     (fr0, fc0), (fr1, fc1) = ENDPOINT_FRACTIONS
     start = nearest_cell(region, fr0 * (h - 1), fc0 * (w - 1))
@@ -227,6 +242,7 @@ def load_case(
     case: int, slope_min_deg: float = DEFAULT_SLOPE_MIN_DEG, slope_max_deg: float = DEFAULT_SLOPE_MAX_DEG
 ) -> Scenario:
     """Build ``ggaco.case<k>``: a real DEM resampled to the size of the paper's case ``k``."""
+    check_choice(case, CASES, "case")
     rows, cols, source = CASES[case]
     elevation, cell, record = source_dem(source)
     resampled, new_cell, how = resample_to(elevation, cell, (rows, cols))

@@ -21,10 +21,10 @@ from __future__ import annotations
 from functools import lru_cache, partial
 from pathlib import Path
 
-from pathzoo.core import Scenario
+from pathzoo.core import InvalidParameterError, Scenario
 from pathzoo.io.movingai import read_scen, scenarios_from_scen
 from pathzoo.plugins.entries import ScenarioEntry
-from pathzoo_scenarios.common import DATA_DIR, pack_metadata
+from pathzoo_scenarios.common import DATA_DIR, check_choice, pack_metadata
 
 __all__ = ["PACK_VERSION", "SCEN_FILES", "scen_path", "scenario_id", "load", "entries"]
 
@@ -58,7 +58,11 @@ def _map_scenarios(map_stem: str) -> tuple[Scenario, ...]:
 
 def load(map_stem: str, index: int) -> Scenario:
     """Problem ``index`` of a map's ``.scen`` file as a pack scenario (shares the map's graph)."""
-    base = _map_scenarios(map_stem)[index]
+    check_choice(map_stem, SCEN_FILES, "map_stem")
+    problems = _map_scenarios(map_stem)
+    if not 0 <= index < len(problems):
+        raise InvalidParameterError(f"index must be in 0..{len(problems) - 1} for map {map_stem}, got {index!r}")
+    base = problems[index]
     bucket = int(base.metadata["bucket"])
     meta = pack_metadata(
         "movingai",

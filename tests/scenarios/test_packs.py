@@ -3,13 +3,14 @@
 from __future__ import annotations
 
 import pickle
+from functools import partial
 
 import pytest
 
 import pathzoo
 from pathzoo.plotting.scenario import save_scenario_png
 from pathzoo.plugins.manager import get_registry
-from pathzoo_scenarios import plugin
+from pathzoo_scenarios import dsaco, fgdaco, gant, ggaco, movingai, plugin
 
 EXPECTED_NON_MOVINGAI = {
     "gant.fig7", "gant.acopso", *(f"gant.{s}.{p}" for s in ("simple", "moderate", "complex") for p in (1, 2, 3)),
@@ -52,3 +53,26 @@ def test_load_kind_version_and_png(sid, tmp_path):
     out = save_scenario_png(s, tmp_path / f"{sid}.png")
     assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert pickle.loads(pickle.dumps(s)).id == sid
+
+
+@pytest.mark.parametrize(
+    "call",
+    [
+        partial(gant.load_large, "hard", 1),
+        partial(gant.load_large, "simple", 4),
+        partial(dsaco.load, "alpine"),
+        partial(fgdaco.load, 4),
+        partial(ggaco.load, "moon"),
+        partial(ggaco.load, "hugo", 30.0, 10.0),
+        partial(movingai.load, "arena", 999),
+    ],
+)
+def test_bad_arguments_raise_one_line_parameter_errors(call):
+    with pytest.raises(pathzoo.InvalidParameterError) as info:
+        call()
+    assert "\n" not in str(info.value)
+
+
+def test_impossible_slope_bounds_are_a_scenario_error():
+    with pytest.raises(pathzoo.InvalidScenarioError, match="slope"):
+        ggaco.load("hugo", slope_min_deg=89.0, slope_max_deg=90.0)
