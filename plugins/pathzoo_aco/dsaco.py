@@ -67,12 +67,19 @@ def p_schedule(t: int, p_initial: float, gamma: float, every: int = 100) -> floa
     return p_initial * gamma ** ((t - 1) // every)
 
 
+def _per_walk(per_position: np.ndarray, walks: Walks) -> np.ndarray:
+    """Sum a value given per position of ``walks.flat`` over each walk (``inf`` for walks that failed)."""
+    cum = np.concatenate([[0.0], np.cumsum(per_position)])
+    return np.where(walks.reached, cum[walks.offsets[1:]] - cum[walks.offsets[:-1]], np.inf)
+
+
 @dataclass
 class DsacoState(ColonyState):
     """Colony state plus the per-edge fitness terms (in cells) and the turn angle between moves."""
 
     edge_length: np.ndarray | None = None
     edge_height: np.ndarray | None = None
+    edge_fitness: np.ndarray | None = None
     turn_angle: np.ndarray | None = None
 
 
@@ -168,15 +175,28 @@ class DSACO(AntColonyPlanner):
 
     def init_state(self, problem: ColonyProblem, rules: WalkRules, trail: Pheromone, engine: WalkEngine,
                    rng: np.random.Generator) -> DsacoState:
-        """Bound the trail to ``[τmin, τmax]`` and precompute the fitness terms of eqs. 21-23."""
+        """Bound the trail to ``[τmin, τmax]`` and precompute the per-edge fitness terms of eqs. 21-22 and the turns."""
         trail.set_bounds(self.tau_min, self.tau_max)
         g = problem.graph
         h = self.node_height(problem)
         moves = g.offsets[:, ::-1] * problem.scenario.cell_sizes  # world vectors (x, y[, z])
         unit = moves / np.linalg.norm(moves, axis=1, keepdims=True)
         turn = np.arccos(np.clip(unit @ unit.T, -1.0, 1.0))
-        return DsacoState(problem, rules, trail, rng, edge_length=g.length / problem.scenario.cell_size,
-                          edge_height=0.5 * (h[problem.sources] + h[g.indices]), turn_angle=turn)
+        length = g.length / problem.scenario.cell_size
+        height = 0.5 * (h[problem.sources] + h[g.indices])
+        return DsacoState(problem, rules, trail, rng, edge_length=length, edge_height=height,
+                          edge_fitness=self.f1 * length + self.f2 * height, turn_angle=turn)
+
+    @staticmethod
+    def step_turns(state: ColonyState, walks: Walks) -> np.ndarray:
+        """Per position of ``walks.flat``: the angle (radians) between that segment and the walk's previous one."""
+        assert isinstance(state, DsacoState) and state.turn_angle is not None
+        moves = state.problem.graph.offset_id[walks.flat]
+        turns = np.zeros(moves.size)
+        if moves.size > 1:
+            turns[1:] = state.turn_angle[moves[:-1], moves[1:]]
+        turns[walks.offsets[:-1][walks.offsets[:-1] < moves.size]] = 0.0  # no turn into a walk's first segment
+        return turns
 
     def fitness_terms(self, state: ColonyState, walks: Walks) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """``(D0, Dh, DT)`` of every walk (eqs. 21-23; ``inf`` for walks that failed).
@@ -185,20 +205,14 @@ class DSACO(AntColonyPlanner):
         of both ends), in cells; ``DT`` sums the angles (radians) between
         consecutive segments.
         """
-        assert isinstance(state, DsacoState) and state.turn_angle is not None
-        moves = state.problem.graph.offset_id[walks.flat].astype(np.int64)
-        turns = np.zeros(moves.size)
-        if moves.size > 1:
-            turns[1:] = state.turn_angle[moves[:-1], moves[1:]]
-        turns[walks.offsets[:-1][walks.offsets[:-1] < moves.size]] = 0.0  # no turn into a walk's first segment
-        cum = np.concatenate([[0.0], np.cumsum(turns)])
-        dt = np.where(walks.reached, cum[walks.offsets[1:]] - cum[walks.offsets[:-1]], np.inf)
-        return walks.totals(state.edge_length), walks.totals(state.edge_height), dt
+        assert isinstance(state, DsacoState) and state.edge_length is not None and state.edge_height is not None
+        return (walks.totals(state.edge_length), walks.totals(state.edge_height),
+                _per_walk(self.step_turns(state, walks), walks))
 
     def walk_costs(self, state: ColonyState, walks: Walks) -> np.ndarray:
-        """Eq. 20: ``Fitness = f1 D0 + f2 Dh + f3 DT``."""
-        d0, dh, dt = self.fitness_terms(state, walks)
-        return self.f1 * d0 + self.f2 * dh + self.f3 * dt
+        """Eq. 20: ``Fitness = f1 D0 + f2 Dh + f3 DT`` (one pass over the walks)."""
+        assert isinstance(state, DsacoState) and state.edge_fitness is not None
+        return _per_walk(state.edge_fitness[walks.flat] + self.f3 * self.step_turns(state, walks), walks)
 
     def update_trail(self, state: ColonyState, walks: Walks, costs: np.ndarray) -> None:
         """Eqs. 16-19: evaporate everywhere; the iteration-best ant lays ``Q / ((1-p) F_now + p F_global)``."""
