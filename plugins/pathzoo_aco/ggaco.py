@@ -63,6 +63,8 @@ class GGACO(AntColonyPlanner):
         "energy_floor_j": ENERGY_FLOOR,
         "objective": Param("energy", "which walk is best: least energy (eq. 6) or length (eq. 5)",
                            choices=("energy", "length")),
+        "colony": Param("race", "ants race in lock step until the first reaches D (Algorithm 1), or each "
+                        "ant walks to D", choices=("race", "complete")),
     }
 
     @staticmethod
@@ -84,8 +86,8 @@ class GGACO(AntColonyPlanner):
         dist = problem.goal_distance
         to = dist[g.indices]
         here = dist[problem.sources]
-        with np.errstate(divide="ignore", invalid="ignore"):
-            progress = np.where(here > 0.0, to / here, np.inf)
+        # edges leaving the destination are never chosen (a walk ends there): any finite progress will do
+        progress = to / np.where(here > 0.0, here, 1.0)
         gain = 1.0 / (1.0 + np.exp(-self.lam * progress))
         nonempty = g.degree > 0
         nearest = np.full(g.n_nodes, np.inf)
@@ -95,9 +97,10 @@ class GGACO(AntColonyPlanner):
         return np.where(best, gain, -gain)
 
     def walk_rules(self, problem: ColonyProblem) -> WalkRules:
-        """Eq. 15 with the pre-choice gain of eq. 13."""
+        """Eq. 15 with the pre-choice gain of eq. 13; ants race until the first reaches ``D`` (Algorithm 1)."""
         return WalkRules.product(self.alpha, self.heuristic(problem), self.beta, self.neighbour_factor(problem),
-                                 pre_add=self.gain(problem), **self.walk_options(problem))
+                                 pre_add=self.gain(problem), race=self.colony == "race",
+                                 **self.walk_options(problem))
 
     def initial_trail(self, problem: ColonyProblem) -> float:
         """``τ0 = 0`` (section 3.2.2.2); reads are floored at ``tau_floor``."""

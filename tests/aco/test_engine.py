@@ -13,7 +13,9 @@ import pathzoo
 from pathzoo import Budget, VehicleModel
 from pathzoo.harness.validation import validate_path
 from pathzoo_aco.engine import (
+    ABORTED,
     EXHAUSTED,
+    OUTRUN,
     REACHED,
     STEP_CAP,
     STUCK,
@@ -109,6 +111,32 @@ def test_dead_ends_backtrack_or_drop():
     assert back.steps[0] == 2 * (free - 1)  # depth-first: every free cell entered once and left once
     drop = WalkEngine(problem).walk(replace(_rules(problem), backtrack=False), trail, 5, seed=1)
     assert np.all(drop.flags == STUCK) and drop.started == 5
+
+
+def test_race_stops_the_colony_when_the_first_ant_arrives():
+    problem = ColonyProblem(walled_grid())
+    rules = replace(_rules(problem, local_keep=0.9, local_add=0.01), race=True)
+    trail = Pheromone(problem.graph.n_edges, 1.0)
+    walks = WalkEngine(problem).walk(rules, trail, 12, seed=4)
+    winner = np.flatnonzero(walks.flags == REACHED)
+    assert walks.started == 12 and len(winner) == 1
+    assert np.all(walks.flags[walks.flags != REACHED] == OUTRUN)
+    _check_walk(problem, walks.edges(winner[0]))
+    # lock step: ants before the winner took as many steps as it, ants after it one fewer
+    w = winner[0]
+    assert np.all(walks.steps[:w] == walks.steps[w]) and np.all(walks.steps[w + 1 :] == walks.steps[w] - 1)
+    again = WalkEngine(problem).walk(rules, Pheromone(problem.graph.n_edges, 1.0), 12, seed=4)
+    assert np.array_equal(again.flat, walks.flat) and np.array_equal(again.steps, walks.steps)
+
+
+def test_race_grows_its_stacks_and_honours_the_allowance():
+    problem = ColonyProblem(open_grid(64))
+    g = problem.graph
+    blind = WalkRules.product(1.0, np.ones(g.n_edges), 1.0, max_steps=10**9, race=True)
+    walks = WalkEngine(problem).walk(blind, Pheromone(g.n_edges, 1.0), 3, seed=1)
+    assert walks.reached.sum() == 1 and len(walks.edges(int(np.argmax(walks.reached)))) > 256
+    cut = WalkEngine(problem).walk(blind, Pheromone(g.n_edges, 1.0), 3, seed=1, allowance=30)
+    assert np.all(cut.flags == ABORTED) and cut.steps.sum() == 30
 
 
 def test_step_cap_drops_the_ant():
@@ -223,7 +251,8 @@ def test_time_budget_is_respected_on_a_large_map():
     planner.plan(scenario, budget=Budget(iterations=1, time_s=5.0), rng=np.random.default_rng(0))  # compile
     started = time.perf_counter()
     result = planner.plan(scenario, budget=Budget(time_s=0.5), rng=np.random.default_rng(0))
-    assert time.perf_counter() - started < 1.0 and result.iterations >= 1
+    # the conformance kit's tolerance: stopping granularity on a loaded machine
+    assert time.perf_counter() - started < 0.5 + 1.0 and result.iterations >= 1
 
 
 def test_progress_reports_best_so_far():

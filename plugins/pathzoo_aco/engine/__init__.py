@@ -4,7 +4,7 @@ from pathzoo_aco.engine.colony import AntColonyPlanner, ColonyState, colony_para
 from pathzoo_aco.engine.pheromone import Pheromone, deposit_walks
 from pathzoo_aco.engine.problem import ColonyProblem
 from pathzoo_aco.engine.rules import EMPTY, WalkRules
-from pathzoo_aco.engine.walk import ABORTED, EXHAUSTED, REACHED, STEP_CAP, STUCK, WalkEngine, Walks
+from pathzoo_aco.engine.walk import ABORTED, EXHAUSTED, OUTRUN, REACHED, STEP_CAP, STUCK, WalkEngine, Walks
 
 __all__ = [
     "ABORTED",
@@ -13,6 +13,7 @@ __all__ = [
     "ColonyState",
     "EMPTY",
     "EXHAUSTED",
+    "OUTRUN",
     "Pheromone",
     "REACHED",
     "STEP_CAP",

@@ -60,6 +60,10 @@ class WalkRules:
     turn : ndarray, shape (K + 1, K) or (0, 0)
         Factor per (previous move, next move); 0 forbids the turn. Empty:
         no turn rule.
+    race : bool
+        Ants move in lock step, one step each per round, and the colony stops
+        as soon as one reaches the goal (GGACO's Algorithm 1); otherwise each
+        ant walks to the goal before the next one starts.
     """
 
     tau_exp: float
@@ -72,6 +76,7 @@ class WalkRules:
     backtrack: bool = True
     max_steps: int = 2**62
     turn: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)))
+    race: bool = False
 
     def __post_init__(self) -> None:
         # single precision halves the memory traffic of the walks; weights only set ratios
