@@ -5,6 +5,8 @@ Run from the repository root (``../shared`` must sit beside it)::
     python benchmarks/aco.py               # throughput + G-Ant settings + GGACO on its largest terrain
     python benchmarks/aco.py --quick       # throughput only
     python benchmarks/aco.py --all-ggaco   # also the four other GGACO terrain sizes
+    python benchmarks/aco.py --seeds 10    # also DSACO/IACA/FGDACO quality over 10 seeds per paper setting
+    python benchmarks/aco.py --later-only --seeds 10   # only the DSACO/IACA/FGDACO sections
 
 Throughput: each variant runs a few colonies with its default parameters on a
 100 x 100 random grid and on MovingAI's 8room_000 (512 x 512, its longest
@@ -38,7 +40,7 @@ from pathzoo.harness.validation import validate_path
 from pathzoo.io.movingai import read_map, read_scen
 
 SHARED = Path(__file__).resolve().parents[1] / ".." / "shared" / "data"
-VARIANTS = ("aco.as", "aco.mmas", "aco.acs", "aco.ggaco", "aco.gant")
+VARIANTS = ("aco.as", "aco.mmas", "aco.acs", "aco.ggaco", "aco.gant", "aco.dsaco", "aco.iaca", "aco.fgdaco")
 
 TABLE_HEAD = ("| setting | scenario | iterations x ants | ours, CPU (s) | ours, wall (s) | paper (s) | speed-up (CPU) "
               "| our length |\n|---|---|---|---|---|---|---|---|")
@@ -179,18 +181,87 @@ def ggaco_settings(cases: tuple[int, ...]) -> None:
     print()
 
 
+# ---------------------------------------------------------------- DSACO, IACA and FGDACO
+DSACO_TABLE5 = {"s": 3.9541, "length": 74.1204, "fitness": 83.0249}  # mean of 30 runs, complex terrain
+IACA_TABLE5 = {"s": 21.0, "points": 21, "distance": 33.5}  # the IACA row (equal to Dijkstra's path)
+FGDACO_TABLE7 = {1: (28.97, 126.65), 2: (38.74, 135.96), 3: (74.33, 197.69)}  # median (s, length m) of 30 runs
+LATER_SETTINGS = (  # label, planner, scenario, iterations, ants, paper seconds, extra parameters
+    ("DSACO Table 5", "aco.dsaco", "dsaco.complex", 500, 10, DSACO_TABLE5["s"], {}),
+    ("DSACO Table 5, longitude rule", "aco.dsaco", "dsaco.complex", 500, 10, DSACO_TABLE5["s"],
+     {"step_rule": "longitude"}),
+    ("IACA Table 5", "aco.iaca", "iaca.offroad", 100, 40, IACA_TABLE5["s"], {}),
+    *((f"FGDACO Table 7, scenario {k}", "aco.fgdaco", f"fgdaco.scenario{k}", 100, 20, paper[0], {})
+      for k, paper in FGDACO_TABLE7.items()),
+)
+
+
+def later_settings() -> None:
+    """Time of one ``plan()`` call in the DSACO, IACA and FGDACO paper settings, next to the papers' times."""
+    print("## DSACO (Mai et al. 2023), IACA (Wang et al. 2018), FGDACO (Sangeetha et al. 2021)\n")
+    print(TABLE_HEAD)
+    for label, pid, sid, iters, ants, paper_s, params in LATER_SETTINGS:
+        scenario = registered(sid)
+        if scenario is None:
+            print(f"| {label} | {sid} not installed | | | | {paper_s:g} | | |")
+            continue
+        scenario.graph
+        run(pid, scenario, 1, n_ants=1, **params)  # load the compiled kernels
+        paper_row(label, pid, scenario, False, iters, paper_s, n_ants=ants, **params)
+    print()
+
+
+def later_quality(seeds: int) -> None:
+    """Median and IQR over ``seeds`` runs of each setting: length, the planner's own cost, CPU time."""
+    print(f"## DSACO, IACA, FGDACO: {seeds} seeds per paper setting (median [IQR])\n")
+    print("| setting | length | planner's cost | path points | CPU (s) | paper |\n|---|---|---|---|---|---|")
+    papers = {"aco.dsaco": f"length {DSACO_TABLE5['length']} km, fitness {DSACO_TABLE5['fitness']} (mean)",
+              "aco.iaca": f"{IACA_TABLE5['points']} points, distance {IACA_TABLE5['distance']}"}
+    for label, pid, sid, iters, ants, _, params in LATER_SETTINGS:
+        scenario = registered(sid)
+        if scenario is None:
+            continue
+        planner = pathzoo.make_planner(pid, n_ants=ants, **params)
+        rows = []
+        for seed in range(seeds):
+            costs: list[float] = []
+            cpu = time.process_time()
+            result = planner.plan(scenario, budget=Budget(iterations=iters), rng=np.random.default_rng(seed),
+                                  progress=lambda i, e, c: costs.append(c))
+            cpu = time.process_time() - cpu
+            if result.solved and not validate_path(scenario, result.path):
+                raise RuntimeError(f"{pid} returned an invalid path on {sid}")
+            rows.append((length(result) / scenario.cell_size, costs[-1] if costs else math.nan,
+                         len(result.path) if result.solved else math.nan, cpu))
+        cells = []
+        for column in np.array(rows).T:
+            q1, q2, q3 = np.nanpercentile(column, [25, 50, 75])
+            cells.append(f"{q2:.2f} [{q1:.2f}, {q3:.2f}]")
+        paper = papers.get(pid) or f"length {FGDACO_TABLE7[int(sid[-1])][1]} m (median)"
+        print(f"| {label} | {' | '.join(cells)} | {paper} |")
+    print("\nLengths are in cells (DSACO: km; IACA: 10 m cells; FGDACO: m). The planner's cost is DSACO's fitness "
+          "(eq. 20), IACA's eq. 21 distance, FGDACO's length.\n")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="throughput only")
     parser.add_argument("--all-ggaco", action="store_true", help="all five GGACO terrain sizes")
     parser.add_argument("--iterations", type=int, default=3, help="colonies per throughput run")
+    parser.add_argument("--later-only", action="store_true", help="only the DSACO/IACA/FGDACO sections")
+    parser.add_argument("--seeds", type=int, default=0,
+                        help="also run the DSACO/IACA/FGDACO paper settings over this many seeds")
     args = parser.parse_args()
     print(f"load average: {os.getloadavg()[0]:.1f} on {os.cpu_count()} CPUs\n")
-    throughput(args.iterations)
+    if not args.later_only:
+        throughput(args.iterations)
     if args.quick:
         return
-    gant_settings()
-    ggaco_settings((1, 2, 3, 4, 5) if args.all_ggaco else (1,))
+    if not args.later_only:
+        gant_settings()
+        ggaco_settings((1, 2, 3, 4, 5) if args.all_ggaco else (1,))
+    later_settings()
+    if args.seeds:
+        later_quality(args.seeds)
 
 
 if __name__ == "__main__":
