@@ -41,230 +41,214 @@ def _seed(seed):
     np.random.seed(seed)
 
 
-_MOVED, _BACKED = -1, -2
-"""Outcomes of one step besides the walk outcomes: moved forward, stepped back."""
-
-_RUNNING, OUTRUN = -1, 5
-"""Race walks: still walking; stopped because another ant reached the goal first."""
-
-
-@numba.njit(cache=True, inline="always")
-def _step(indptr, indices, offset_id, horizontal, turn, x, scale, lo, hi, on_nodes,
-          tau_exp, lo_pow, w_mul, w_add, q0, local_keep, local_add, pre_add, backtrack,
-          start, stamp, wid, stack_e, stack_prev, cand_e, cand_w, cur, depth, prev):
-    """Move one ant one step; return ``(outcome, cur, depth, prev)``.
-
-    ``outcome`` is ``_MOVED``, ``_BACKED``, ``STUCK`` (dead end, no
-    backtracking) or ``EXHAUSTED`` (backtracked to the start with nothing left).
-    """
-    use_turn = turn.shape[0] > 0
-    has_add = w_add.size > 0
-    has_pre = pre_add.size > 0
-    bounded = lo > 0.0 or hi < np.inf
-    e0 = indptr[cur]
-    e1 = indptr[cur + 1]
-    nc = 0
-    total_w = 0.0
-    for e in range(e0, e1):
-        j = indices[e]
-        k = j if on_nodes else e
-        t = scale * x[k]
-        if bounded:
-            t = min(max(t, lo), hi)
-        if has_pre:  # added to every edge leaving the cell, before the choice
-            t = min(max(t + pre_add[e], lo), hi)
-            x[k] = t / scale
-        if stamp[j] == wid:
-            continue
-        f = 1.0
-        if use_turn:
-            f = turn[prev, offset_id[e]]
-            if f <= 0.0:
-                continue
-        if tau_exp == 1.0:
-            w = t * w_mul[e]
-        elif t <= lo:  # trails resting on the floor share one power
-            w = lo_pow * w_mul[e]
-        else:
-            w = t**tau_exp * w_mul[e]
-        if has_add:
-            w += w_add[e]
-        if use_turn:
-            w *= f
-        if w > 0.0:
-            cand_e[nc] = e
-            cand_w[nc] = w
-            total_w += w
-            nc += 1
-    if nc == 0:  # maybe every trail is 0: weigh the allowed edges by the heuristic alone
-        for e in range(e0, e1):
-            if stamp[indices[e]] == wid:
-                continue
-            f = turn[prev, offset_id[e]] if use_turn else 1.0
-            w = f * (w_mul[e] + (w_add[e] if has_add else 0.0))
-            if w > 0.0:
-                cand_e[nc] = e
-                cand_w[nc] = w
-                total_w += w
-                nc += 1
-    if nc == 0:  # dead end
-        if not backtrack:
-            return STUCK, cur, depth, prev
-        if depth == 0:
-            return EXHAUSTED, cur, depth, prev
-        depth -= 1
-        cur = indices[stack_e[depth - 1]] if depth > 0 else start
-        if use_turn:
-            prev = stack_prev[depth - 1] if depth > 0 else turn.shape[0] - 1
-        return _BACKED, cur, depth, prev
-    sel = cand_e[nc - 1]
-    if q0 > 0.0 and np.random.random() < q0:
-        best = -1.0
-        for c in range(nc):
-            if cand_w[c] > best:
-                best = cand_w[c]
-                sel = cand_e[c]
-    else:
-        r = np.random.random() * total_w
-        acc = 0.0
-        for c in range(nc):
-            acc += cand_w[c]
-            if r < acc:
-                sel = cand_e[c]
-                break
-    cur = indices[sel]
-    stamp[cur] = wid
-    stack_e[depth] = sel
-    if use_turn:
-        o = offset_id[sel]
-        if horizontal[o]:
-            prev = o
-        stack_prev[depth] = prev
-    depth += 1
-    if local_keep != 1.0 or local_add != 0.0:
-        k = cur if on_nodes else sel
-        t = local_keep * min(max(scale * x[k], lo), hi) + local_add
-        x[k] = min(max(t, lo), hi) / scale
-    return _MOVED, cur, depth, prev
+_FRESH, _RUNNING, OUTRUN = -2, -1, 5
+"""Walk states before an outcome: not started, walking; and the race outcome "another ant reached the goal first"."""
 
 
 @numba.njit(cache=True)
-def _walk(indptr, indices, offset_id, horizontal, turn,
-          x, scale, lo, hi, on_nodes,
-          tau_exp, w_mul, w_add, q0, local_keep, local_add, pre_add,
-          start, goal, backtrack, max_steps, allowance,
-          first_ant, n_ants, pending, walk_base,
-          stamp, stack_e, stack_prev, cand_e, cand_w,
-          flat, offsets, flags, steps_out, total):
-    """Ants one after another, each from the start until it reaches the goal or stops."""
+def _colony(indptr, indices, offset_id, horizontal, turn,
+            x, scale, lo, hi, on_nodes,
+            tau_exp, w_mul, w_add, q0, local_keep, local_add, pre_add,
+            start, goal, backtrack, max_steps, allowance, race, walk_base,
+            stamps, stacks, prevs, cand_e, cand_w,
+            cur, depth, prev, steps, flags, counters, flat, offsets):
+    """Move the colony's ants; return ``_DONE`` or ``_NEED_SPACE`` (grow ``stacks`` or ``flat``, call again).
+
+    One after another (``race`` False: an ant walks until it stops, then the
+    next starts; one stamp row and one stack row serve them all), or in lock
+    step (``race`` True: one step per ant per round, a stamp and stack row
+    per ant, until the first reaches the goal). All state lives in the
+    arrays; ``counters`` holds (next ant, ants started, steps taken, a
+    finished walk waiting for room in ``flat``), so a call resumes where the
+    previous one stopped.
+    """
+    n_ants = flags.size
+    use_turn = turn.shape[0] > 0
+    no_prev = turn.shape[0] - 1
+    has_add = w_add.size > 0
+    has_pre = pre_add.size > 0
+    do_local = local_keep != 1.0 or local_add != 0.0
+    bounded = lo > 0.0 or hi < np.inf
     lo_pow = lo**tau_exp
-    a = first_ant
-    if pending >= 0:  # the previous call stopped to grow ``flat`` after this ant reached the goal
+    a = counters[0]
+    total = counters[2]
+    if counters[3] > 0:  # copy the walk that waited for room in ``flat``
         base = offsets[a]
-        for p in range(pending):
-            flat[base + p] = stack_e[p]
-        offsets[a + 1] = base + pending
+        for p in range(depth[a]):
+            flat[base + p] = stacks[0, p]
+        offsets[a + 1] = base + depth[a]
+        counters[3] = 0
         a += 1
-    while a < n_ants:
+    while True:
+        if a >= n_ants:
+            if not race:
+                break
+            a = 0
+            running = False
+            for b in range(n_ants):
+                running = running or flags[b] == _RUNNING
+            if not running:
+                break
+        if flags[a] >= 0:  # a race walk that has stopped
+            a += 1
+            continue
+        row = a if race else 0
+        stamp = stamps[row]
+        stack_e = stacks[row]
+        stack_prev = prevs[row]
         wid = walk_base + a
-        cur = start
-        depth = 0
-        prev = turn.shape[0] - 1
-        steps = 0
-        flag = REACHED
-        stamp[start] = wid
-        while cur != goal:
-            if steps >= max_steps:
+        if flags[a] == _FRESH:
+            flags[a] = _RUNNING
+            counters[1] += 1
+            cur[a] = start
+            depth[a] = 0
+            prev[a] = no_prev
+            steps[a] = 0
+            stamp[start] = wid
+        c = cur[a]
+        d = depth[a]
+        pv = prev[a]
+        n = steps[a]
+        flag = _RUNNING
+        while True:
+            if c == goal:
+                flag = REACHED
+                break
+            if n >= max_steps:
                 flag = STEP_CAP
                 break
             if total >= allowance:
                 flag = ABORTED
                 break
-            out, cur, depth, prev = _step(indptr, indices, offset_id, horizontal, turn, x, scale, lo, hi,
-                                          on_nodes, tau_exp, lo_pow, w_mul, w_add, q0, local_keep, local_add,
-                                          pre_add, backtrack, start, stamp, wid, stack_e, stack_prev, cand_e,
-                                          cand_w, cur, depth, prev)
-            if out >= 0:
-                flag = out
-                break
-            steps += 1
-            total += 1
-        flags[a] = flag
-        steps_out[a] = steps
-        base = offsets[a]
-        if flag == REACHED:
-            if base + depth > flat.size:
-                return _NEED_SPACE, a, total, depth
-            for p in range(depth):
-                flat[base + p] = stack_e[p]
-            offsets[a + 1] = base + depth
-        else:
-            offsets[a + 1] = base
-        a += 1
-        if flag == ABORTED or (flag == EXHAUSTED and turn.shape[0] == 0):
-            break
-    for b in range(a, n_ants):  # never started
-        flags[b] = ABORTED
-        steps_out[b] = 0
-        offsets[b + 1] = offsets[a]
-    return _DONE, a, total, -1
-
-
-@numba.njit(cache=True)
-def _race(indptr, indices, offset_id, horizontal, turn,
-          x, scale, lo, hi, on_nodes,
-          tau_exp, w_mul, w_add, q0, local_keep, local_add, pre_add,
-          start, goal, backtrack, max_steps, allowance, next_ant, walk_base,
-          stamps, stacks, prevs, cand_e, cand_w, cur, depth, prev, steps, flags, total):
-    """Ants in lock step, one step each per round, until the first one reaches the goal.
-
-    All state lives in the arrays, so a call that returns ``_NEED_SPACE``
-    (an ant's walk outgrew ``stacks``) resumes where it stopped.
-    """
-    lo_pow = lo**tau_exp
-    n_ants = flags.size
-    a = next_ant
-    while True:
-        while a < n_ants:
-            if flags[a] == _RUNNING:
-                if steps[a] >= max_steps:
-                    flags[a] = STEP_CAP
-                elif total >= allowance:
-                    for b in range(n_ants):
-                        if flags[b] == _RUNNING:
-                            flags[b] = ABORTED
-                    return _DONE, a, total
-                elif depth[a] >= stacks.shape[1]:
-                    return _NEED_SPACE, a, total
+            if d >= stack_e.size:
+                break  # no room on the stack: the caller grows it
+            # ---------------------------------------------------------- one step
+            e0 = indptr[c]
+            e1 = indptr[c + 1]
+            nc = 0
+            total_w = 0.0
+            for e in range(e0, e1):
+                j = indices[e]
+                k = j if on_nodes else e
+                t = scale * x[k]
+                if bounded:
+                    t = min(max(t, lo), hi)
+                if has_pre:  # added to every edge leaving the cell, before the choice
+                    t = min(max(t + pre_add[e], lo), hi)
+                    x[k] = t / scale
+                if stamp[j] == wid:
+                    continue
+                f = 1.0
+                if use_turn:
+                    f = turn[pv, offset_id[e]]
+                    if f <= 0.0:
+                        continue
+                if tau_exp == 1.0:
+                    w = t * w_mul[e]
+                elif t <= lo:  # trails resting on the floor share one power
+                    w = lo_pow * w_mul[e]
                 else:
-                    out, c, d, p = _step(indptr, indices, offset_id, horizontal, turn, x, scale, lo, hi, on_nodes,
-                                         tau_exp, lo_pow, w_mul, w_add, q0, local_keep, local_add, pre_add,
-                                         backtrack, start, stamps[a], walk_base + a, stacks[a], prevs[a], cand_e,
-                                         cand_w, cur[a], depth[a], prev[a])
-                    cur[a], depth[a], prev[a] = c, d, p
-                    if out >= 0:
-                        flags[a] = out
-                        if out == EXHAUSTED and turn.shape[0] == 0:  # the goal is unreachable: stop them all
-                            for b in range(n_ants):
-                                if flags[b] == _RUNNING:
-                                    flags[b] = ABORTED
-                            return _DONE, a, total
-                    else:
-                        steps[a] += 1
-                        total += 1
-                        if c == goal:
-                            flags[a] = REACHED
-                            for b in range(n_ants):
-                                if flags[b] == _RUNNING:
-                                    flags[b] = OUTRUN
-                            return _DONE, a, total
+                    w = t**tau_exp * w_mul[e]
+                if has_add:
+                    w += w_add[e]
+                if use_turn:
+                    w *= f
+                if w > 0.0:
+                    cand_e[nc] = e
+                    cand_w[nc] = w
+                    total_w += w
+                    nc += 1
+            if nc == 0:  # maybe every trail is 0: weigh the allowed edges by the heuristic alone
+                for e in range(e0, e1):
+                    if stamp[indices[e]] == wid:
+                        continue
+                    f = turn[pv, offset_id[e]] if use_turn else 1.0
+                    w = f * (w_mul[e] + (w_add[e] if has_add else 0.0))
+                    if w > 0.0:
+                        cand_e[nc] = e
+                        cand_w[nc] = w
+                        total_w += w
+                        nc += 1
+            if nc == 0:  # dead end
+                if not backtrack:
+                    flag = STUCK
+                    break
+                if d == 0:
+                    flag = EXHAUSTED
+                    break
+                d -= 1
+                c = indices[stack_e[d - 1]] if d > 0 else start
+                if use_turn:
+                    pv = stack_prev[d - 1] if d > 0 else no_prev
+            else:
+                sel = cand_e[nc - 1]
+                if q0 > 0.0 and np.random.random() < q0:
+                    best = -1.0
+                    for i in range(nc):
+                        if cand_w[i] > best:
+                            best = cand_w[i]
+                            sel = cand_e[i]
+                else:
+                    r = np.random.random() * total_w
+                    acc = 0.0
+                    for i in range(nc):
+                        acc += cand_w[i]
+                        if r < acc:
+                            sel = cand_e[i]
+                            break
+                c = indices[sel]
+                stamp[c] = wid
+                stack_e[d] = sel
+                if use_turn:
+                    o = offset_id[sel]
+                    if horizontal[o]:
+                        pv = o
+                    stack_prev[d] = pv
+                d += 1
+                if do_local:
+                    k = c if on_nodes else sel
+                    t = local_keep * min(max(scale * x[k], lo), hi) + local_add
+                    x[k] = min(max(t, lo), hi) / scale
+            n += 1
+            total += 1
+            if race:
+                if c == goal:
+                    flag = REACHED
+                break
+        cur[a] = c
+        depth[a] = d
+        prev[a] = pv
+        steps[a] = n
+        counters[2] = total
+        if flag == _RUNNING and d >= stack_e.size:
+            counters[0] = a
+            return _NEED_SPACE
+        if flag == _RUNNING:  # a race ant that took its step
             a += 1
-        a = 0
-        running = False
-        for b in range(n_ants):
-            running = running or flags[b] == _RUNNING
-        if not running:
-            return _DONE, a, total
+            continue
+        flags[a] = flag
+        stop = flag == ABORTED or (flag == EXHAUSTED and not use_turn) or (race and flag == REACHED)
+        if not race:
+            if flag == REACHED:
+                if offsets[a] + d > flat.size:
+                    counters[0] = a
+                    counters[3] = 1
+                    return _NEED_SPACE
+                for p in range(d):
+                    flat[offsets[a] + p] = stack_e[p]
+            offsets[a + 1] = offsets[a] + (d if flag == REACHED else 0)
+        if stop:
+            for b in range(n_ants):  # the others: never started, stopped, or outrun in a race
+                if flags[b] == _FRESH or (flags[b] == _RUNNING and flag != REACHED):
+                    flags[b] = ABORTED
+                elif flags[b] == _RUNNING:
+                    flags[b] = OUTRUN
+                if not race and b > a:
+                    offsets[b + 1] = offsets[a + 1]
+            break
+        a += 1
+    counters[0] = a
+    return _DONE
 
 
 @dataclass(frozen=True, eq=False)
@@ -325,17 +309,16 @@ class WalkEngine:
     def __init__(self, problem: ColonyProblem) -> None:
         g = problem.graph
         self.problem = problem
-        self.stamp = np.full(g.n_nodes, -1, dtype=np.int32)
+        self.stamps = np.full((1, g.n_nodes), -1, dtype=np.int32)  # tabu stamps: one row, or one per racing ant
         self.walk_base = 0
-        self.stack_e = np.zeros(problem.n_free + 1, dtype=np.int64)
-        self.stack_prev = np.zeros(problem.n_free + 1, dtype=np.int64)
+        self.stack_e = np.zeros((1, problem.n_free + 1), dtype=np.int64)
+        self.stack_prev = np.zeros((1, problem.n_free + 1), dtype=np.int64)
         kmax = int(g.degree.max()) if g.n_nodes else 0
         self.cand_e = np.zeros(max(kmax, 1), dtype=np.int64)
         self.cand_w = np.zeros(max(kmax, 1))
         self.flat = np.zeros(1024, dtype=np.int64)
         self.offset_id = g.offset_id.astype(np.int32)
         self.indices = g.indices.astype(np.int32)  # half the memory traffic of the int64 CSR arrays
-        self.race_stamps: np.ndarray | None = None  # one tabu stamp row per ant, made on the first race
         self.total_steps = 0
 
     def walk(self, rules: WalkRules, trail: Pheromone, n_ants: int, seed: int,
@@ -353,71 +336,51 @@ class WalkEngine:
         seed : int
             Seed of numba's generator for this colony.
         allowance : int
-            Stop (and mark the current walks :data:`ABORTED`) once this many
-            steps have been taken in this call.
+            Stop (and mark the walks still going :data:`ABORTED`) once this
+            many steps have been taken in this call.
         """
-        if self.walk_base + n_ants >= 2**31 - 1:  # the int32 walk stamps would overflow: start afresh
-            self.stamp[:] = -1
-            if self.race_stamps is not None:
-                self.race_stamps[:] = -1
-            self.walk_base = 0
-        _seed(seed)
-        walks = (self._race if rules.race else self._one_by_one)(rules, trail, n_ants, allowance)
-        self.walk_base += n_ants
-        return walks
-
-    def _args(self, rules: WalkRules, trail: Pheromone) -> tuple:
         p = self.problem
-        return (p.graph.indptr, self.indices, self.offset_id, p.horizontal_offsets, rules.turn,
+        if self.walk_base + n_ants >= 2**31 - 1:  # the int32 walk stamps would overflow: start afresh
+            self.stamps[:] = -1
+            self.walk_base = 0
+        if rules.race and len(self.stamps) < n_ants:
+            self.stamps = np.full((n_ants, p.n_nodes), -1, dtype=np.int32)
+        if rules.race:
+            stacks = np.zeros((n_ants, 256), dtype=np.int64)
+            prevs = np.zeros_like(stacks)
+        else:
+            stacks, prevs = self.stack_e, self.stack_prev
+        cur = np.zeros(n_ants, dtype=np.int64)
+        depth = np.zeros(n_ants, dtype=np.int64)
+        prev = np.zeros(n_ants, dtype=np.int64)
+        steps = np.zeros(n_ants, dtype=np.int64)
+        flags = np.full(n_ants, _FRESH, dtype=np.int8)
+        counters = np.zeros(4, dtype=np.int64)
+        offsets = np.zeros(n_ants + 1, dtype=np.int64)
+        _seed(seed)
+        while True:
+            status = _colony(
+                p.graph.indptr, self.indices, self.offset_id, p.horizontal_offsets, rules.turn,
                 trail.x, trail.scale, trail.lo, trail.hi, trail.on_nodes,
                 rules.tau_exp, rules.weight_mul, rules.weight_add, rules.q0, rules.local_keep, rules.local_add,
-                rules.pre_add, p.start, p.goal, rules.backtrack, rules.max_steps)
-
-    def _one_by_one(self, rules: WalkRules, trail: Pheromone, n_ants: int, allowance: int) -> Walks:
-        offsets = np.zeros(n_ants + 1, dtype=np.int64)
-        flags = np.zeros(n_ants, dtype=np.int8)
-        steps = np.zeros(n_ants, dtype=np.int64)
-        first, pending, total = 0, -1, 0
-        while True:
-            status, first, total, pending = _walk(
-                *self._args(rules, trail), allowance, first, n_ants, pending, self.walk_base,
-                self.stamp, self.stack_e, self.stack_prev, self.cand_e, self.cand_w,
-                self.flat, offsets, flags, steps, total,
+                rules.pre_add, p.start, p.goal, rules.backtrack, rules.max_steps, allowance, rules.race,
+                self.walk_base, self.stamps, stacks, prevs, self.cand_e, self.cand_w,
+                cur, depth, prev, steps, flags, counters, self.flat, offsets,
             )
             if status == _DONE:
                 break
-            grown = np.zeros(max(2 * self.flat.size, int(offsets[first]) + pending), dtype=np.int64)
-            grown[: self.flat.size] = self.flat
-            self.flat = grown
-        self.total_steps += int(total)
-        return Walks(self.flat[: int(offsets[-1])].copy(), offsets, flags, steps, int(first))
-
-    def _race(self, rules: WalkRules, trail: Pheromone, n_ants: int, allowance: int) -> Walks:
-        p = self.problem
-        if self.race_stamps is None or len(self.race_stamps) < n_ants:
-            self.race_stamps = np.full((n_ants, p.n_nodes), -1, dtype=np.int32)
-        stamps = self.race_stamps[:n_ants]
-        ants = np.arange(n_ants)
-        stamps[ants, p.start] = self.walk_base + ants
-        stacks = np.zeros((n_ants, 256), dtype=np.int64)
-        prevs = np.zeros_like(stacks)
-        cur = np.full(n_ants, p.start, dtype=np.int64)
-        depth = np.zeros(n_ants, dtype=np.int64)
-        prev = np.full(n_ants, rules.turn.shape[0] - 1, dtype=np.int64)
-        steps = np.zeros(n_ants, dtype=np.int64)
-        flags = np.full(n_ants, _RUNNING, dtype=np.int8)
-        next_ant, total = 0, 0
-        while True:
-            status, next_ant, total = _race(
-                *self._args(rules, trail), allowance, next_ant, self.walk_base,
-                stamps, stacks, prevs, self.cand_e, self.cand_w, cur, depth, prev, steps, flags, total,
-            )
-            if status == _DONE:
-                break
-            stacks = np.hstack([stacks, np.zeros_like(stacks)])
-            prevs = np.hstack([prevs, np.zeros_like(prevs)])
-        self.total_steps += int(total)
-        lengths = np.where(flags == REACHED, depth, 0)
-        offsets = np.concatenate([[0], np.cumsum(lengths)])
-        flat = np.concatenate([stacks[a, : lengths[a]] for a in range(n_ants)]) if n_ants else np.zeros(0, np.int64)
-        return Walks(flat.astype(np.int64), offsets, flags, steps, n_ants)
+            if counters[3]:  # a finished walk needs room in ``flat``
+                need = int(offsets[counters[0]] + depth[counters[0]])
+                self.flat = np.concatenate([self.flat, np.zeros(max(self.flat.size, need), dtype=np.int64)])
+            else:  # a race walk outgrew the stacks
+                stacks = np.hstack([stacks, np.zeros_like(stacks)])
+                prevs = np.hstack([prevs, np.zeros_like(prevs)])
+        self.walk_base += n_ants
+        self.total_steps += int(counters[2])
+        if rules.race:
+            lengths = np.where(flags == REACHED, depth, 0)
+            offsets = np.concatenate([[0], np.cumsum(lengths)])
+            flat = np.concatenate([stacks[a, : lengths[a]] for a in range(n_ants)] + [np.zeros(0, np.int64)])
+        else:
+            flat = self.flat[: int(offsets[-1])].copy()
+        return Walks(flat, offsets, flags, steps, int(counters[1]))
