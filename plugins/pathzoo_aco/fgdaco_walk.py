@@ -30,6 +30,7 @@ walks end :data:`STUCK` rather than :data:`EXHAUSTED`.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numba
 import numpy as np
@@ -196,6 +197,35 @@ def _timed_walk(indptr, indices, offset_id, horizontal, turn, length,
     return a, total
 
 
+@dataclass
+class _TimedBuffers:
+    """Work arrays of the timed walks, reused from colony to colony."""
+
+    stamp: np.ndarray
+    stack_e: np.ndarray
+    stack_prev: np.ndarray
+    stack_t: np.ndarray
+    cand_e: np.ndarray
+    cand_w: np.ndarray
+    gap: np.ndarray
+    near_ids: np.ndarray
+    mu: np.ndarray
+    strength: np.ndarray
+    flat: np.ndarray
+    walk_base: int = 0
+
+    @classmethod
+    def allocate(cls, problem: ColonyProblem, n_obstacles: int) -> "_TimedBuffers":
+        g = problem.graph
+        depth = problem.n_free + 1
+        degree = max(int(g.degree.max()) if g.n_nodes else 0, 1)
+        return cls(stamp=np.full(g.n_nodes, -1, dtype=np.int32), stack_e=np.zeros(depth, dtype=np.int64),
+                   stack_prev=np.zeros(depth, dtype=np.int64), stack_t=np.zeros(depth),
+                   cand_e=np.zeros(degree, dtype=np.int64), cand_w=np.zeros(degree), gap=np.zeros(n_obstacles),
+                   near_ids=np.zeros(n_obstacles, dtype=np.int64), mu=np.zeros((3, 3)), strength=np.zeros(3),
+                   flat=np.zeros(0, dtype=np.int64))
+
+
 class TimedWalkEngine(WalkEngine):
     """Sends ants that keep time and avoid moving obstacles (see the module docstring).
 
@@ -221,13 +251,12 @@ class TimedWalkEngine(WalkEngine):
                  clear_in: np.ndarray, sensing_m: float, beta: float) -> None:
         super().__init__(problem)
         s = problem.scenario
+        g = problem.graph
+        self.buffers = _TimedBuffers.allocate(problem, len(s.moving_obstacles))
         self.obstacles = pack_obstacles(s.moving_obstacles)
-        self.length = np.ascontiguousarray(problem.graph.length)
-        self.stack_t = np.zeros(problem.n_free + 1)
-        self.gap = np.zeros(self.obstacles.n)
-        self.near_ids = np.zeros(self.obstacles.n, dtype=np.int64)
-        self.mu = np.zeros((3, 3))
-        self.strength = np.zeros(3)
+        self.graph_arrays = (g.indptr, g.indices.astype(np.int32), g.offset_id.astype(np.int32),
+                             problem.horizontal_offsets)
+        self.length = np.ascontiguousarray(g.length)
         self.target_in = np.ascontiguousarray(target_in, dtype=np.float64)
         self.angle_in = np.ascontiguousarray(angle_in, dtype=np.float64)
         self.clear_in = np.ascontiguousarray(clear_in, dtype=np.float64)
@@ -251,27 +280,27 @@ class TimedWalkEngine(WalkEngine):
         steps = np.zeros(n_ants, dtype=np.int64)
         if not self.head_free:  # the first piece, exact start -> start cell centre, is always hit
             return Walks(np.zeros(0, dtype=np.int64), offsets, flags, steps, n_ants)
-        if self.walk_base + n_ants >= 2**31 - 1:  # the int32 walk stamps would overflow: start afresh
-            self.stamp[:] = -1
-            self.walk_base = 0
-        if self.flat.size < n_ants * (p.n_free + 1):
-            self.flat = np.zeros(n_ants * (p.n_free + 1), dtype=np.int64)
+        b = self.buffers
+        if b.walk_base + n_ants >= 2**31 - 1:  # the int32 walk stamps would overflow: start afresh
+            b.stamp[:] = -1
+            b.walk_base = 0
+        if b.flat.size < n_ants * (p.n_free + 1):  # a walk is a simple path: at most n_free edges
+            b.flat = np.zeros(n_ants * (p.n_free + 1), dtype=np.int64)
         _seed(seed)
         ob = self.obstacles
         cp = compiled_priority()
         started, total = _timed_walk(
-            g.indptr, self.indices, self.offset_id, p.horizontal_offsets, rules.turn, self.length,
+            *self.graph_arrays, rules.turn, self.length,
             trail.x, trail.scale, trail.lo, trail.hi, rules.tau_exp, rules.weight_mul, self.beta,
-            p.start, p.goal, rules.backtrack, rules.max_steps, allowance, n_ants, self.walk_base,
-            self.stamp, self.stack_e, self.stack_prev, self.stack_t, self.cand_e, self.cand_w, self.gap,
-            self.near_ids, self.mu, self.strength,
-            self.flat, offsets, flags, steps,
+            p.start, p.goal, rules.backtrack, rules.max_steps, allowance, n_ants, b.walk_base,
+            b.stamp, b.stack_e, b.stack_prev, b.stack_t, b.cand_e, b.cand_w, b.gap, b.near_ids, b.mu, b.strength,
+            b.flat, offsets, flags, steps,
             g.shape[1], p.scenario.cell_size, p.scenario.vehicle.cruise_speed, self.t_head, self.tail,
             ob.points, ob.cum, ob.count, ob.speed, ob.phase, ob.radius,
             self.target_in, self.angle_in, self.clear_in, self.sensing_m,
             cp.vertices, cp.rules, cp.consequents, cp.area_w, cp.moment_w,
         )
-        self.walk_base += n_ants
+        b.walk_base += n_ants
         self.total_steps += int(total)
         used = int(offsets[-1])
-        return Walks(self.flat[:used].copy(), offsets, flags, steps, int(started))
+        return Walks(b.flat[:used].copy(), offsets, flags, steps, int(started))
