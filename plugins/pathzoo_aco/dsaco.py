@@ -175,7 +175,7 @@ class DSACO(AntColonyPlanner):
 
     def init_state(self, problem: ColonyProblem, rules: WalkRules, trail: Pheromone, engine: WalkEngine,
                    rng: np.random.Generator) -> DsacoState:
-        """Bound the trail to ``[τmin, τmax]`` and precompute the per-edge fitness terms of eqs. 21-22 and the turns."""
+        """Bound the trail to ``[τmin, τmax]``; precompute the per-edge terms of eqs. 21-22 and the turn angles."""
         trail.set_bounds(self.tau_min, self.tau_max)
         g = problem.graph
         h = self.node_height(problem)

@@ -93,7 +93,7 @@ class FGDACO(AntColonyPlanner):
 
     # ------------------------------------------------------------- inputs
     def fuzzy_inputs(self, problem: ColonyProblem) -> FuzzyInputs:
-        """Normalised target distance (per node), angle to be turned (per edge) and static obstacle distance (per node)."""
+        """Normalised target distance (per node), angle to be turned (per edge), static obstacle distance (per node)."""
         s = problem.scenario
         g = problem.graph
         xy = problem.node_xyz[:, :2]

@@ -114,7 +114,7 @@ def _closest(ax, ay, bx, by):
 
 @numba.njit(cache=True)
 def obstacle_min_distance(points, cum, count, speed, phase, k, x0, y0, x1, y1, t0, t1):
-    """Least distance between obstacle ``k``'s centre and a vehicle driving ``(x0, y0) -> (x1, y1)`` during ``[t0, t1]``.
+    """Least distance from obstacle ``k``'s centre to a vehicle driving ``(x0, y0) -> (x1, y1)`` during ``[t0, t1]``.
 
     As :meth:`MovingObstacle.min_distance`: the interval is cut where the
     obstacle passes a route point, and on each piece the offset between

@@ -14,7 +14,7 @@ import pathzoo
 from pathzoo import Budget, MovingObstacle, Scenario
 from pathzoo.harness.validation import validate_path
 from pathzoo.testing.scenarios import check_scenario
-from pathzoo_aco.engine import EXHAUSTED, REACHED, ColonyProblem, Pheromone
+from pathzoo_aco.engine import EXHAUSTED, ColonyProblem, Pheromone
 from pathzoo_aco.fgdaco_fuzzy import (
     INPUT_SUPPORTS,
     OUTPUT_SUPPORTS,
