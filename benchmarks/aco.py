@@ -10,9 +10,10 @@ Run from the repository root (``../shared`` must sit beside it)::
 
 Throughput: each variant runs a few colonies with its default parameters on a
 100 x 100 random grid and on MovingAI's 8room_000 (512 x 512, its longest
-``.scen`` problem). ``steps/s (cpu)`` is ant-steps per CPU second spent in the
-compiled walks (the "one core" figure, insensitive to other processes);
-``steps/s (wall)`` uses wall time.
+``.scen`` problem). ``steps/s (CPU)`` is ant-steps per CPU second of the whole
+``plan()`` call, set-up included (the "one core" figure, insensitive to other
+processes); ``steps/s (walks)`` divides by the wall time spent in the compiled
+walks only; ``s/iter (CPU)`` is CPU time per colony.
 
 Paper settings: the CPU and wall time of one ``plan()`` call (graph built
 beforehand, as the papers time the search) next to the time the paper
@@ -115,8 +116,8 @@ def length(result: pathzoo.PlanResult) -> float:
 
 def throughput(iterations: int) -> None:
     print("## Throughput (default parameters)\n")
-    print(f"{'planner':10} {'map':10} {'iters':>5} {'ant-steps':>11} {'steps/s (cpu)':>14} {'steps/s (wall)':>15} "
-          f"{'s/iter (cpu)':>12} {'length':>9} {'optimum':>9}")
+    print(f"{'planner':10} {'map':10} {'iters':>5} {'ant-steps':>11} {'steps/s (CPU)':>14} {'steps/s (walks)':>15} "
+          f"{'s/iter (CPU)':>12} {'length':>9} {'optimum':>9}")
     for scenario in (grid100(), room512()):
         scenario.graph
         best = optimum(scenario)
@@ -246,7 +247,7 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="throughput only")
     parser.add_argument("--all-ggaco", action="store_true", help="all five GGACO terrain sizes")
-    parser.add_argument("--iterations", type=int, default=3, help="colonies per throughput run")
+    parser.add_argument("--iterations", type=int, default=5, help="colonies per throughput run")
     parser.add_argument("--later-only", action="store_true", help="only the DSACO/IACA/FGDACO sections")
     parser.add_argument("--seeds", type=int, default=0,
                         help="also run the DSACO/IACA/FGDACO paper settings over this many seeds")
