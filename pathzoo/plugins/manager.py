@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import fnmatch
 import importlib.metadata as md
-import sys
 import threading
 from dataclasses import dataclass, field
 from typing import Any, Iterable, Literal
@@ -56,6 +55,9 @@ class Registry:
         except KeyError:
             close = [k for k in table if plugin_id.split(".")[0] == k.split(".")[0]][:8]
             hint = f"; did you mean one of: {', '.join(close)}" if close else ""
+            broken = sorted({f.plugin for f in self.failures})
+            if broken:
+                hint += f"; plugins that failed to load: {', '.join(broken)}"
             singular = kind[:-1]
             raise UnknownPluginError(
                 f"unknown {singular} '{plugin_id}'{hint} (see 'pathzoo list {kind}')"
@@ -143,13 +145,15 @@ _registry: Registry | None = None
 
 
 def get_registry() -> Registry:
-    """The process-wide registry, discovered on first use."""
+    """The process-wide registry, discovered on first use.
+
+    Plugins that fail to load are recorded in :attr:`Registry.failures`, not
+    printed: ``pathzoo list`` reports them, and an unknown-id error names them.
+    """
     global _registry
     with _lock:
         if _registry is None:
             _registry = discover()
-            for failure in _registry.failures:
-                print(f"pathzoo: plugin '{failure.plugin}' skipped: {failure.error}", file=sys.stderr)
         return _registry
 
 
