@@ -147,3 +147,19 @@ def test_html_right_aligns_numbers_only():
     html = format_leaderboard(lb, "html")
     assert "<td>s1</td>" in html and "<td>a</td>" in html
     assert '<td class="num">67%</td>' in html and '<td class="num">1.5000</td>' in html
+
+
+def test_floating_point_noise_does_not_split_ranks():
+    import pandas as pd
+
+    from pathzoo.analysis.leaderboard import leaderboard
+
+    rows = []
+    for planner, length in (("exact.dijkstra", 13.899494936611665), ("exact.astar", 13.899494936611667)):
+        for seed in range(3):
+            rows.append(dict(run_key=f"{planner}|h|s|{seed}", experiment="e", planner=planner, planner_version="1",
+                             params_hash="h" + planner, params={}, scenario="s", seed_index=seed, seed=seed,
+                             status="solved", valid=True, invalid_reason="", message="", wall_time_s=0.1,
+                             cpu_time_s=0.1, iterations=1, evaluations=1, length=length, success=1.0))
+    table = leaderboard(pd.DataFrame(rows), metric="length", direction="min")
+    assert sorted(table["rank"]) == [1, 1]
