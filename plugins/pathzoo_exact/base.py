@@ -33,7 +33,7 @@ in air volumes too, so that each segment is one checked graph edge.
 Budgets
 -------
 Numba code cannot read the clock cheaply, so the search runs in batches of
-:attr:`GraphSearchPlanner.batch_expansions` expansions (about a millisecond
+:attr:`GraphSearchPlanner.batch_expansions` expansions (a few milliseconds
 each) and the Python driver checks ``budget.time_s`` between batches: the time
 limit is overshot by at most one batch. ``budget.evaluations`` caps the number
 of expanded nodes exactly. ``budget.iterations`` is always met, since the

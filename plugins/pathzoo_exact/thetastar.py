@@ -33,7 +33,7 @@ import numpy as np
 from pathzoo.core import Scenario
 from pathzoo.grid.segments import segment_blocked_2d
 from pathzoo_exact.base import BatchFn, GraphSearchPlanner
-from pathzoo_exact.kernel import EXHAUSTED, FOUND, H_EUCLID, HEAP_FULL, RUNNING, goal_cell, heap_pop, heap_push, heuristic, run_batch
+from pathzoo_exact.kernel import FOUND, H_EUCLID, RUNNING, end_batch, goal_cell, heap_push, heuristic, next_open, run_batch
 
 __all__ = ["ThetaStarPlanner", "thetastar_batch"]
 
@@ -66,20 +66,17 @@ def thetastar_batch(
     """
     w = dims[2]
     cs = steps[0]
+    size = counters[0]
+    status = RUNNING
     done = 0
     while done < max_expansions:
-        if counters[0] == 0:
-            return EXHAUSTED
-        if counters[0] + max_degree > heap_node.shape[0]:
-            return HEAP_FULL
-        u = heap_pop(heap_node, heap_f, heap_g, counters)
-        if closed[u]:
-            continue
-        closed[u] = True
-        counters[1] += 1
+        u, size, status = next_open(closed, heap_node, heap_f, heap_g, size, max_degree)
+        if status != RUNNING:
+            break
         done += 1
         if u == target:
-            return FOUND
+            status = FOUND
+            break
         p = parent[u]
         pr = p // w
         pc = p % w
@@ -99,8 +96,8 @@ def thetastar_batch(
                 g[v] = cand
                 parent[v] = via
                 f = cand + heuristic(v, goal, H_EUCLID, dims, steps, 1.0)
-                heap_push(heap_node, heap_f, heap_g, counters, v, f, cand)
-    return EXHAUSTED if counters[0] == 0 else RUNNING
+                size = heap_push(heap_node, heap_f, heap_g, size, v, f, cand)
+    return end_batch(counters, size, done, status)
 
 
 class ThetaStarPlanner(GraphSearchPlanner):

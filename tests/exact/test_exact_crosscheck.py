@@ -71,7 +71,7 @@ def check_against_scipy(scenarios: list[Scenario], planner_id: str, cost: str) -
 
 @pytest.mark.parametrize("cost", COSTS)
 @pytest.mark.parametrize("planner_id", PLANNERS)
-@pytest.mark.parametrize(("scen", "step"), [("grid/dao/arena.map.scen", 8), ("grid/rooms/8room_000.map.scen", 194)])
+@pytest.mark.parametrize(("scen", "step"), [("grid/dao/arena.map.scen", 8), ("grid/rooms/8room_000.map.scen", 388)])
 def test_movingai_sample_matches_scipy(
     load_scen: Callable[[str], list[Scenario]], scen: str, step: int, planner_id: str, cost: str
 ) -> None:

@@ -1,0 +1,143 @@
+"""Exact planners against SciPy's Dijkstra on the 512 x 512 MovingAI map ``8room_000``.
+
+Run from the repository root, with ``shared/`` beside the repository::
+
+    python benchmarks/exact.py               # 10 hardest and 10 middle buckets (200 problems)
+    python benchmarks/exact.py --buckets 3   # fewer problems
+
+For every problem of the hardest buckets of ``8room_000.map.scen``, and of as
+many buckets around the middle one, it times
+
+- ``exact.dijkstra`` and ``exact.astar`` (``plan()``, which includes building
+  the search state and the returned path; the neighbourhood graph is built
+  once beforehand and shared, as the harness does), and ``exact.thetastar``
+  for comparison (its any-angle length is below the grid optimum);
+- ``scipy.sparse.csgraph.dijkstra`` on ``scenario.graph.to_sparse()`` from the
+  start: once over the whole graph, and once with ``limit`` set to the
+  optimal cost, SciPy's only way to stop early (it still settles every node
+  closer than the goal, and has no single-target exit).
+
+Numba is warmed up before timing. Wall and CPU times are both printed,
+because the machine may be shared. Costs are checked to agree to 1e-9.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import statistics
+import sys
+import time
+from pathlib import Path
+from typing import Callable
+
+import numpy as np
+from scipy.sparse.csgraph import dijkstra
+
+import pathzoo
+from pathzoo.core import Budget, Scenario
+from pathzoo.io import load_scenario_files
+
+ANY_ANGLE = "exact.thetastar"
+"""Not an optimum of the graph: its cost is only compared with the others."""
+
+SCEN = Path(__file__).resolve().parents[1] / ".." / "shared" / "data" / "movingai" / "grid" / "rooms" / "8room_000.map.scen"
+
+
+def timed(fn: Callable[[], object]) -> tuple[object, float, float]:
+    """Result, wall seconds and CPU seconds of one call."""
+    wall, cpu = time.perf_counter(), time.process_time()
+    out = fn()
+    return out, time.perf_counter() - wall, time.process_time() - cpu
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--buckets", type=int, default=10, help="number of hardest buckets (default 10)")
+    parser.add_argument("--scen", type=Path, default=SCEN, help="the .scen file (default: shared 8room_000)")
+    args = parser.parse_args(argv)
+
+    problems = load_scenario_files(args.scen.resolve())
+    last = max(p.metadata["bucket"] for p in problems)
+    middle = last // 2 + args.buckets // 2
+    groups = {
+        "hardest": (last - args.buckets + 1, last),
+        "middle": (middle - args.buckets + 1, middle),
+    }
+    graph = problems[0].graph
+    matrix = graph.to_sparse("length")
+    planners = {pid: pathzoo.make_planner(pid) for pid in ("exact.astar", "exact.dijkstra", "exact.thetastar")}
+    for planner in planners.values():  # numba compilation and cache loading
+        planner.plan(problems[-1], budget=Budget(), rng=np.random.default_rng(0))
+
+    methods: dict[str, Callable[[Scenario], tuple[float, int]]] = {}
+    for pid, planner in planners.items():
+        def run(s: Scenario, planner=planner) -> tuple[float, int]:
+            r = planner.plan(s, budget=Budget(), rng=np.random.default_rng(0))
+            return r.extras["best_cost"], r.evaluations
+        methods[pid] = run
+
+    def scipy_full(s: Scenario) -> tuple[float, int]:
+        d = dijkstra(matrix, indices=s.start_node)
+        return float(d[s.goal_node]), int(np.isfinite(d).sum())
+
+    def scipy_limit(s: Scenario) -> tuple[float, int]:
+        d = dijkstra(matrix, indices=s.start_node, limit=s.reference_length + 1e-3)
+        return float(d[s.goal_node]), int(np.isfinite(d).sum())
+
+    methods["scipy dijkstra (full)"] = scipy_full
+    methods["scipy dijkstra (limit)"] = scipy_limit
+
+    load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
+    print(f"map {args.scen.name}: {graph.shape[0]}x{graph.shape[1]}, {graph.n_edges} edges; "
+          f"{os.cpu_count()} CPUs, load average {load:.1f} at the start")
+    for label, (lo, hi) in groups.items():
+        chosen = [p for p in problems if lo <= p.metadata["bucket"] <= hi]
+        if not measure(label, chosen, methods):
+            return 1
+    print()
+    print("nodes: expanded nodes for the planners, nodes reached (finite distance) for SciPy")
+    return 0
+
+
+def measure(label: str, chosen: list[Scenario], methods: dict[str, Callable[[Scenario], tuple[float, int]]]) -> bool:
+    """Time every method on every problem and print one table; False on a cost mismatch."""
+    wall: dict[str, list[float]] = {m: [] for m in methods}
+    cpu: dict[str, list[float]] = {m: [] for m in methods}
+    nodes: dict[str, list[int]] = {m: [] for m in methods}
+    ratio: dict[str, list[float]] = {m: [] for m in methods}
+    for s in chosen:
+        costs = []
+        for name, fn in methods.items():
+            (cost, count), w, c = timed(lambda: fn(s))
+            wall[name].append(w)
+            cpu[name].append(c)
+            nodes[name].append(count)
+            costs.append(cost)
+        exact = [c for name, c in zip(methods, costs) if name != ANY_ANGLE]
+        if max(exact) - min(exact) > 1e-9 * max(exact):
+            print(f"cost mismatch on {s.id}: {costs}", file=sys.stderr)
+            return False
+        for name, c in zip(methods, costs):
+            ratio[name].append(c / exact[0])
+    buckets = sorted({s.metadata["bucket"] for s in chosen})
+    lengths = [s.reference_length for s in chosen]
+    print()
+    print(f"{label}: {len(chosen)} problems of buckets {buckets[0]}..{buckets[-1]} "
+          f"(optimal length {min(lengths):.1f}..{max(lengths):.1f})")
+    print()
+    ref_wall = sum(wall["scipy dijkstra (full)"])
+    ref_cpu = sum(cpu["scipy dijkstra (full)"])
+    print("| method | total wall s | median wall ms | total CPU s | median nodes | scipy full / method (wall) | (CPU) | mean cost / optimum |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|")
+    for name in methods:
+        print(
+            f"| {name} | {sum(wall[name]):.2f} | {1e3 * statistics.median(wall[name]):.1f} | {sum(cpu[name]):.2f} | "
+            f"{statistics.median(nodes[name]):.0f} | {ref_wall / sum(wall[name]):.2f} | {ref_cpu / sum(cpu[name]):.2f} | "
+            f"{statistics.fmean(ratio[name]):.4f} |"
+        )
+    return True
+
+
+if __name__ == "__main__":
+    sys.exit(main())
