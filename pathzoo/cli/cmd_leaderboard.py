@@ -14,7 +14,7 @@ if TYPE_CHECKING:
 
 __all__ = ["add_parser", "add_table_options", "load_runs", "render_leaderboard"]
 
-FORMATS = ("text", "markdown", "csv")
+FORMATS = ("text", "markdown", "csv", "html")
 
 
 def load_runs(db: str | Path, experiment: str | None) -> "pd.DataFrame":
@@ -40,7 +40,7 @@ def load_runs(db: str | Path, experiment: str | None) -> "pd.DataFrame":
 
 
 def render_leaderboard(runs: "pd.DataFrame", args: argparse.Namespace) -> str:
-    """The leaderboard of ``runs`` as text, Markdown or CSV, per the table options in ``args``."""
+    """The leaderboard of ``runs`` as text, Markdown, CSV or HTML, per the table options in ``args``."""
     from pathzoo.analysis.leaderboard import format_leaderboard, leaderboard
 
     table = leaderboard(runs, args.metric, reference=args.reference)

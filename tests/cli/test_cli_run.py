@@ -177,3 +177,21 @@ def test_executor_options_reach_the_runner(experiment, tmp_path, capsys, monkeyp
     assert one_error(capsys) == (
         f"interrupted; finished runs are stored in {db}, run the same command again to resume"
     )
+
+
+def test_report_and_ompl_export_and_html_leaderboard(experiment, tmp_path, capsys):
+    db = tmp_path / "r.sqlite"
+    run_cli(capsys, "run", str(experiment), "--db", str(db), "--executor", "inline", "--no-progress")
+    html = run_cli(capsys, "leaderboard", str(db), "--format", "html")
+    assert "<table" in html and "exact.astar" in html
+    out = run_cli(capsys, "report", str(db), "-o", str(tmp_path / "rep"))
+    index = tmp_path / "rep" / "index.html"
+    assert out.strip() == str(index) and index.stat().st_size > 1000
+    assert "exact.thetastar" in index.read_text()
+    logs = run_cli(capsys, "export-ompl", str(db), "-o", str(tmp_path / "ompl")).split()
+    assert logs and all(p.endswith(".log") for p in logs)
+
+
+def test_report_of_missing_database_is_one_line(tmp_path, capsys):
+    assert main(["report", str(tmp_path / "nope.sqlite"), "-o", str(tmp_path / "rep")]) == 2
+    assert "nope.sqlite" in one_error(capsys)
