@@ -1,8 +1,8 @@
 """aco.mmas: the MAX-MIN Ant System of Stützle and Hoos (2000) on path-planning graphs.
 
 Mechanism (all in :meth:`MaxMinAntSystem.update_trail`): only one ant
-deposits per iteration, the iteration-best or the global-best one (on a
-schedule that uses the global-best more and more often); every trail stays
+deposits per iteration, the iteration-best or, every 25th iteration, the
+global-best one (:func:`global_best_due`); every trail stays
 within ``[τmin, τmax]`` with ``τmax = 1 / (ρ L_gb)`` and
 ``τmin = τmax (1 - p_best^(1/n)) / ((avg - 1) p_best^(1/n))``; trails start
 above ``τmax`` and are clamped down to it once the first walk is known.
@@ -19,18 +19,25 @@ from pathzoo.core.errors import InvalidParameterError
 from pathzoo.core.planner import Param
 from pathzoo_aco.engine import AntColonyPlanner, ColonyProblem, ColonyState, Walks, colony_params, deposit_walks
 
-__all__ = ["MaxMinAntSystem", "global_best_due"]
+__all__ = ["MaxMinAntSystem", "global_best_due", "GLOBAL_BEST_PERIOD"]
 
-_SCHEDULE = ((25, 0), (75, 5), (125, 3), (250, 2))
-"""(last iteration, period of the global-best update) of Stützle & Hoos's schedule; 1 after iteration 250."""
+GLOBAL_BEST_PERIOD = 25
+"""Without local search the global-best ant deposits every 25th iteration, the iteration-best otherwise."""
+
+_SCHEDULE = ((25, 25), (75, 5), (125, 3), (250, 2))
+"""(last iteration, period of the global-best deposit) of the growing schedule; period 1 after iteration 250."""
 
 
-def global_best_due(iteration: int) -> bool:
-    """Whether the schedule lets the global-best ant deposit at this (1-based) iteration."""
-    for last, period in _SCHEDULE:
-        if iteration <= last:
-            return period > 0 and iteration % period == 0
-    return True
+def global_best_due(iteration: int, growing: bool = False) -> bool:
+    """Whether the global-best ant deposits at this (1-based) iteration.
+
+    Stützle & Hoos's reference implementation (ACOTSP) uses period 25 when ants
+    do no local search, and the growing schedule of the FGCS article with it.
+    """
+    period = GLOBAL_BEST_PERIOD
+    if growing:
+        period = next((p for last, p in _SCHEDULE if iteration <= last), 1)
+    return iteration % period == 0
 
 
 class MaxMinAntSystem(AntColonyPlanner):
@@ -43,8 +50,9 @@ class MaxMinAntSystem(AntColonyPlanner):
         **colony_params(n_ants=20, iterations=1000, alpha=1.0, beta=2.0, rho=0.02),
         "p_best": Param(0.05, "probability that a converged colony rebuilds the best walk (sets τmin)",
                         low=0.0, high=1.0, low_open=True, high_open=True),
-        "best_ant": Param("schedule", "which ant deposits: the schedule mixing iteration- and global-best, "
-                          "or always one of them", choices=("schedule", "iteration", "global")),
+        "best_ant": Param("periodic", "which ant deposits: iteration-best with the global-best every 25th "
+                          "iteration, the growing schedule, or always one kind",
+                          choices=("periodic", "schedule", "iteration", "global")),
     }
 
     def _check_params(self, values: Mapping[str, Any]) -> None:
@@ -78,7 +86,8 @@ class MaxMinAntSystem(AntColonyPlanner):
         if state.best_edges is None:
             return
         trail.set_bounds(*self.trail_limits(state.problem, state.best_edges, state.best_cost))
-        use_global = self.best_ant == "global" or (self.best_ant == "schedule" and global_best_due(state.iteration))
+        use_global = self.best_ant == "global" or (
+            self.best_ant in ("periodic", "schedule") and global_best_due(state.iteration, self.best_ant == "schedule"))
         if use_global or not np.isfinite(costs).any():
             edges, length = state.best_edges, state.best_cost
         else:

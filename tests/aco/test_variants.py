@@ -42,10 +42,11 @@ def test_as_evaporates_everywhere_and_every_ant_lays_q_over_l():
 
 
 # ------------------------------------------------------------------ MMAS
-def test_mmas_schedule_uses_the_global_best_more_and_more_often():
-    due = [t for t in range(1, 261) if global_best_due(t)]
-    assert not any(t <= 25 for t in due)
-    assert [t for t in due if t <= 75] == [30, 35, 40, 45, 50, 55, 60, 65, 70, 75]
+def test_mmas_global_best_every_25th_iteration_or_on_the_growing_schedule():
+    assert [t for t in range(1, 101) if global_best_due(t)] == [25, 50, 75, 100]
+    due = [t for t in range(1, 261) if global_best_due(t, growing=True)]
+    assert [t for t in due if t <= 25] == [25]
+    assert [t for t in due if 25 < t <= 75] == [30, 35, 40, 45, 50, 55, 60, 65, 70, 75]
     assert [t for t in due if 75 < t <= 125] == list(range(78, 126, 3))
     assert [t for t in due if 125 < t <= 250] == list(range(126, 251, 2))
     assert due[-10:] == list(range(251, 261))
