@@ -126,23 +126,28 @@ def _colony(indptr, indices, offset_id, horizontal, turn,
             e0 = indptr[c]
             e1 = indptr[c + 1]
             nc = 0
+            n_open = 0  # allowed neighbours, whatever their weight
             total_w = 0.0
             for e in range(e0, e1):
                 j = indices[e]
                 k = j if on_nodes else e
-                t = scale * x[k]
-                if bounded:
-                    t = min(max(t, lo), hi)
-                if has_pre:  # added to every edge leaving the cell, before the choice
-                    t = min(max(t + pre_add[e], lo), hi)
+                if has_pre:  # added to every edge leaving the cell, tabu or not, before the choice
+                    t = min(max(min(max(scale * x[k], lo), hi) + pre_add[e], lo), hi)
                     x[k] = t / scale
-                if stamp[j] == wid:
-                    continue
+                    if stamp[j] == wid:
+                        continue
+                else:
+                    if stamp[j] == wid:  # most neighbours on a long walk: test before touching the trail
+                        continue
+                    t = scale * x[k]
+                    if bounded:
+                        t = min(max(t, lo), hi)
                 f = 1.0
                 if use_turn:
                     f = turn[pv, offset_id[e]]
                     if f <= 0.0:
                         continue
+                n_open += 1
                 if tau_exp == 1.0:
                     w = t * w_mul[e]
                 elif t <= lo:  # trails resting on the floor share one power
@@ -158,7 +163,7 @@ def _colony(indptr, indices, offset_id, horizontal, turn,
                     cand_w[nc] = w
                     total_w += w
                     nc += 1
-            if nc == 0:  # maybe every trail is 0: weigh the allowed edges by the heuristic alone
+            if nc == 0 and n_open > 0:  # maybe every trail is 0: weigh the allowed edges by the heuristic alone
                 for e in range(e0, e1):
                     if stamp[indices[e]] == wid:
                         continue
