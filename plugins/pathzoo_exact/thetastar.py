@@ -16,7 +16,7 @@ Interpretations:
 - Path 2 is tried whenever the line of sight exists, as in the paper. By the
   triangle inequality it is never longer than path 1, so every relaxation is
   at least as good as A*'s; with the consistent straight-line heuristic this
-  gives ``g(s) <= `` the 8-connected optimum for every expanded node, hence a
+  gives ``g(s) <=`` the 8-connected optimum for every expanded node, hence a
   returned length no longer than the grid optimum (not the true any-angle
   optimum, which Theta* does not guarantee).
 """

@@ -21,7 +21,7 @@ paper's; only absolute heights read 100 m lower (``elevation`` is
 ``Z(x, y) - 100 m``).
 
 Choices the paper leaves open (recorded in ``metadata``)
--------------------------------------------------------
+--------------------------------------------------------
 - The pitch limit alpha_max of eq. 5: 15 deg. The step rule alone already keeps
   every graph move below atan(0.2 / 1) = 11.31 deg, so the limit binds only
   planners that move off the lattice.
