@@ -119,7 +119,7 @@ class RlsEwmaPredictor:
 
 @dataclass(frozen=True)
 class SyntheticDrive:
-    """Samples of a simulated drive: speed ``v``, acceleration ``a``, measured power ``P``, and ``x``, ``y`` of eq. 7."""
+    """Samples of a simulated drive: speed ``v``, acceleration ``a``, measured power ``P``, ``x`` and ``y`` (eq. 7)."""
 
     v: np.ndarray
     a: np.ndarray

@@ -77,7 +77,7 @@ class GGACO(AntColonyPlanner):
         return green_heuristic(self.slope_distance(problem), problem.scenario.vehicle.cruise_speed, self.phi)
 
     def gain(self, problem: ColonyProblem) -> np.ndarray:
-        """Signed gain per edge (eqs. 11-14): ``+Gain_ij`` toward the neighbour(s) nearest ``D``, ``-Gain_ij`` otherwise.
+        """Signed gain per edge (eqs. 11-14): ``+Gain_ij`` toward the neighbour(s) nearest ``D``, else ``-Gain_ij``.
 
         Distances to ``D`` are 3-D between cell centres; the neighbours are
         the node's graph neighbours (traversable ones).

@@ -11,9 +11,9 @@ See ``docs/planners/aco.mmas.md``.
 
 from __future__ import annotations
 
-import numpy as np
-
 from typing import Any, Mapping
+
+import numpy as np
 
 from pathzoo.core.errors import InvalidParameterError
 from pathzoo.core.planner import Param
