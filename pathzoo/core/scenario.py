@@ -257,11 +257,13 @@ class Scenario:
         return free
 
     def segment_free(self, p0: np.ndarray, p1: np.ndarray, t0: float = 0.0, t1: float | None = None) -> bool:
-        """Whether the straight segment is collision-free, corner rule included.
+        """Whether the validator would accept the straight segment on its own.
 
-        For ``dynamic`` scenarios the vehicle leaves ``p0`` at ``t0`` and
-        reaches ``p1`` at ``t1`` (default: at cruise speed). Slope and turn
-        limits are not checked here; the harness's validator checks them.
+        Checks the closed-cell collision rule (no corner cutting), the slope
+        limits on terrain, the pitch limit in air volumes and, for ``dynamic``
+        scenarios, the moving obstacles while the vehicle leaves ``p0`` at
+        ``t0`` and reaches ``p1`` at ``t1`` (default: at cruise speed). Turn
+        limits involve two segments and are checked only on whole paths.
         """
         from pathzoo.harness.validation import segment_problem
 
