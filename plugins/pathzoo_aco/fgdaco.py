@@ -3,8 +3,9 @@
 Mechanism, with the paper's equations:
 
 - **fuzzy priority** (eqs. 1-2, 11-13, Tables 3-4): a Mamdani inference
-  turns three normalised inputs of a candidate node ``j`` -- relative distance
-  to the target, angle to be turned, distance to the nearest obstacle -- into
+  turns three normalised inputs of a candidate node ``j`` -- its distance to
+  the target, the heading change to reach it, its distance to the nearest
+  obstacle -- into
   its priority, the heuristic ``η`` of eq. 10 (:mod:`pathzoo_aco.fgdaco_fuzzy`,
   :meth:`FGDACO.fuzzy_inputs`);
 - **transition** (eq. 10): ``τ_ij^α η_j^β`` by roulette over the nodes not in
