@@ -51,7 +51,9 @@ def _describe(group: pd.DataFrame, metric: str, direction: Direction) -> pd.Seri
             "q25": q25,
             "q75": q75,
             "iqr": q75 - q25,
-            "sd": float(np.std(good, ddof=1)) if n > 1 else np.nan,
+            # shifted by one sample, so identical values give exactly 0 (the mean of
+            # equal floats can differ from them in the last bit)
+            "sd": float(np.std(good - good[0], ddof=1)) if n > 1 else np.nan,
             "mean": float(good.mean()) if n else np.nan,
             "min": float(good.min()) if n else np.nan,
             "max": float(good.max()) if n else np.nan,

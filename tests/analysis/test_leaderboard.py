@@ -163,3 +163,16 @@ def test_floating_point_noise_does_not_split_ranks():
                              cpu_time_s=0.1, iterations=1, evaluations=1, length=length, success=1.0))
     table = leaderboard(pd.DataFrame(rows), metric="length", direction="min")
     assert sorted(table["rank"]) == [1, 1]
+
+
+def test_identical_values_have_exactly_zero_sd():
+    import pandas as pd
+
+    from pathzoo.analysis.summary import summarize
+
+    x = 60.56854249492379  # the mean of three copies is not exactly x in floating point
+    rows = [dict(run_key=f"p|h|s|{i}", experiment="e", planner="p", planner_version="1", params_hash="h", params={},
+                 scenario="s", seed_index=i, seed=i, status="solved", valid=True, invalid_reason="", message="",
+                 wall_time_s=0.1, cpu_time_s=0.1, iterations=1, evaluations=1, length=x, success=1.0)
+            for i in range(3)]
+    assert summarize(pd.DataFrame(rows), "length")["sd"].iloc[0] == 0.0
