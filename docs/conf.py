@@ -18,8 +18,6 @@ from types import ModuleType
 
 import pathzoo
 
-DOCS_DIR = os.path.dirname(os.path.abspath(__file__))
-
 project = "pathzoo"
 author = "pathzoo developers"
 copyright = "pathzoo developers"
@@ -49,14 +47,13 @@ autosummary_ignore_module_all = False  # a module's __all__ is its public API
 autodoc_default_options = {"members": True, "show-inheritance": True}
 autodoc_typehints = "none"  # numpydoc sections already give the types
 autodoc_member_order = "bysource"
-numpydoc_show_class_members = False  # the class template lists members itself
-numpydoc_xref_param_type = False
+numpydoc_show_class_members = False  # autodoc documents the members (autodoc_default_options)
 
 API_PACKAGES = ("pathzoo", "pathzoo_exact", "pathzoo_aco", "pathzoo_baselines", "pathzoo_ompl", "pathzoo_scenarios")
 
 
 def _modules(package: str) -> list[ModuleType]:
-    """``package`` and every module below it (all of them import cheaply: heavy libraries load lazily)."""
+    """``package`` and every module below it, imported."""
     root = importlib.import_module(package)
     found = [root]
     for info in pkgutil.walk_packages(root.__path__, package + "."):
@@ -96,12 +93,9 @@ sphinx_gallery_conf = {
     "gallery_dirs": "auto_examples",
     "filename_pattern": r"/plot_",
     "within_subsection_order": "FileNameSortKey",
-    "image_scrapers": ("matplotlib",),
-    "matplotlib_animations": False,
     "remove_config_comments": True,
     "capture_repr": ("_repr_html_",),  # show DataFrames, not the reprs of Axes
     "download_all_examples": False,
-    "show_memory": False,
     "write_computation_times": False,
     "reference_url": {"pathzoo": None},
     "doc_module": ("pathzoo",),
