@@ -19,8 +19,8 @@ from pathzoo.analysis.summary import summarize, summarize_metrics
 _LAZY = {
     "pairwise_tests": "pathzoo.analysis.stats",
     "friedman": "pathzoo.analysis.ranks",
-    "paper_table": "pathzoo.analysis.paper_table",
-    "format_paper_table": "pathzoo.analysis.paper_table",
+    "paper_table": "pathzoo.analysis.comparison_table",
+    "format_paper_table": "pathzoo.analysis.comparison_table",
     "write_report": "pathzoo.analysis.report",
     "render_report": "pathzoo.analysis.report",
     "load_experiment": "pathzoo.analysis.database",

@@ -33,6 +33,7 @@ def format_number(x: float, digits: int = 5) -> str:
         return "inf" if x > 0 else "-inf"
     if x == 0:
         return "0"
+    x = float(f"{x:.{digits}g}")  # round first: 0.9999999 must count as 1.0, not as 0.xxxxx
     magnitude = math.floor(math.log10(abs(x)))
     if magnitude < -3:
         return f"{x:.{digits - 1}e}"

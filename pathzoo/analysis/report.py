@@ -236,7 +236,7 @@ def render_report(
     ReportPage
         Call ``.html(title)`` for the document.
     """
-    from pathzoo.analysis.paper_table import format_paper_table, paper_table
+    from pathzoo.analysis.comparison_table import format_paper_table, paper_table
     from pathzoo.analysis.ranks import friedman
     from pathzoo.analysis.summary import median_runs
     from pathzoo.plotting.boxplots import plot_metric_boxes

@@ -176,3 +176,11 @@ def test_identical_values_have_exactly_zero_sd():
                  wall_time_s=0.1, cpu_time_s=0.1, iterations=1, evaluations=1, length=x, success=1.0)
             for i in range(3)]
     assert summarize(pd.DataFrame(rows), "length")["sd"].iloc[0] == 0.0
+
+
+def test_numbers_just_below_a_power_of_ten_keep_the_same_width():
+    from pathzoo.analysis.formatting import format_number
+
+    assert format_number(0.99999999) == format_number(1.0) == "1.0000"
+    assert format_number(9.9999999) == "10.000"
+    assert format_number(0.999994) == "0.99999"

@@ -6,7 +6,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from pathzoo.analysis.paper_table import format_paper_table, paper_table
+from pathzoo.analysis.comparison_table import format_paper_table, paper_table
 from pathzoo.analysis.stats import pairwise_tests
 from pathzoo.analysis.synthetic import make_runs
 from pathzoo.core.errors import InvalidParameterError
