@@ -25,6 +25,7 @@ __all__ = [
     "segment_blocked_3d",
     "first_blocked_cell_2d",
     "count_blocked_cells_2d",
+    "blocked_segments",
     "touched_cells_2d",
     "touched_cells_3d",
 ]
@@ -192,3 +193,32 @@ def touched_cells_3d(p0: np.ndarray, p1: np.ndarray) -> np.ndarray:
                 if _segment_touches_box(p0, d, np.array([x, y, z], float), np.array([x + 1, y + 1, z + 1], float)):
                     out.append((z, y, x))
     return np.array(out, dtype=np.int64).reshape(-1, 3)
+
+
+@numba.njit(cache=True)
+def _blocked_segments_2d(blocked: np.ndarray, u: np.ndarray) -> np.ndarray:
+    out = np.zeros(len(u) - 1, dtype=np.bool_)
+    for k in range(len(u) - 1):
+        out[k] = segment_blocked_2d(blocked, u[k, 0], u[k, 1], u[k + 1, 0], u[k + 1, 1])
+    return out
+
+
+@numba.njit(cache=True)
+def _blocked_segments_3d(blocked: np.ndarray, u: np.ndarray) -> np.ndarray:
+    out = np.zeros(len(u) - 1, dtype=np.bool_)
+    for k in range(len(u) - 1):
+        out[k] = segment_blocked_3d(blocked, u[k], u[k + 1])
+    return out
+
+
+def blocked_segments(blocked: np.ndarray, path_cells: np.ndarray) -> np.ndarray:
+    """For each segment of a polyline (in cell units), whether it touches a blocked cell.
+
+    One compiled pass over the whole path: :func:`segment_blocked_2d` for 2-D
+    grids, :func:`segment_blocked_3d` for volumes (``path_cells`` columns in
+    ``x, y[, z]`` order).
+    """
+    u = np.ascontiguousarray(path_cells, dtype=np.float64)
+    if blocked.ndim == 2:
+        return _blocked_segments_2d(blocked, u)
+    return _blocked_segments_3d(blocked, u)

@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-__all__ = ["bilinear_elevation", "segment_profile", "MAX_PIECE_CELLS"]
+__all__ = ["bilinear_elevation", "path_profile", "segment_profile", "MAX_PIECE_CELLS"]
 
 MAX_PIECE_CELLS = math.sqrt(2.0) + 1e-9
 """Longest horizontal piece (in cells) a segment is split into for slope checks.
@@ -37,24 +37,48 @@ def bilinear_elevation(elevation: np.ndarray, xy_cells: np.ndarray) -> np.ndarra
     return np.where(fy == 0, top, top * (1 - fy) + bot * fy)
 
 
+def path_profile(
+    elevation: np.ndarray | None, path: np.ndarray, cell_size: float
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """3-D lengths and signed slopes (radians) of the pieces of every segment of a ground path.
+
+    Each segment is split into equal pieces no longer than
+    :data:`MAX_PIECE_CELLS` cells; heights come from :func:`bilinear_elevation`.
+    Without elevation every segment is one flat piece. Vectorised over the
+    whole path.
+
+    Returns
+    -------
+    lengths, slopes : ndarray
+        One entry per piece, in path order.
+    segment : ndarray of int
+        Index of the segment each piece belongs to.
+    """
+    pts = np.asarray(path, dtype=np.float64)[:, :2]
+    d = np.diff(pts, axis=0)
+    horiz = np.hypot(d[:, 0], d[:, 1])
+    if elevation is None:
+        return horiz, np.zeros(len(horiz)), np.arange(len(horiz))
+    n = np.maximum(1, np.ceil(horiz / cell_size / MAX_PIECE_CELLS - 1e-12)).astype(np.int64)
+    segment = np.repeat(np.arange(len(horiz)), n)
+    first = np.repeat(np.cumsum(n) - n, n)
+    k = np.arange(len(segment)) - first
+    nn = n[segment]
+    a = pts[segment] + (k / nn)[:, None] * d[segment]
+    b = pts[segment] + ((k + 1) / nn)[:, None] * d[segment]
+    dz = bilinear_elevation(elevation, b / cell_size) - bilinear_elevation(elevation, a / cell_size)
+    dh = horiz[segment] / nn
+    flat = dh == 0.0  # a repeated waypoint: no length, no slope
+    dz = np.where(flat, 0.0, dz)
+    return np.sqrt(dh * dh + dz * dz), np.arctan2(dz, dh), segment
+
+
 def segment_profile(
     elevation: np.ndarray | None, p0: np.ndarray, p1: np.ndarray, cell_size: float
 ) -> tuple[np.ndarray, np.ndarray]:
-    """3-D lengths and signed slopes (radians) of the pieces of a ground segment.
+    """3-D lengths and signed slopes (radians) of the pieces of one ground segment.
 
-    The segment is split into equal pieces no longer than
-    :data:`MAX_PIECE_CELLS` cells; heights come from :func:`bilinear_elevation`.
-    Without elevation the single piece is flat.
+    The one-segment case of :func:`path_profile`.
     """
-    p0 = np.asarray(p0, dtype=np.float64)[:2]
-    p1 = np.asarray(p1, dtype=np.float64)[:2]
-    horiz = float(np.hypot(*(p1 - p0)))
-    if elevation is None or horiz == 0.0:
-        return np.array([horiz]), np.zeros(1)
-    n = max(1, math.ceil(horiz / cell_size / MAX_PIECE_CELLS - 1e-12))
-    frac = np.linspace(0.0, 1.0, n + 1)
-    pts = p0[None, :] + frac[:, None] * (p1 - p0)[None, :]
-    z = bilinear_elevation(elevation, pts / cell_size)
-    dz = np.diff(z)
-    dh = horiz / n
-    return np.sqrt(dh * dh + dz * dz), np.arctan2(dz, dh)
+    lengths, slopes, _ = path_profile(elevation, np.stack([np.asarray(p0, float)[:2], np.asarray(p1, float)[:2]]), cell_size)
+    return lengths, slopes

@@ -23,8 +23,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from pathzoo.core.scenario import Scenario
-from pathzoo.grid.segments import first_blocked_cell_2d, segment_blocked_3d, to_cell_units
-from pathzoo.grid.terrain import segment_profile
+from pathzoo.grid.segments import blocked_segments, first_blocked_cell_2d, segment_blocked_3d, to_cell_units
+from pathzoo.grid.terrain import path_profile, segment_profile
 from pathzoo.metrics.geometry import turn_angles
 
 __all__ = ["Validation", "validate_path", "segment_problem", "path_times", "ENDPOINT_TOLERANCE_CELLS"]
@@ -97,6 +97,32 @@ def segment_problem(
     return None
 
 
+def _suspect_segments(scenario: Scenario, path: np.ndarray) -> np.ndarray:
+    """Indices of the segments :func:`segment_problem` may reject, found in vectorised passes.
+
+    Collisions, slopes and pitch are screened for the whole path at once with
+    the very functions ``segment_problem`` uses, so only flagged segments are
+    examined one by one (to word the reason). Moving obstacles depend on time,
+    so on dynamic scenarios every segment is examined.
+    """
+    n = len(path) - 1
+    if scenario.moving_obstacles:
+        return np.arange(n)
+    flagged = blocked_segments(scenario.blocked, to_cell_units(path, scenario.cell_sizes))
+    v = scenario.vehicle
+    if scenario.kind == "terrain":
+        _, slopes, seg = path_profile(scenario.elevation, path, scenario.cell_size)
+        deg = np.degrees(slopes)
+        with np.errstate(invalid="ignore"):
+            bad = ~np.isfinite(deg) | (deg > v.max_climb_deg + _ANGLE_EPS_DEG) | (-deg > v.max_descent_deg + _ANGLE_EPS_DEG)
+        flagged[seg[bad]] = True
+    elif scenario.dim == 3:
+        d = np.diff(path, axis=0)
+        pitch = np.degrees(np.arctan2(np.abs(d[:, 2]), np.hypot(d[:, 0], d[:, 1])))
+        flagged |= pitch > v.max_pitch_deg + _ANGLE_EPS_DEG
+    return np.flatnonzero(flagged)
+
+
 def path_times(scenario: Scenario, path: np.ndarray) -> np.ndarray:
     """Arrival times when driving the path at cruise speed without stopping."""
     if len(path) < 2:
@@ -142,7 +168,7 @@ def validate_path(scenario: Scenario, path: object, times: object = None) -> Val
         t = path_times(scenario, arr)
     if len(arr) == 1:
         return Validation(True)
-    for k in range(len(arr) - 1):
+    for k in _suspect_segments(scenario, arr):
         problem = segment_problem(scenario, arr[k], arr[k + 1], float(t[k]), float(t[k + 1]))
         if problem is not None:
             return Validation(False, f"segment {k}: {problem}")

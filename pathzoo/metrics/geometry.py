@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from pathzoo.grid.terrain import segment_profile
+from pathzoo.grid.terrain import path_profile
 
 if TYPE_CHECKING:
     from pathzoo.core.scenario import Scenario
@@ -27,7 +27,7 @@ def path_pieces(scenario: "Scenario", path: np.ndarray) -> tuple[np.ndarray, np.
     """3-D lengths (m) and signed slopes (rad, uphill positive) of the pieces a path is driven in.
 
     - ``terrain``: each segment is split as in
-      :func:`pathzoo.grid.terrain.segment_profile` (bilinear heights, pieces of
+      `pathzoo.grid.terrain.path_profile` (bilinear heights, pieces of
       at most √2 cells), the same profile the validator checks slopes on;
     - ``air3d``: one piece per segment, its 3-D length and pitch;
     - ``grid2d`` and ``dynamic``: one flat piece per segment.
@@ -37,8 +37,8 @@ def path_pieces(scenario: "Scenario", path: np.ndarray) -> tuple[np.ndarray, np.
         return np.zeros(0), np.zeros(0)
     d = np.diff(pts, axis=0)
     if scenario.kind == "terrain":
-        parts = [segment_profile(scenario.elevation, a, b, scenario.cell_size) for a, b in zip(pts[:-1], pts[1:])]
-        return np.concatenate([p[0] for p in parts]), np.concatenate([p[1] for p in parts])
+        lengths, slopes, _ = path_profile(scenario.elevation, pts, scenario.cell_size)
+        return lengths, slopes
     if scenario.kind == "air3d":
         horiz = np.hypot(d[:, 0], d[:, 1])
         return np.linalg.norm(d, axis=1), np.arctan2(d[:, 2], horiz)

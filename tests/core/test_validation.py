@@ -107,3 +107,50 @@ def test_min_distance_is_exact_against_sampling():
         sampled = np.linalg.norm(veh - ob.position(ts), axis=1).min()
         assert exact <= sampled + 1e-12
         assert math.isclose(exact, sampled, abs_tol=2e-3)
+
+
+def _slow_verdict(scenario, path):
+    """The definition: the first segment, in order, that segment_problem rejects."""
+    from pathzoo.harness.validation import segment_problem
+
+    for k in range(len(path) - 1):
+        problem = segment_problem(scenario, path[k], path[k + 1])
+        if problem is not None:
+            return f"segment {k}: {problem}"
+    return None
+
+
+@pytest.mark.parametrize("kind", ["grid2d", "terrain", "air3d"])
+def test_vectorised_screening_gives_the_per_segment_verdict(kind):
+    rng = np.random.default_rng(11)
+    for trial in range(40):
+        if kind == "air3d":
+            occ = rng.random((4, 12, 12)) < 0.15
+            occ[0, 0, 0] = occ[-1, -1, -1] = False
+            s = Scenario(id="a", kind="air3d", occupancy=occ, cell_size=1.0, vertical_cell_size=0.5,
+                         start=(0.5, 0.5, 0.25), goal=(11.5, 11.5, 1.75), vehicle=VehicleModel(max_pitch_deg=20))
+            inner = rng.uniform([0, 0, 0], [12, 12, 2], (rng.integers(0, 6), 3))
+        else:
+            occ = rng.random((12, 12)) < 0.15
+            occ[0, 0] = occ[-1, -1] = False
+            extra = {}
+            if kind == "terrain":
+                extra = dict(elevation=rng.uniform(0, 1.2, (12, 12)),
+                             vehicle=VehicleModel(max_climb_deg=35, max_descent_deg=40))
+            s = Scenario(id="g", kind=kind, occupancy=occ, cell_size=1.0, start=(0.5, 0.5), goal=(11.5, 11.5), **extra)
+            inner = rng.uniform(0, 12, (rng.integers(0, 6), 2))
+            if trial % 3 == 0:  # honest grid paths too
+                from scipy.sparse.csgraph import dijkstra
+
+                _, pred = dijkstra(s.graph.to_sparse(), indices=s.start_node, return_predecessors=True)
+                if pred[s.goal_node] >= 0:
+                    nodes = [s.goal_node]
+                    while nodes[-1] != s.start_node:
+                        nodes.append(pred[nodes[-1]])
+                    inner = s.point_of(nodes[::-1])[1:-1]
+        path = np.vstack([s.start, inner, s.goal])
+        slow = _slow_verdict(s, path)
+        fast = validate_path(s, path)
+        assert fast.valid == (slow is None)
+        if slow is not None:
+            assert fast.reason == slow
