@@ -37,6 +37,8 @@ __all__ = [
     "success_mask",
     "config_labels",
     "loss_values",
+    "MEASUREMENT_DIGITS",
+    "round_measurements",
     "with_config",
 ]
 
@@ -144,10 +146,34 @@ def config_labels(runs: pd.DataFrame) -> pd.Series:
     return planner.where(n_sets <= 1, planner + "@" + phash.str[:7])
 
 
+MEASUREMENT_DIGITS = 12
+"""Significant digits a metric value is compared to in every table and test.
+
+Two paths of equal length can differ in the last bits of their summed
+lengths (summation order); without rounding, a rank test would call one of
+them better every time.
+"""
+
+
+def round_measurements(values: pd.Series) -> pd.Series:
+    """Metric values rounded to :data:`MEASUREMENT_DIGITS` significant digits (NaN and inf kept)."""
+    v = values.astype(float).to_numpy()
+    finite = np.isfinite(v) & (v != 0)
+    out = v.copy()
+    scale = 10.0 ** (MEASUREMENT_DIGITS - 1 - np.floor(np.log10(np.abs(v[finite]))))
+    out[finite] = np.round(v[finite] * scale) / scale
+    return pd.Series(out, index=values.index, name=values.name)
+
+
 def with_config(runs: pd.DataFrame, metric: str | None = None) -> pd.DataFrame:
-    """A copy with ``config`` and ``success`` columns added and ``status`` as plain strings (columns checked first)."""
+    """A copy with ``config`` and ``success`` columns added and ``status`` as plain strings (columns checked first).
+
+    With ``metric``, that column is rounded by :func:`round_measurements`.
+    """
     require_columns(runs, (*_REQUIRED, metric) if metric else _REQUIRED)
     out = runs.copy()
+    if metric:
+        out[metric] = round_measurements(out[metric])
     out["status"] = [str(getattr(s, "value", s)) for s in out["status"]]  # RunStatus members or their values
     out["config"] = config_labels(out)
     out["success"] = success_mask(out)

@@ -15,8 +15,9 @@ Within a scenario, configurations are ordered by
 3. then the **median over successful runs**.
 
 Configurations equal on all three keys share a rank (competition ranking:
-1, 2, 2, 4). Values are compared to 10 significant digits, so two exact
-planners whose lengths differ only by floating-point summation order tie. Success rate is always reported in its own column; the median,
+1, 2, 2, 4). Metric values are compared to 12 significant digits
+(:func:`pathzoo.analysis.frame.round_measurements`), so two planners whose
+lengths differ only by floating-point summation order tie. Success rate is always reported in its own column; the median,
 IQR and SD columns describe successful runs only.
 """
 
@@ -44,21 +45,13 @@ _VERDICT_NOTE = (
 )
 
 
-RANK_DIGITS = 10
-"""Significant digits to which ranking keys are compared (ties below that are noise)."""
-
-
-def _rounded(values: pd.Series) -> pd.Series:
-    return values.astype(float).map(lambda v: float(f"{v:.{RANK_DIGITS}g}"))
-
-
 def _rank_within(summary: pd.DataFrame, direction: Direction) -> pd.Series:
     sign = 1.0 if direction == "min" else -1.0
     keys = pd.DataFrame(
         {
-            "pen": _rounded(sign * summary["penalized_median"].astype(float)),
-            "rate": _rounded(-summary["success_rate"].astype(float)),
-            "med": _rounded((sign * summary["median"].astype(float)).fillna(np.inf)),
+            "pen": sign * summary["penalized_median"].astype(float),
+            "rate": -summary["success_rate"].astype(float),
+            "med": (sign * summary["median"].astype(float)).fillna(np.inf),
         },
         index=summary.index,
     )

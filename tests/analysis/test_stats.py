@@ -218,3 +218,20 @@ def test_wilcoxon_with_ties_matches_scipy_permutation_branch():
     # above 13 pairs scipy's normal approximation is used, as in scipy
     d = rng.integers(-3, 4, 20).astype(float)
     assert compare_losses(d, np.zeros(20), paired=True)[2] == pytest.approx(stats.wilcoxon(d).pvalue)
+
+
+def test_lengths_equal_up_to_summation_noise_are_ties():
+    import pandas as pd
+
+    from pathzoo.analysis.stats import pairwise_tests
+
+    rows = []
+    for planner, length in (("a", 13.899494936611665), ("b", 13.899494936611667)):
+        for seed in range(6):
+            rows.append(dict(run_key=f"{planner}|h|s|{seed}", experiment="e", planner=planner, planner_version="1",
+                             params_hash="h" + planner, params={}, scenario="s", seed_index=seed, seed=seed,
+                             status="solved", valid=True, invalid_reason="", message="", wall_time_s=0.1,
+                             cpu_time_s=0.1, iterations=1, evaluations=1, length=length, success=1.0))
+    res = pairwise_tests(pd.DataFrame(rows), "length", direction="min", paired=False)
+    assert res["a12"].iloc[0] == 0.5
+    assert res["winner"].iloc[0] not in ("a", "b")
