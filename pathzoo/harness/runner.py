@@ -11,7 +11,6 @@ scenario, so nothing a planner does in its worker can change the verdict.
 
 from __future__ import annotations
 
-import importlib.metadata as md
 import logging
 import os
 import warnings
@@ -47,15 +46,19 @@ log = logging.getLogger("pathzoo.harness")
 def extra_plugin_modules(registry: "Registry") -> tuple[tuple[str, str], ...]:
     """``(name, module)`` of plugins registered by hand (not entry points) that workers must import.
 
+    Entry-point plugins are told apart by what the registry recorded at
+    discovery, not by the entry points installed now, so a distribution
+    uninstalled since discovery is not mistaken for a hand-registered module.
     Only module plugins can be re-imported by name; a plugin object that is
     not an importable module stays unknown to workers, and its planners crash
     there with an "unknown planner" message (the ``inline`` executor works).
     """
-    entry_points = {ep.name for ep in md.entry_points(group="pathzoo")}
     return tuple(
         (name, plugin.__name__)
         for name, plugin in registry.pm.list_name_plugin()
-        if name not in entry_points and isinstance(plugin, ModuleType) and plugin.__name__ != "__main__"
+        if name not in registry.entry_point_plugins
+        and isinstance(plugin, ModuleType)
+        and plugin.__name__ != "__main__"
     )
 
 

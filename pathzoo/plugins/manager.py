@@ -33,6 +33,9 @@ class Registry:
         Id to :class:`PluginEntry`.
     failures : list of PluginFailure
         Plugins that failed to import, and id clashes.
+    entry_point_plugins : set of str
+        Names of the plugins loaded from entry points (the others were
+        registered by hand with :meth:`add_plugin`).
     """
 
     pm: pluggy.PluginManager
@@ -40,6 +43,7 @@ class Registry:
     scenarios: dict[str, PluginEntry] = field(default_factory=dict)
     metrics: dict[str, PluginEntry] = field(default_factory=dict)
     failures: list[PluginFailure] = field(default_factory=list)
+    entry_point_plugins: set[str] = field(default_factory=set)
 
     def table(self, kind: PluginKind) -> dict[str, PluginEntry]:
         """The id-to-entry mapping of one kind."""
@@ -137,6 +141,7 @@ def discover(entry_points: Iterable[md.EntryPoint] | None = None) -> Registry:
             registry.failures.append(PluginFailure(ep.name, dist, f"import failed: {type(exc).__name__}: {exc}"))
             continue
         registry.add_plugin(plugin, ep.name, dist, version)
+        registry.entry_point_plugins.add(ep.name)
     return registry
 
 

@@ -73,3 +73,17 @@ def test_builtins_come_through_entry_points():
     assert {"core", "exact", "aco", "baselines", "ompl", "scenarios"} <= names
     with pytest.raises(UnknownPluginError):
         pathzoo.make_planner("no.such.planner")
+
+
+def test_entry_point_plugins_are_remembered_even_after_uninstall(fake_plugins, monkeypatch):
+    from pathzoo.harness.runner import extra_plugin_modules
+
+    reg = discover(fake_plugins)
+    assert reg.entry_point_plugins == {"good", "clash", "badhook"}
+    # the distribution is uninstalled after discovery: its plugin is still not "hand-registered"
+    monkeypatch.setattr(md, "entry_points", lambda **kw: [])
+    assert extra_plugin_modules(reg) == ()
+    by_hand = types.ModuleType("pz_fake_by_hand")
+    monkeypatch.setitem(sys.modules, by_hand.__name__, by_hand)
+    reg.add_plugin(by_hand, "by_hand")
+    assert extra_plugin_modules(reg) == (("by_hand", "pz_fake_by_hand"),)
