@@ -35,6 +35,7 @@ from pathzoo.core import (
     VehicleModel,
 )
 from pathzoo.plugins.entries import PluginEntry, ScenarioEntry
+from pathzoo.io.paths import looks_like_path
 from pathzoo.plugins.hookspecs import hookimpl
 
 if TYPE_CHECKING:
@@ -76,12 +77,6 @@ __all__ = [
 ]
 
 
-def _looks_like_path(text: str) -> bool:
-    return any(sep in text for sep in ("/", "\\")) or Path(text).suffix in {
-        ".toml", ".map", ".scen", ".npy", ".npz", ".asc"
-    } or Path(text).exists()
-
-
 def load_scenario(id_or_path: str | Path) -> Scenario:
     """Load one scenario by registered id or from a file.
 
@@ -99,7 +94,7 @@ def load_scenario(id_or_path: str | Path) -> Scenario:
         The file is malformed; the message names the file and field.
     """
     text = str(id_or_path)
-    if isinstance(id_or_path, Path) or _looks_like_path(text):
+    if isinstance(id_or_path, Path) or looks_like_path(text):
         from pathzoo.io import load_scenario_file
 
         return load_scenario_file(Path(text))
@@ -120,7 +115,7 @@ def load_scenarios(path: str | Path) -> list[Scenario]:
     of registered ids (``"movingai.arena.*"``) gives every match.
     """
     text = str(path)
-    if isinstance(path, Path) or _looks_like_path(text):
+    if isinstance(path, Path) or looks_like_path(text):
         from pathzoo.io import load_scenario_files
 
         return load_scenario_files(Path(text))

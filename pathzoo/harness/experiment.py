@@ -36,6 +36,7 @@ from typing import TYPE_CHECKING, Any, Iterable, Mapping, Sequence
 from pathzoo.core.budget import Budget
 from pathzoo.core.errors import InvalidExperimentError, PathzooError
 from pathzoo.core.scenario import Scenario
+from pathzoo.io.paths import looks_like_path
 from pathzoo.harness.specs import PlannerSpec, RunTask, ScenarioSpec, run_key, run_seed
 
 if TYPE_CHECKING:
@@ -51,12 +52,6 @@ DEFAULT_TIMEOUT_NO_TIME_S = 300.0
 """Default hard limit when the budget has no time limit."""
 
 _EXPERIMENT_KEYS = ("name", "seed", "seeds", "budget", "timeout_s", "jobs", "db", "scenarios")
-
-
-def _looks_like_path(text: str) -> bool:
-    from pathzoo import _looks_like_path as looks
-
-    return looks(text)
 
 
 def _resolve_scenarios(
@@ -80,7 +75,7 @@ def _resolve_scenarios(
             add(item)
         elif isinstance(item, Scenario):
             add(ScenarioSpec.of_object(item))
-        elif isinstance(item, Path) or (isinstance(item, str) and _looks_like_path(item)):
+        elif isinstance(item, Path) or (isinstance(item, str) and looks_like_path(item)):
             path = Path(item).expanduser()
             if base is not None and not path.is_absolute():
                 path = base / path
