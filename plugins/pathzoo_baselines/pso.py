@@ -36,7 +36,7 @@ class PsoPlanner(BaselinePlanner):
     id: ClassVar[str] = "swarm.pso"
     version: ClassVar[str] = "1"
     summary: ClassVar[str] = "Particle swarm optimisation of K waypoints (pyswarms), penalised length"
-    preload: ClassVar[tuple[str, ...]] = ("pyswarms.backend",)
+    preload: ClassVar[tuple[str, ...]] = ("pathzoo_baselines.pyswarms_backend",)
     params: ClassVar[Mapping[str, Param]] = {
         **ENCODING_PARAMS,
         "particles": Param(50, "swarm size", low=2, high=100_000),
@@ -56,10 +56,7 @@ class PsoPlanner(BaselinePlanner):
     ) -> PlanResult:
         """Run the swarm until the budget is spent; see the class docstring."""
         encoding, search = self._start(scenario, budget, progress)
-        from pyswarms.backend.generators import create_swarm
-        from pyswarms.backend.handlers import BoundaryHandler, VelocityHandler
-        from pyswarms.backend.operators import compute_pbest
-        from pyswarms.backend.topology import Star
+        from pathzoo_baselines.pyswarms_backend import BoundaryHandler, Star, VelocityHandler, compute_pbest, create_swarm
 
         bounds = (encoding.low, encoding.high)
         vmax = self.v_max * float(np.max(scenario.extent))
