@@ -41,12 +41,15 @@ def _seed(seed):
     np.random.seed(seed)
 
 
+_ALL_EDGES = np.zeros(0, dtype=np.int32)
+"""``adj_edge`` of :meth:`WalkEngine.adjacency` when every edge of the graph may be taken."""
+
 _FRESH, _RUNNING, OUTRUN = -2, -1, 5
 """Walk states before an outcome: not started, walking; and the race outcome "another ant reached the goal first"."""
 
 
 @numba.njit(cache=True)
-def _colony(indptr, indices, offset_id, horizontal, turn,
+def _colony(indices, adj_ptr, adj_node, adj_edge, offset_id, horizontal, turn,
             x, scale, lo, hi, on_nodes,
             tau_exp, w_mul, w_add, q0, local_keep, local_add, pre_add,
             start, goal, backtrack, max_steps, allowance, race, walk_base,
@@ -61,8 +64,14 @@ def _colony(indptr, indices, offset_id, horizontal, turn,
     arrays; ``counters`` holds (next ant, ants started, steps taken, a
     finished walk waiting for room in ``flat``), so a call resumes where the
     previous one stopped.
+
+    ``indices`` is the graph's edge -> target node; ``adj_ptr``/``adj_node``
+    list, per node, the edges an ant may ever take and their targets (CSR).
+    Position ``q`` of that list is graph edge ``adj_edge[q]`` when
+    ``adj_edge`` is not empty (edges of weight 0 left out), edge ``q`` otherwise.
     """
     n_ants = flags.size
+    compact = adj_edge.size > 0
     use_turn = turn.shape[0] > 0
     no_prev = turn.shape[0] - 1
     has_add = w_add.size > 0
@@ -123,30 +132,31 @@ def _colony(indptr, indices, offset_id, horizontal, turn,
             if d >= stack_e.size:
                 break  # no room on the stack: the caller grows it
             # ---------------------------------------------------------- one step
-            e0 = indptr[c]
-            e1 = indptr[c + 1]
+            e0 = adj_ptr[c]
+            e1 = adj_ptr[c + 1]
             nc = 0
             n_open = 0  # allowed neighbours, whatever their weight
             total_w = 0.0
-            for e in range(e0, e1):
-                j = indices[e]
+            for q in range(e0, e1):
+                e = adj_edge[q] if compact else q
+                j = adj_node[q]
                 k = j if on_nodes else e
                 if has_pre:  # added to every edge leaving the cell, tabu or not, before the choice
                     t = min(max(min(max(scale * x[k], lo), hi) + pre_add[e], lo), hi)
                     x[k] = t / scale
                     if stamp[j] == wid:
                         continue
-                else:
-                    if stamp[j] == wid:  # most neighbours on a long walk: test before touching the trail
-                        continue
-                    t = scale * x[k]
-                    if bounded:
-                        t = min(max(t, lo), hi)
+                elif stamp[j] == wid:  # most neighbours on a long walk: test before touching the trail
+                    continue
                 f = 1.0
-                if use_turn:
+                if use_turn:  # the turn table is small: test it before reading the trail too
                     f = turn[pv, offset_id[e]]
                     if f <= 0.0:
                         continue
+                if not has_pre:
+                    t = scale * x[k]
+                    if bounded:
+                        t = min(max(t, lo), hi)
                 n_open += 1
                 if tau_exp == 1.0:
                     w = t * w_mul[e]
@@ -164,8 +174,9 @@ def _colony(indptr, indices, offset_id, horizontal, turn,
                     total_w += w
                     nc += 1
             if nc == 0 and n_open > 0:  # maybe every trail is 0: weigh the allowed edges by the heuristic alone
-                for e in range(e0, e1):
-                    if stamp[indices[e]] == wid:
+                for q in range(e0, e1):
+                    e = adj_edge[q] if compact else q
+                    if stamp[adj_node[q]] == wid:
                         continue
                     f = turn[pv, offset_id[e]] if use_turn else 1.0
                     w = f * (w_mul[e] + (w_add[e] if has_add else 0.0))
@@ -325,6 +336,35 @@ class WalkEngine:
         self.offset_id = g.offset_id.astype(np.int32)
         self.indices = g.indices.astype(np.int32)  # half the memory traffic of the int64 CSR arrays
         self.total_steps = 0
+        self._adjacency_of: tuple[np.ndarray, ...] = ()
+        self._adjacency = (g.indptr, self.indices, _ALL_EDGES)
+
+    def adjacency(self, rules: WalkRules) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The edges an ant may take under ``rules``, per node: ``(adj_ptr, adj_node, adj_edge)``.
+
+        An edge whose ``weight_mul`` and ``weight_add`` are both 0 can never
+        be chosen, so it is left out (an ant then never looks at it; the
+        choices and the random numbers drawn stay the same). Without such
+        edges, or with ``pre_add`` (which writes every edge's trail), the
+        list is the whole graph and ``adj_edge`` is empty. Computed once per
+        set of weight arrays (O(edges)); :func:`dataclasses.replace` on the
+        rules keeps the arrays, so schedules of ``q0`` cost nothing here.
+        """
+        key = (rules.weight_mul, rules.weight_add, rules.pre_add)
+        if len(self._adjacency_of) == len(key) and all(a is b for a, b in zip(key, self._adjacency_of)):
+            return self._adjacency
+        g = self.problem.graph
+        adjacency = (g.indptr, self.indices, _ALL_EDGES)
+        if rules.pre_add.size == 0:
+            live = rules.weight_mul != 0.0
+            if rules.weight_add.size:
+                live |= rules.weight_add != 0.0
+            if not live.all():
+                adj_edge = np.flatnonzero(live).astype(np.int32)
+                adj_ptr = np.concatenate([[0], np.cumsum(live)])[g.indptr]
+                adjacency = (adj_ptr, self.indices[adj_edge], adj_edge)
+        self._adjacency_of, self._adjacency = key, adjacency
+        return adjacency
 
     def walk(self, rules: WalkRules, trail: Pheromone, n_ants: int, seed: int,
              allowance: int = 2**62) -> Walks:
@@ -362,10 +402,11 @@ class WalkEngine:
         flags = np.full(n_ants, _FRESH, dtype=np.int8)
         counters = np.zeros(4, dtype=np.int64)
         offsets = np.zeros(n_ants + 1, dtype=np.int64)
+        adj_ptr, adj_node, adj_edge = self.adjacency(rules)
         _seed(seed)
         while True:
             status = _colony(
-                p.graph.indptr, self.indices, self.offset_id, p.horizontal_offsets, rules.turn,
+                self.indices, adj_ptr, adj_node, adj_edge, self.offset_id, p.horizontal_offsets, rules.turn,
                 trail.x, trail.scale, trail.lo, trail.hi, trail.on_nodes,
                 rules.tau_exp, rules.weight_mul, rules.weight_add, rules.q0, rules.local_keep, rules.local_add,
                 rules.pre_add, p.start, p.goal, rules.backtrack, rules.max_steps, allowance, rules.race,
