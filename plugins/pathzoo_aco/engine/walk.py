@@ -49,9 +49,9 @@ _FRESH, _RUNNING, OUTRUN = -2, -1, 5
 
 
 @numba.njit(cache=True)
-def _colony(indices, adj_ptr, adj_node, adj_edge, offset_id, horizontal, turn,
+def _colony(indices, offset_id, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, w_add, horizontal, turn,
             x, scale, lo, hi, on_nodes,
-            tau_exp, w_mul, w_add, q0, local_keep, local_add, pre_add,
+            tau_exp, q0, local_keep, local_add, pre_add,
             start, goal, backtrack, max_steps, allowance, race, walk_base,
             stamps, stacks, prevs, cand_e, cand_w,
             cur, depth, prev, steps, flags, counters, flat, offsets):
@@ -65,8 +65,10 @@ def _colony(indices, adj_ptr, adj_node, adj_edge, offset_id, horizontal, turn,
     finished walk waiting for room in ``flat``), so a call resumes where the
     previous one stopped.
 
-    ``indices`` is the graph's edge -> target node; ``adj_ptr``/``adj_node``
-    list, per node, the edges an ant may ever take and their targets (CSR).
+    ``indices`` and ``offset_id`` are the graph's per-edge target node and
+    move; ``adj_ptr``/``adj_node`` list, per node, the edges an ant may ever
+    take and their targets (CSR), ``adj_offset``, ``w_mul``, ``w_add`` their
+    moves and weights in the same order (:meth:`WalkEngine.adjacency`).
     Position ``q`` of that list is graph edge ``adj_edge[q]`` when
     ``adj_edge`` is not empty (edges of weight 0 left out), edge ``q`` otherwise.
     """
@@ -142,7 +144,7 @@ def _colony(indices, adj_ptr, adj_node, adj_edge, offset_id, horizontal, turn,
                 j = adj_node[q]
                 k = j if on_nodes else e
                 if has_pre:  # added to every edge leaving the cell, tabu or not, before the choice
-                    t = min(max(min(max(scale * x[k], lo), hi) + pre_add[e], lo), hi)
+                    t = min(max(min(max(scale * x[k], lo), hi) + pre_add[q], lo), hi)
                     x[k] = t / scale
                     if stamp[j] == wid:
                         continue
@@ -150,7 +152,7 @@ def _colony(indices, adj_ptr, adj_node, adj_edge, offset_id, horizontal, turn,
                     continue
                 f = 1.0
                 if use_turn:  # the turn table is small: test it before reading the trail too
-                    f = turn[pv, offset_id[e]]
+                    f = turn[pv, adj_offset[q]]
                     if f <= 0.0:
                         continue
                 if not has_pre:
@@ -159,13 +161,13 @@ def _colony(indices, adj_ptr, adj_node, adj_edge, offset_id, horizontal, turn,
                         t = min(max(t, lo), hi)
                 n_open += 1
                 if tau_exp == 1.0:
-                    w = t * w_mul[e]
+                    w = t * w_mul[q]
                 elif t <= lo:  # trails resting on the floor share one power
-                    w = lo_pow * w_mul[e]
+                    w = lo_pow * w_mul[q]
                 else:
-                    w = t**tau_exp * w_mul[e]
+                    w = t**tau_exp * w_mul[q]
                 if has_add:
-                    w += w_add[e]
+                    w += w_add[q]
                 if use_turn:
                     w *= f
                 if w > 0.0:
@@ -175,13 +177,12 @@ def _colony(indices, adj_ptr, adj_node, adj_edge, offset_id, horizontal, turn,
                     nc += 1
             if nc == 0 and n_open > 0:  # maybe every trail is 0: weigh the allowed edges by the heuristic alone
                 for q in range(e0, e1):
-                    e = adj_edge[q] if compact else q
                     if stamp[adj_node[q]] == wid:
                         continue
-                    f = turn[pv, offset_id[e]] if use_turn else 1.0
-                    w = f * (w_mul[e] + (w_add[e] if has_add else 0.0))
+                    f = turn[pv, adj_offset[q]] if use_turn else 1.0
+                    w = f * (w_mul[q] + (w_add[q] if has_add else 0.0))
                     if w > 0.0:
-                        cand_e[nc] = e
+                        cand_e[nc] = adj_edge[q] if compact else q
                         cand_w[nc] = w
                         total_w += w
                         nc += 1
@@ -337,16 +338,21 @@ class WalkEngine:
         self.indices = g.indices.astype(np.int32)  # half the memory traffic of the int64 CSR arrays
         self.total_steps = 0
         self._adjacency_of: tuple[np.ndarray, ...] = ()
-        self._adjacency = (g.indptr, self.indices, _ALL_EDGES)
+        self._adjacency: tuple[np.ndarray, ...] = ()
 
-    def adjacency(self, rules: WalkRules) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """The edges an ant may take under ``rules``, per node: ``(adj_ptr, adj_node, adj_edge)``.
+    def adjacency(self, rules: WalkRules) -> tuple[np.ndarray, ...]:
+        """The edges an ant may take under ``rules``, per node, as the kernel reads them.
+
+        Returns ``(adj_ptr, adj_node, adj_edge, adj_offset, weight_mul,
+        weight_add)``: a CSR of the edges with their target nodes, graph edge
+        ids, moves and weights in list order (one after another in memory).
 
         An edge whose ``weight_mul`` and ``weight_add`` are both 0 can never
         be chosen, so it is left out (an ant then never looks at it; the
         choices and the random numbers drawn stay the same). Without such
         edges, or with ``pre_add`` (which writes every edge's trail), the
-        list is the whole graph and ``adj_edge`` is empty. Computed once per
+        list is the whole graph, ``adj_edge`` is empty and the arrays are the
+        graph's and the rules' own. Computed once per
         set of weight arrays (O(edges)); :func:`dataclasses.replace` on the
         rules keeps the arrays, so schedules of ``q0`` cost nothing here.
         """
@@ -354,7 +360,7 @@ class WalkEngine:
         if len(self._adjacency_of) == len(key) and all(a is b for a, b in zip(key, self._adjacency_of)):
             return self._adjacency
         g = self.problem.graph
-        adjacency = (g.indptr, self.indices, _ALL_EDGES)
+        adjacency = (g.indptr, self.indices, _ALL_EDGES, self.offset_id, rules.weight_mul, rules.weight_add)
         if rules.pre_add.size == 0:
             live = rules.weight_mul != 0.0
             if rules.weight_add.size:
@@ -362,7 +368,9 @@ class WalkEngine:
             if not live.all():
                 adj_edge = np.flatnonzero(live).astype(np.int32)
                 adj_ptr = np.concatenate([[0], np.cumsum(live)])[g.indptr]
-                adjacency = (adj_ptr, self.indices[adj_edge], adj_edge)
+                add = rules.weight_add[adj_edge] if rules.weight_add.size else rules.weight_add
+                adjacency = (adj_ptr, self.indices[adj_edge], adj_edge, self.offset_id[adj_edge],
+                             rules.weight_mul[adj_edge], add)
         self._adjacency_of, self._adjacency = key, adjacency
         return adjacency
 
@@ -402,13 +410,13 @@ class WalkEngine:
         flags = np.full(n_ants, _FRESH, dtype=np.int8)
         counters = np.zeros(4, dtype=np.int64)
         offsets = np.zeros(n_ants + 1, dtype=np.int64)
-        adj_ptr, adj_node, adj_edge = self.adjacency(rules)
+        adjacency = self.adjacency(rules)
         _seed(seed)
         while True:
             status = _colony(
-                self.indices, adj_ptr, adj_node, adj_edge, self.offset_id, p.horizontal_offsets, rules.turn,
+                self.indices, self.offset_id, *adjacency, p.horizontal_offsets, rules.turn,
                 trail.x, trail.scale, trail.lo, trail.hi, trail.on_nodes,
-                rules.tau_exp, rules.weight_mul, rules.weight_add, rules.q0, rules.local_keep, rules.local_add,
+                rules.tau_exp, rules.q0, rules.local_keep, rules.local_add,
                 rules.pre_add, p.start, p.goal, rules.backtrack, rules.max_steps, allowance, rules.race,
                 self.walk_base, self.stamps, stacks, prevs, self.cand_e, self.cand_w,
                 cur, depth, prev, steps, flags, counters, self.flat, offsets,
