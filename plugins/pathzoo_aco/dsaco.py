@@ -27,9 +27,11 @@ kilometres on its 1 km grid). Table 4: m = 10, n = 500, Q = 100, α = 1,
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, replace
 from typing import Any, Mapping
 
+import numba
 import numpy as np
 
 from pathzoo.core.errors import InvalidParameterError
@@ -73,13 +75,38 @@ def _per_walk(per_position: np.ndarray, walks: Walks) -> np.ndarray:
     return np.where(walks.reached, cum[walks.offsets[1:]] - cum[walks.offsets[:-1]], np.inf)
 
 
+@numba.njit(cache=True)
+def _walk_fitness(flat, offsets, reached, indices, offset_id, edge_length, height, turn_angle, start, cells,
+                  f1, f2, f3):
+    """Eq. 20 per walk in one pass: the same operations, in the same order, as :meth:`DSACO.fitness_terms`.
+
+    Per position: ``f1 ℓ/cells + f2 (h_i + h_j)/2 + f3 turn``; walks are
+    totalled as differences of one running sum over ``flat`` (as
+    :func:`_per_walk`), so the costs are bit-identical to the array version.
+    """
+    n = offsets.size - 1
+    cum = np.empty(flat.size + 1)
+    cum[0] = 0.0
+    acc = 0.0
+    for a in range(n):
+        for p in range(offsets[a], offsets[a + 1]):
+            e = flat[p]
+            first = p == offsets[a]
+            i = start if first else indices[flat[p - 1]]
+            turn = 0.0 if first else turn_angle[offset_id[flat[p - 1]], offset_id[e]]
+            acc += f1 * (edge_length[e] / cells) + f2 * (0.5 * (height[i] + height[indices[e]])) + f3 * turn
+            cum[p + 1] = acc
+    out = np.empty(n)
+    for a in range(n):
+        out[a] = cum[offsets[a + 1]] - cum[offsets[a]] if reached[a] else np.inf
+    return out
+
+
 @dataclass
 class DsacoState(ColonyState):
-    """Colony state plus the per-edge fitness terms (in cells) and the turn angle between moves."""
+    """Colony state plus the flight height of every node (in cells) and the turn angle between moves."""
 
-    edge_length: np.ndarray | None = None
-    edge_height: np.ndarray | None = None
-    edge_fitness: np.ndarray | None = None
+    node_height: np.ndarray | None = None
     turn_angle: np.ndarray | None = None
 
 
@@ -136,9 +163,12 @@ class DSACO(AntColonyPlanner):
             admitted = problem.node_xyz[:, 2] >= np.nan_to_num(ground, nan=np.inf) + self.h_c
         cells = s.cell_size
         j = g.indices
-        m = 1.0 / (1.0 + h[j])
-        d = 1.0 / (g.length / cells + np.sqrt(1.0 + (problem.goal_distance[j] / cells) ** 2))
-        return np.where(admitted[j], m * d, 0.0) * self.allowed_moves(problem)
+        m = (1.0 / (1.0 + h))[j]  # node terms first, then one gather per edge (same values)
+        d = 1.0 / (g.length / cells + np.sqrt(1.0 + (problem.goal_distance / cells) ** 2)[j])
+        eta = np.where(admitted[j], m * d, 0.0)
+        if self.step_rule == "graph":  # every move allowed: the factor would be 1 everywhere
+            return eta
+        return eta * self.allowed_moves(problem)
 
     def allowed_moves(self, problem: ColonyProblem) -> np.ndarray:
         """1 for the edges the step rule allows, 0 for the others (all 1 under ``step_rule="graph"``).
@@ -152,8 +182,8 @@ class DSACO(AntColonyPlanner):
             return np.ones(g.n_edges)
         width = g.shape[-1]
         direction = np.sign(problem.goal % width - problem.start % width)
-        dx = g.offsets[g.offset_id][:, -1]
-        return ((dx == direction) & (direction != 0)).astype(np.float64)
+        forward = (g.offsets[:, -1] == direction) & (direction != 0)  # per move, then per edge
+        return forward[g.offset_id].astype(np.float64)
 
     def heuristic(self, problem: ColonyProblem) -> np.ndarray:
         """``η = Q_search = S · M · D`` (eqs. 11-13)."""
@@ -175,17 +205,17 @@ class DSACO(AntColonyPlanner):
 
     def init_state(self, problem: ColonyProblem, rules: WalkRules, trail: Pheromone, engine: WalkEngine,
                    rng: np.random.Generator) -> DsacoState:
-        """Bound the trail to ``[τmin, τmax]``; precompute the per-edge terms of eqs. 21-22 and the turn angles."""
+        """Bound the trail to ``[τmin, τmax]``; precompute node heights and the turn angle between moves.
+
+        The fitness terms are computed along the walks only (O(walk length)
+        per iteration, nothing per edge).
+        """
         trail.set_bounds(self.tau_min, self.tau_max)
         g = problem.graph
-        h = self.node_height(problem)
         moves = g.offsets[:, ::-1] * problem.scenario.cell_sizes  # world vectors (x, y[, z])
         unit = moves / np.linalg.norm(moves, axis=1, keepdims=True)
         turn = np.arccos(np.clip(unit @ unit.T, -1.0, 1.0))
-        length = g.length / problem.scenario.cell_size
-        height = 0.5 * (h[problem.sources] + h[g.indices])
-        return DsacoState(problem, rules, trail, rng, edge_length=length, edge_height=height,
-                          edge_fitness=self.f1 * length + self.f2 * height, turn_angle=turn)
+        return DsacoState(problem, rules, trail, rng, node_height=self.node_height(problem), turn_angle=turn)
 
     @staticmethod
     def step_turns(state: ColonyState, walks: Walks) -> np.ndarray:
@@ -205,22 +235,27 @@ class DSACO(AntColonyPlanner):
         of both ends), in cells; ``DT`` sums the angles (radians) between
         consecutive segments.
         """
-        assert isinstance(state, DsacoState) and state.edge_length is not None and state.edge_height is not None
-        return (walks.totals(state.edge_length), walks.totals(state.edge_height),
+        assert isinstance(state, DsacoState) and state.node_height is not None
+        g = state.problem.graph
+        h = state.node_height
+        height = 0.5 * (h[g.sources[walks.flat]] + h[g.indices[walks.flat]])
+        return (_per_walk(g.length[walks.flat] / state.problem.scenario.cell_size, walks), _per_walk(height, walks),
                 _per_walk(self.step_turns(state, walks), walks))
 
     def walk_costs(self, state: ColonyState, walks: Walks) -> np.ndarray:
-        """Eq. 20: ``Fitness = f1 D0 + f2 Dh + f3 DT`` (one pass over the walks)."""
-        assert isinstance(state, DsacoState) and state.edge_fitness is not None
-        return _per_walk(state.edge_fitness[walks.flat] + self.f3 * self.step_turns(state, walks), walks)
+        """Eq. 20: ``Fitness = f1 D0 + f2 Dh + f3 DT`` (one compiled pass over the walks)."""
+        assert isinstance(state, DsacoState) and state.node_height is not None and state.turn_angle is not None
+        p = state.problem
+        return _walk_fitness(walks.flat, walks.offsets, walks.reached, p.graph.indices, p.graph.offset_id,
+                             p.graph.length, state.node_height, state.turn_angle, p.start, p.scenario.cell_size,
+                             self.f1, self.f2, self.f3)
 
     def update_trail(self, state: ColonyState, walks: Walks, costs: np.ndarray) -> None:
         """Eqs. 16-19: evaporate everywhere; the iteration-best ant lays ``Q / ((1-p) F_now + p F_global)``."""
         state.trail.evaporate(self.rho)
-        if not np.isfinite(costs).any():
-            return
         k = int(np.argmin(costs))
+        if not math.isfinite(costs[k]):  # no ant reached the target
+            return
         p = p_schedule(state.iteration, self.p, self.gamma_p)
         amount = self.q / ((1.0 - p) * float(costs[k]) + p * state.best_cost)
-        edges = walks.edges(k)
-        deposit_walks(state.trail, state.problem.graph.indices, edges, np.array([0, len(edges)]), np.array([0]), amount)
+        deposit_walks(state.trail, state.problem.graph.indices, walks.flat, walks.offsets, [k], amount)
