@@ -113,7 +113,8 @@ def deposit_walks(trail: Pheromone, indices: np.ndarray, flat: np.ndarray, offse
         Extra amount per edge id.
     """
     ants = np.asarray(ants, dtype=np.int64)
-    amounts = np.broadcast_to(np.asarray(per_walk, dtype=np.float64), ants.shape).copy()
+    amounts = np.empty(ants.shape)
+    amounts[:] = per_walk  # broadcast (np.broadcast_to costs more than the deposit of one short walk)
     extra = np.zeros(0) if per_edge is None else np.asarray(per_edge, dtype=np.float64)
     _deposit(trail.x, trail.scale, trail.lo, trail.hi, trail.on_nodes, indices, flat, offsets, ants,
              float(keep), amounts, extra)

@@ -334,7 +334,7 @@ class WalkEngine:
         self.cand_e = np.zeros(max(kmax, 1), dtype=np.int64)
         self.cand_w = np.zeros(max(kmax, 1))
         self.flat = np.zeros(1024, dtype=np.int64)
-        self.offset_id = g.offset_id.astype(np.int32)
+        self.offset_id = g.offset_id.astype(np.int8 if len(g.offsets) <= 127 else np.int32)  # moves: compact
         self.indices = g.indices.astype(np.int32)  # half the memory traffic of the int64 CSR arrays
         self.total_steps = 0
         self._adjacency_of: tuple[np.ndarray, ...] = ()
