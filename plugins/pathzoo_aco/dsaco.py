@@ -89,13 +89,16 @@ def _walk_fitness(flat, offsets, reached, indices, offset_id, edge_length, heigh
     cum[0] = 0.0
     acc = 0.0
     for a in range(n):
+        i = start  # the segment's first node and the walk's previous move
+        move = -1
         for p in range(offsets[a], offsets[a + 1]):
             e = flat[p]
-            first = p == offsets[a]
-            i = start if first else indices[flat[p - 1]]
-            turn = 0.0 if first else turn_angle[offset_id[flat[p - 1]], offset_id[e]]
-            acc += f1 * (edge_length[e] / cells) + f2 * (0.5 * (height[i] + height[indices[e]])) + f3 * turn
+            j = indices[e]
+            turn = 0.0 if move < 0 else turn_angle[move, offset_id[e]]
+            acc += f1 * (edge_length[e] / cells) + f2 * (0.5 * (height[i] + height[j])) + f3 * turn
             cum[p + 1] = acc
+            i = j
+            move = offset_id[e]
     out = np.empty(n)
     for a in range(n):
         out[a] = cum[offsets[a + 1]] - cum[offsets[a]] if reached[a] else np.inf
