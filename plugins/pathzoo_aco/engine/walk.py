@@ -41,9 +41,6 @@ def _seed(seed):
     np.random.seed(seed)
 
 
-_ALL_EDGES = np.zeros(0, dtype=np.int32)
-"""``adj_edge`` of :meth:`WalkEngine.adjacency` when every edge of the graph may be taken."""
-
 _FRESH, _RUNNING, OUTRUN = -2, -1, 5
 """Walk states before an outcome: not started, walking; and the race outcome "another ant reached the goal first"."""
 
@@ -69,11 +66,11 @@ def _colony(indices, offset_id, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, 
     move; ``adj_ptr``/``adj_node`` list, per node, the edges an ant may ever
     take and their targets (CSR), ``adj_offset``, ``w_mul``, ``w_add`` their
     moves and weights in the same order (:meth:`WalkEngine.adjacency`).
-    Position ``q`` of that list is graph edge ``adj_edge[q]`` when
-    ``adj_edge`` is not empty (edges of weight 0 left out), edge ``q`` otherwise.
+    Position ``q`` of that list is graph edge ``adj_edge[q]`` (edges of
+    weight 0 left out), or edge ``q`` when ``adj_edge`` is None (numba then
+    compiles the kernel without the lookup).
     """
     n_ants = flags.size
-    compact = adj_edge.size > 0
     use_turn = turn.shape[0] > 0
     no_prev = turn.shape[0] - 1
     has_add = w_add.size > 0
@@ -140,7 +137,10 @@ def _colony(indices, offset_id, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, 
             n_open = 0  # allowed neighbours, whatever their weight
             total_w = 0.0
             for q in range(e0, e1):
-                e = adj_edge[q] if compact else q
+                if adj_edge is None:  # pruned at compile time: one specialisation per case
+                    e = q
+                else:
+                    e = adj_edge[q]
                 j = adj_node[q]
                 k = j if on_nodes else e
                 if has_pre:  # added to every edge leaving the cell, tabu or not, before the choice
@@ -182,7 +182,10 @@ def _colony(indices, offset_id, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, 
                     f = turn[pv, adj_offset[q]] if use_turn else 1.0
                     w = f * (w_mul[q] + (w_add[q] if has_add else 0.0))
                     if w > 0.0:
-                        cand_e[nc] = adj_edge[q] if compact else q
+                        if adj_edge is None:
+                            cand_e[nc] = q
+                        else:
+                            cand_e[nc] = adj_edge[q]
                         cand_w[nc] = w
                         total_w += w
                         nc += 1
@@ -338,9 +341,9 @@ class WalkEngine:
         self.indices = g.indices.astype(np.int32)  # half the memory traffic of the int64 CSR arrays
         self.total_steps = 0
         self._adjacency_of: tuple[np.ndarray, ...] = ()
-        self._adjacency: tuple[np.ndarray, ...] = ()
+        self._adjacency: tuple[np.ndarray | None, ...] = ()
 
-    def adjacency(self, rules: WalkRules) -> tuple[np.ndarray, ...]:
+    def adjacency(self, rules: WalkRules) -> tuple[np.ndarray | None, ...]:
         """The edges an ant may take under ``rules``, per node, as the kernel reads them.
 
         Returns ``(adj_ptr, adj_node, adj_edge, adj_offset, weight_mul,
@@ -351,7 +354,7 @@ class WalkEngine:
         be chosen, so it is left out (an ant then never looks at it; the
         choices and the random numbers drawn stay the same). Without such
         edges, or with ``pre_add`` (which writes every edge's trail), the
-        list is the whole graph, ``adj_edge`` is empty and the arrays are the
+        list is the whole graph, ``adj_edge`` is None and the arrays are the
         graph's and the rules' own. Computed once per
         set of weight arrays (O(edges)); :func:`dataclasses.replace` on the
         rules keeps the arrays, so schedules of ``q0`` cost nothing here.
@@ -360,7 +363,7 @@ class WalkEngine:
         if len(self._adjacency_of) == len(key) and all(a is b for a, b in zip(key, self._adjacency_of)):
             return self._adjacency
         g = self.problem.graph
-        adjacency = (g.indptr, self.indices, _ALL_EDGES, self.offset_id, rules.weight_mul, rules.weight_add)
+        adjacency = (g.indptr, self.indices, None, self.offset_id, rules.weight_mul, rules.weight_add)
         if rules.pre_add.size == 0:
             live = rules.weight_mul != 0.0
             if rules.weight_add.size:
