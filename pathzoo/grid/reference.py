@@ -22,6 +22,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from pathzoo.grid.paths import centre_path
+
 if TYPE_CHECKING:
     from pathzoo.core.scenario import Scenario
 
@@ -33,8 +35,6 @@ GRAPH_REFERENCE_KINDS: frozenset[str] = frozenset({"grid2d", "terrain", "air3d"}
 ``dynamic`` is excluded: the static graph ignores the moving obstacles, so
 its optimum is only a lower bound there.
 """
-
-_CENTRE_TOL_CELLS = 1e-9
 
 
 @dataclass(frozen=True, eq=False)
@@ -60,18 +60,6 @@ _cache: "weakref.WeakKeyDictionary[Scenario, ReferencePath | None]" = weakref.We
 _lock = threading.Lock()
 
 
-def _with_endpoints(scenario: "Scenario", centres: np.ndarray) -> np.ndarray:
-    tol = _CENTRE_TOL_CELLS * float(np.min(scenario.cell_sizes))
-    head = [] if np.max(np.abs(centres[0] - scenario.start)) <= tol else [scenario.start]
-    tail = [] if np.max(np.abs(centres[-1] - scenario.goal)) <= tol else [scenario.goal]
-    inner = centres.copy()
-    if not head:
-        inner[0] = scenario.start
-    if not tail:
-        inner[-1] = scenario.goal
-    return np.vstack([*(p[None, :] for p in head), inner, *(p[None, :] for p in tail)])
-
-
 def _compute(scenario: "Scenario") -> ReferencePath | None:
     # imported here: pathzoo.metrics imports this module for length_ratio, and
     # registering the metrics must not pull in scipy
@@ -88,7 +76,7 @@ def _compute(scenario: "Scenario") -> ReferencePath | None:
     while nodes[-1] != source:
         nodes.append(int(pred[nodes[-1]]))
     node_arr = np.array(nodes[::-1], dtype=np.int64)
-    path = _with_endpoints(scenario, scenario.point_of(node_arr))
+    path = centre_path(scenario, node_arr)
     lengths, _ = path_pieces(scenario, path)
     path.setflags(write=False)
     node_arr.setflags(write=False)

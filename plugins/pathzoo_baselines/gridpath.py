@@ -34,6 +34,7 @@ import numba
 import numpy as np
 
 from pathzoo.core import Scenario
+from pathzoo.grid.paths import centre_path
 
 __all__ = ["MoveEncoding", "COMPASS"]
 
@@ -41,7 +42,6 @@ COMPASS = np.array([(0, 1), (-1, 1), (-1, 0), (-1, -1), (0, -1), (1, -1), (1, 0)
 """The eight moves ``(d_row, d_col)`` in counter-clockwise order from east (y grows downwards)."""
 
 _TRY_ORDER = np.array([0, 1, -1, 2, -2, 3, -3, 4], dtype=np.int64)
-_CENTRE_TOL_CELLS = 1e-9
 
 
 @numba.njit(cache=True)
@@ -175,15 +175,4 @@ class MoveEncoding:
         sc = self.scenario
         g = np.asarray(genes).reshape(self.n_genes).astype(np.int64) % 8
         m, _ = _walk(self._targets, self._lengths, sc.start_node, sc.goal_node, g, self._pos, self._nodes, self._dirs)
-        centres = sc.point_of(self._nodes[:m].copy())
-        parts = [centres]
-        tol = _CENTRE_TOL_CELLS * sc.cell_size
-        if np.max(np.abs(centres[0] - sc.start)) <= tol:
-            centres[0] = sc.start
-        else:
-            parts.insert(0, sc.start[None, :])
-        if np.max(np.abs(centres[-1] - sc.goal)) <= tol:
-            centres[-1] = sc.goal
-        else:
-            parts.append(sc.goal[None, :])
-        return np.concatenate(parts)
+        return centre_path(sc, self._nodes[:m])

@@ -50,6 +50,7 @@ from typing import Callable, ClassVar
 import numpy as np
 
 from pathzoo.core import Budget, Planner, PlanResult, ProgressCallback, Scenario, Status
+from pathzoo.grid.paths import centre_path, on_centre
 from pathzoo.grid.terrain import segment_profile
 from pathzoo.harness.validation import segment_problem
 from pathzoo_exact.kernel import EXHAUSTED, FOUND, HEAP_FULL, RUNNING, SearchState, trace_path
@@ -58,9 +59,6 @@ __all__ = ["GraphSearchPlanner", "BatchFn", "connector_cost", "straight_run_ends
 
 BatchFn = Callable[[SearchState, int], int]
 """``batch(state, max_expansions) -> RUNNING | FOUND | EXHAUSTED | HEAP_FULL``."""
-
-_CENTRE_TOL_CELLS = 1e-9
-
 
 def straight_run_ends(cells: np.ndarray) -> np.ndarray:
     """Mask of the waypoints to keep: both ends and every point where the direction changes.
@@ -170,15 +168,10 @@ class GraphSearchPlanner(Planner, abc.ABC):
         nodes = trace_path(state.parent, target)
         if scenario.kind == "grid2d":
             nodes = nodes[straight_run_ends(np.stack(np.unravel_index(nodes, scenario.shape), axis=1))]
-        centres = list(scenario.point_of(nodes))
-        tol = _CENTRE_TOL_CELLS * scenario.cell_sizes
-        start, goal = scenario.start.copy(), scenario.goal.copy()
-        start_on_centre = bool(np.all(np.abs(start - centres[0]) <= tol))
-        goal_on_centre = bool(np.all(np.abs(goal - centres[-1]) <= tol))
-        inner = centres[1:] if start_on_centre else centres
-        if goal_on_centre and inner:
-            inner = inner[:-1]
-        path = np.array([start, *inner, goal])
+        path = centre_path(scenario, nodes)
+        centres = scenario.point_of(nodes[[0, -1]])
+        start_on_centre = on_centre(scenario, scenario.start, centres[0])
+        goal_on_centre = on_centre(scenario, scenario.goal, centres[-1])
         cost = float(state.g[target])
         kind = self._cost_kind()
         connectors = []

@@ -10,6 +10,7 @@ import numpy as np
 
 from pathzoo.core.scenario import Scenario
 from pathzoo.grid.graph import GridGraph
+from pathzoo.grid.paths import centre_path
 
 __all__ = ["ColonyProblem"]
 
@@ -124,12 +125,5 @@ class ColonyProblem:
         The exact start and goal replace the first and last centres when they
         coincide (to the validator's tolerance) and are added otherwise.
         """
-        s = self.scenario
         nodes = np.concatenate([[self.start], self.graph.indices[np.asarray(edges, dtype=np.int64)]])
-        pts = s.point_of(nodes)
-        tol = 1e-9 * s.cell_size
-        head = [s.start[None, :]] if np.max(np.abs(pts[0] - s.start)) > tol else []
-        tail = [s.goal[None, :]] if np.max(np.abs(pts[-1] - s.goal)) > tol else []
-        pts[0] = s.start if not head else pts[0]
-        pts[-1] = s.goal if not tail else pts[-1]
-        return np.concatenate(head + [pts] + tail)
+        return centre_path(self.scenario, nodes)

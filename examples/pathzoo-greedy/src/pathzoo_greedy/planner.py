@@ -11,6 +11,7 @@ import numpy as np
 import pathzoo
 from pathzoo import Budget, Param, PlanResult, Scenario, Status
 from pathzoo.core import ProgressCallback
+from pathzoo.grid.paths import centre_path
 
 __all__ = ["GreedyBestFirst"]
 
@@ -83,12 +84,8 @@ class GreedyBestFirst(pathzoo.Planner):
         nodes = [goal]
         while parent[nodes[-1]] != nodes[-1]:
             nodes.append(parent[nodes[-1]])
-        centres = scenario.point_of(np.array(nodes[::-1]))
-        # the exact start and goal need not be cell centres: add them as end points
-        path = np.vstack([scenario.start, centres, scenario.goal])
-        keep = np.ones(len(path), dtype=bool)
-        keep[1:] = np.any(np.diff(path, axis=0) != 0, axis=1)
-        path = path[keep]
+        # cell centres, from exactly the start to exactly the goal
+        path = centre_path(scenario, np.array(nodes[::-1]))
         length = float(np.linalg.norm(np.diff(path, axis=0), axis=1).sum())
         if progress is not None:
             progress(1, 1, length)
