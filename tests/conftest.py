@@ -20,3 +20,15 @@ def shared_data() -> Path:
     if not (path / "movingai").is_dir() or not (path / "dem").is_dir():
         pytest.fail(f"shared test data not found at {path}: put shared/ beside the repository", pytrace=False)
     return path
+
+
+def pytest_sessionfinish(session: pytest.Session) -> None:
+    """Uninstall what the tests pip-installed, once every worker is done.
+
+    Under pytest-xdist only the controller (which has no ``workerinput``)
+    does it, after all workers have finished.
+    """
+    if not hasattr(session.config, "workerinput"):
+        from installed_by_tests import uninstall_what_tests_installed
+
+        uninstall_what_tests_installed()

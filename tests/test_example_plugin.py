@@ -14,6 +14,7 @@ from pathlib import Path
 import pytest
 
 from pathzoo.harness.store import read_runs
+from installed_by_tests import environment_lock, mark_installed_by_tests
 
 EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "pathzoo-greedy"
 PATHZOO = Path(sys.executable).parent / "pathzoo"
@@ -76,16 +77,22 @@ def _clean_env() -> dict[str, str]:
 
 @pytest.fixture(scope="module")
 def greedy_copy(tmp_path_factory):
-    """The example distribution, pip-installed from a copy (the source tree stays clean)."""
+    """The example distribution, pip-installed from a copy (the source tree stays clean).
+
+    Under ``pytest -n`` several workers may need the plugin at once, so the
+    install happens once per environment under a file lock, and only the end
+    of the whole session uninstalls it (``tests/conftest.py``): a worker that
+    finishes early must not remove it while another worker's experiment runs.
+    """
     copy = tmp_path_factory.mktemp("example") / "pathzoo-greedy"
     shutil.copytree(EXAMPLE, copy, ignore=shutil.ignore_patterns("build", "*.egg-info", "__pycache__"))
-    was_installed = _installed()
-    cmd = [sys.executable, "-m", "pip", "install", "--quiet", "--no-deps", *_build_isolation_flags(), str(copy)]
-    proc = subprocess.run(cmd, capture_output=True, text=True, env=_clean_env())
-    assert proc.returncode == 0, proc.stdout + proc.stderr
-    yield copy
-    if not was_installed:
-        subprocess.run([sys.executable, "-m", "pip", "uninstall", "--yes", "--quiet", DIST], check=True)
+    with environment_lock():
+        if not _installed():
+            cmd = [sys.executable, "-m", "pip", "install", "--quiet", "--no-deps", *_build_isolation_flags(), str(copy)]
+            proc = subprocess.run(cmd, capture_output=True, text=True, env=_clean_env())
+            assert proc.returncode == 0, proc.stdout + proc.stderr
+            mark_installed_by_tests(DIST)
+    return copy
 
 
 def test_list_shows_the_plugin_with_its_distribution_and_version(greedy_copy):
@@ -110,7 +117,7 @@ def test_the_plugin_runs_in_an_experiment(greedy_copy, tmp_path):
     greedy = runs[runs["planner"] == "greedy.best_first"]
     optimal = runs[runs["planner"] == "exact.astar"]
     assert len(greedy) == 2 and len(optimal) == 2
-    assert (greedy["status"] == "solved").all() and greedy["valid"].all()  # validated by the harness
+    assert (greedy["status"] == "solved").all() and greedy["valid"].all(), greedy["message"].tolist()  # validated by the harness
     assert (greedy["length"] >= optimal["length"].min() - 1e-9).all()  # greedy is never shorter than optimal
 
 
