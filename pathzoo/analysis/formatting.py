@@ -1,8 +1,8 @@
-"""Render result tables as aligned text, Markdown, CSV or a self-contained HTML table."""
+"""Render result tables as aligned text, Markdown, CSV, JSON, LaTeX or an HTML table."""
 
 from __future__ import annotations
 
-import html
+import json
 import math
 import re
 from typing import Literal, Sequence
@@ -13,8 +13,8 @@ from pathzoo.core.errors import InvalidParameterError
 
 __all__ = ["TABLE_FORMATS", "TableFormat", "format_number", "format_percent", "render_table"]
 
-TableFormat = Literal["text", "markdown", "csv", "html"]
-TABLE_FORMATS: tuple[str, ...] = ("text", "markdown", "csv", "html")
+TableFormat = Literal["text", "markdown", "csv", "json", "latex", "html"]
+TABLE_FORMATS: tuple[str, ...] = ("text", "markdown", "csv", "json", "latex", "html")
 MISSING = "–"
 _NUM = r"(-?(\d[\d.]*(e[-+]?\d+)?|inf)%?|–)"
 _NUMERIC = re.compile(rf"^{_NUM}( [↑↓≈]| \[{_NUM}\])?$|^\d+/\d+/\d+$")
@@ -63,11 +63,15 @@ def render_table(
     ----------
     display : DataFrame
         Cells already formatted as strings; column names are the headers.
-    fmt : {"text", "markdown", "csv", "html"}
+    fmt : {"text", "markdown", "csv", "json", "latex", "html"}
         Output format. ``csv`` writes ``raw`` (full-precision numbers) when
-        given, and never the title or notes.
+        given, and never the title or notes. ``json`` writes an object with
+        ``title``, ``notes`` and ``rows`` (the records of ``raw`` when given,
+        full precision, non-finite numbers as ``null``). ``latex`` writes a
+        ``booktabs`` ``table`` environment with the title as caption and the
+        notes below it.
     raw : DataFrame, optional
-        The unformatted table, for ``csv``.
+        The unformatted table, for ``csv`` and ``json``.
     title : str
         First line (text/Markdown) or ``<caption>`` (HTML).
     notes : sequence of str
@@ -84,6 +88,11 @@ def render_table(
         raise InvalidParameterError(f"fmt must be one of {', '.join(TABLE_FORMATS)}, got {fmt!r}")
     if fmt == "csv":
         return (raw if raw is not None else display).to_csv(index=False)
+    if fmt == "json":
+        records = json.loads((raw if raw is not None else display).to_json(orient="records", double_precision=15))
+        return json.dumps({"title": title, "notes": list(notes), "rows": records}, ensure_ascii=False, indent=1) + "\n"
+    if fmt == "latex":
+        return _latex(display, title, notes, left)
     header = [str(c) for c in display.columns]
     rows = [[str(v) for v in row] for row in display.itertuples(index=False, name=None)]
     if fmt == "html":
@@ -109,15 +118,32 @@ def render_table(
     return "\n".join([*head, *lines, *tail]) + "\n"
 
 
+def _latex(display: pd.DataFrame, title: str, notes: Sequence[str], left: Sequence[str]) -> str:
+    """A booktabs table through pandas' Styler (special characters escaped, numbers right-aligned)."""
+    align = "".join("l" if c in set(left) else "r" for c in display.columns)
+    styler = display.style.hide(axis="index").format(escape="latex").format_index(escape="latex", axis=1)
+    body = styler.to_latex(column_format=align, hrules=True, caption=_latex_escape(title) or None,
+                           position_float="centering", environment="table")
+    if notes:
+        foot = "\n".join(f"\\par\\footnotesize {_latex_escape(n)}" for n in notes)
+        body = body.replace("\\end{table}", foot + "\n\\end{table}")
+    return body
+
+
+_LATEX_SPECIAL = str.maketrans({
+    "\\": r"\textbackslash{}", "&": r"\&", "%": r"\%", "$": r"\$", "#": r"\#", "_": r"\_",
+    "{": r"\{", "}": r"\}", "~": r"\textasciitilde{}", "^": r"\textasciicircum{}",
+})
+
+
+def _latex_escape(text: str) -> str:
+    """Escape LaTeX's ten special characters in free text (captions, notes)."""
+    return text.translate(_LATEX_SPECIAL)
+
+
 def _html(header: list[str], rows: list[list[str]], title: str, notes: Sequence[str]) -> str:
-    e = html.escape
-    parts = ['<table class="pz-table">']
-    if title:
-        parts.append(f"<caption>{e(title)}</caption>")
-    parts.append("<thead><tr>" + "".join(f"<th>{e(h)}</th>" for h in header) + "</tr></thead>")
-    parts.append("<tbody>")
-    parts += ["<tr>" + "".join(f'<td class="num">{e(c)}</td>' if _NUMERIC.match(c) else f"<td>{e(c)}</td>"
-                               for c in r) + "</tr>" for r in rows]
-    parts.append("</tbody></table>")
-    parts += [f'<p class="pz-note">{e(n)}</p>' for n in notes]
-    return "\n".join(parts) + "\n"
+    """The table through the ``table.html.j2`` template (autoescaped)."""
+    from pathzoo.analysis.templates import environment
+
+    cells = [[(c, bool(_NUMERIC.match(c))) for c in r] for r in rows]
+    return environment().get_template("table.html.j2").render(header=header, rows=cells, title=title, notes=notes)

@@ -30,7 +30,7 @@ from pathzoo.analysis.formatting import format_number, format_percent, render_ta
 from pathzoo.analysis.frame import Direction
 from pathzoo.analysis.summary import summarize
 
-__all__ = ["leaderboard", "format_leaderboard", "RANKING_RULE"]
+__all__ = ["leaderboard", "format_leaderboard", "power_note", "RANKING_RULE"]
 
 RANKING_RULE = (
     "Rank within each scenario: penalized median (failed runs count as worst), "
@@ -41,8 +41,25 @@ RANKING_RULE = (
 _VERDICT_NOTE = (
     "vs reference: this configuration is significantly better/worse than the reference "
     "(two-sided test, Holm-corrected per scenario, alpha={alpha:g}), else tie; "
+    "n/s = not testable with this many runs (no outcome could reach alpha after the correction); "
     "A12 = P(this run beats a reference run), ties count half."
 )
+
+
+def power_note(table: pd.DataFrame) -> str:
+    """One sentence when some comparisons of a leaderboard are ``n/s``: how many, and the runs they would need."""
+    if "vs_reference" not in table.columns:
+        return ""
+    ns = table[table["vs_reference"] == "n/s"]
+    if ns.empty:
+        return ""
+    need = int(ns["runs_needed"].max())
+    have = int(ns["n_runs"].min())
+    return (
+        f"{len(ns)} comparison(s) marked n/s: with {have} run(s) per planner no result can be significant at "
+        f"alpha={table.attrs.get('alpha', 0.05):g} after Holm's correction; run at least {need} seeds. "
+        "A12 still shows the direction and size of each difference."
+    )
 
 
 def _rank_within(summary: pd.DataFrame, direction: Direction) -> pd.Series:
@@ -90,8 +107,10 @@ def leaderboard(
         ran with several parameter sets). When given, every other
         configuration is tested against it (see
         :func:`pathzoo.analysis.stats.pairwise_tests`) and the columns
-        ``vs_reference`` (``better``/``worse``/``tie``), ``p_holm`` and ``a12``
-        are added.
+        ``vs_reference`` (``better``/``worse``/``tie``, or ``n/s`` when the
+        number of runs cannot reach ``alpha`` after Holm's correction whatever
+        the data), ``p_holm``, ``a12`` and ``runs_needed`` (runs per planner
+        that would make the comparison testable) are added.
     alpha : float
         Significance level for ``vs_reference``.
     paired : bool or "auto"
@@ -117,10 +136,12 @@ def leaderboard(
 
         tests = pairwise_tests(runs, metric, direction=info.direction, reference=reference, alpha=alpha, paired=paired)
         verdict = {"a": "worse", "b": "better", "tie": "tie"}
-        other = tests[["scenario", "b", "p_holm", "a12", "winner"]].rename(columns={"b": "config"})
+        other = tests[["scenario", "b", "p_holm", "a12", "winner", "testable", "runs_needed"]].rename(
+            columns={"b": "config"}
+        )
         other["a12"] = 1.0 - other["a12"]  # P(this beats the reference)
-        other["vs_reference"] = other["winner"].map(verdict)
-        table = table.merge(other.drop(columns="winner"), on=["scenario", "config"], how="left")
+        other["vs_reference"] = other["winner"].map(verdict).where(other["testable"].astype(bool), "n/s")
+        table = table.merge(other.drop(columns=["winner", "testable"]), on=["scenario", "config"], how="left")
         table.loc[table["config"] == reference, "vs_reference"] = "reference"
     table = table.sort_values(["scenario", "rank", "config"], kind="stable").reset_index(drop=True)
     table.attrs.update(metric=info, reference=reference, alpha=alpha)
@@ -162,6 +183,8 @@ def format_leaderboard(table: pd.DataFrame, fmt: str = "text") -> str:
         display["p (Holm)"] = table["p_holm"].map(lambda x: format_number(x, 2))
         display["A12"] = table["a12"].map(lambda x: f"{x:.2f}" if pd.notna(x) else "–")
         notes.append(_VERDICT_NOTE.format(alpha=table.attrs.get("alpha", 0.05)))
+        if power_note(table):
+            notes.append(power_note(table))
     title = f"Leaderboard: {label}" + (f", {info.better}" if info is not None else "")
     return render_table(
         display, fmt, raw=table, title=title, notes=notes, left=("scenario", "planner", "vs ref")

@@ -78,6 +78,16 @@ class FriedmanResult:
         """Number of configurations ``k``."""
         return self.ranks.shape[1]
 
+    def nemenyi_pvalues(self) -> pd.DataFrame:
+        """Pairwise Nemenyi p-values (scikit-posthocs' ``posthoc_nemenyi_friedman`` on the block ranks).
+
+        A pair differs at ``alpha`` exactly when its mean ranks differ by more
+        than :attr:`cd` (both come from the studentized range distribution).
+        """
+        import scikit_posthocs as sp
+
+        return sp.posthoc_nemenyi_friedman(self.ranks)
+
     def cliques(self) -> list[tuple[str, ...]]:
         """Maximal groups of configurations whose mean ranks all lie within ``cd`` of each other.
 

@@ -20,7 +20,6 @@ from __future__ import annotations
 
 import base64
 import datetime as _dt
-import html
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -31,7 +30,7 @@ import pandas as pd
 
 from pathzoo.analysis.formatting import format_number, render_table
 from pathzoo.analysis.frame import metric_info, with_config
-from pathzoo.analysis.leaderboard import format_leaderboard, leaderboard
+from pathzoo.analysis.leaderboard import format_leaderboard, leaderboard, power_note
 from pathzoo.core.errors import InvalidParameterError, PathzooError
 from pathzoo.core.scenario import Scenario
 from pathzoo.core.status import RunStatus
@@ -47,59 +46,59 @@ TABLE_METRICS: tuple[str, ...] = (
 )  # fmt: skip
 """Metrics summarised (median and IQR) in the report's metric tables."""
 
-_CSS = """
-body{font-family:-apple-system,"Segoe UI",Helvetica,Arial,sans-serif;margin:0;color:#1d1d1f;background:#fafafa;
-line-height:1.45}
-main{max-width:1180px;margin:0 auto;padding:24px 28px 60px;background:#fff;box-shadow:0 0 12px rgba(0,0,0,.06)}
-h1{font-size:1.7em;margin:.2em 0 .1em}h2{font-size:1.3em;margin-top:2em;border-bottom:2px solid #e3e3e3;
-padding-bottom:.2em}h3{font-size:1.08em;margin-top:1.4em}
-.meta{color:#555;font-size:.92em}.meta code{background:#f2f2f2;padding:0 .3em;border-radius:3px}
-nav{font-size:.92em;margin:1em 0;padding:.6em .9em;background:#f4f6f8;border-radius:6px}
-nav a{margin-right:1.1em;color:#0b5cad;text-decoration:none}
-table.pz-table{border-collapse:collapse;margin:.6em 0 .3em;font-size:.86em;font-variant-numeric:tabular-nums}
-table.pz-table caption{text-align:left;font-weight:600;padding:.3em 0;font-size:1.05em}
-table.pz-table th{background:#eef1f4;text-align:left;padding:.35em .7em;border-bottom:2px solid #cfd6dd;
-white-space:nowrap}
-table.pz-table td{padding:.3em .7em;border-bottom:1px solid #e6e6e6;white-space:nowrap}
-table.pz-table tbody tr:nth-child(even){background:#fafbfc}
-table.pz-table td.num{text-align:right}
-.pz-note{color:#555;font-size:.84em;margin:.25em 0;max-width:60em}
-.scroll{overflow-x:auto}
-figure{margin:1em 0 1.6em}figure img{max-width:100%;height:auto;border:1px solid #eee}
-figcaption{color:#555;font-size:.86em;margin-top:.3em;max-width:60em}
-.grid{display:flex;flex-wrap:wrap;gap:12px}.grid figure{flex:1 1 460px;margin:.3em 0}
-details{margin:.6em 0}summary{cursor:pointer;font-weight:600}
-.warn{background:#fff6e5;border-left:4px solid #f0a500;padding:.5em .8em;font-size:.9em}
-"""
-
-
 @dataclass
 class ReportPage:
-    """An HTML page being assembled, with the figures it references."""
+    """An HTML page being assembled as a list of blocks, rendered by the ``report.html.j2`` template.
+
+    Blocks are dicts with a ``kind`` (``heading``, ``note``, ``meta``, ``nav``,
+    ``table``, ``figure``, ``grid``, ``details``); ``grid`` and ``details``
+    hold ``children``. Every text is escaped by the template; only tables
+    rendered by :func:`~pathzoo.analysis.formatting.render_table` (themselves
+    from an autoescaping template) are inserted as HTML.
+    """
 
     embed: bool = True
-    parts: list[str] = field(default_factory=list)
+    blocks: list[dict[str, Any]] = field(default_factory=list)
     files: dict[str, bytes] = field(default_factory=dict)
+    _open: list[list[dict[str, Any]]] = field(default_factory=list, repr=False)
 
-    def add(self, text: str) -> None:
-        """Append raw HTML."""
-        self.parts.append(text)
+    def _add(self, kind: str, **fields: Any) -> dict[str, Any]:
+        block = dict(kind=kind, **fields)
+        (self._open[-1] if self._open else self.blocks).append(block)
+        return block
 
     def heading(self, level: int, text: str, anchor: str | None = None) -> None:
-        """Append ``<hN>`` (with an id for the navigation bar)."""
-        ident = f' id="{anchor}"' if anchor else ""
-        self.add(f"<h{level}{ident}>{html.escape(text)}</h{level}>")
+        """Add ``<hN>`` (with an id for the navigation bar)."""
+        self._add("heading", level=level, text=text, anchor=anchor)
 
     def note(self, text: str, cls: str = "pz-note") -> None:
-        """Append an escaped paragraph."""
-        self.add(f'<p class="{cls}">{html.escape(text)}</p>')
+        """Add a paragraph (``cls="warn"`` for a warning box)."""
+        self._add("note", text=text, cls=cls)
+
+    def meta(self, lines: Mapping[str, str]) -> None:
+        """Add the header lines (label to value)."""
+        self._add("meta", lines=list(lines.items()))
+
+    def nav(self, links: Sequence[tuple[str, str]]) -> None:
+        """Add the navigation bar: ``(anchor, text)`` pairs."""
+        self._add("nav", links=list(links))
 
     def table(self, rendered_html: str) -> None:
-        """Append a table from :func:`~pathzoo.analysis.formatting.render_table` (``fmt="html"``)."""
-        self.add(f'<div class="scroll">{rendered_html}</div>')
+        """Add a table from :func:`~pathzoo.analysis.formatting.render_table` (``fmt="html"``)."""
+        from markupsafe import Markup
+
+        self._add("table", html=Markup(rendered_html))
+
+    def begin(self, kind: str, summary: str = "") -> None:
+        """Open a ``grid`` (figures side by side) or a ``details`` block (collapsed, with ``summary``)."""
+        self._open.append(self._add(kind, summary=summary, children=[])["children"])
+
+    def end(self) -> None:
+        """Close the innermost open ``grid`` or ``details`` block."""
+        self._open.pop()
 
     def figure(self, ax_or_fig: Any, name: str, caption: str) -> None:
-        """Render a matplotlib Axes or Figure to PNG and append it with a caption."""
+        """Render a matplotlib Axes or Figure to PNG and add it with a caption."""
         from pathzoo.plotting.figure import png_bytes
 
         fig = getattr(ax_or_fig, "figure", ax_or_fig)
@@ -110,17 +109,13 @@ class ReportPage:
             fname = f"{len(self.files):02d}-{_slug(name)}.png"
             self.files[fname] = data
             src = f"figures/{fname}"
-        alt = html.escape(caption, quote=True)
-        self.add(f'<figure><img src="{src}" alt="{alt}"><figcaption>{html.escape(caption)}</figcaption></figure>')
+        self._add("figure", src=src, caption=caption)
 
     def html(self, title: str) -> str:
         """The complete document."""
-        body = "\n".join(self.parts)
-        return (
-            "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
-            f"<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\"><title>{html.escape(title)}"
-            f"</title><style>{_CSS}</style></head><body><main>\n{body}\n</main></body></html>\n"
-        )
+        from pathzoo.analysis.templates import environment
+
+        return environment().get_template("report.html.j2").render(title=title, blocks=self.blocks)
 
 
 def _slug(text: str) -> str:
@@ -132,19 +127,22 @@ def _present(runs: pd.DataFrame, metric: str) -> bool:
     return metric in runs.columns and bool(pd.to_numeric(runs[metric], errors="coerce").notna().any())
 
 
-def _metric_tables(runs: pd.DataFrame, metrics: Sequence[str]) -> str:
+def _metric_tables(page: ReportPage, runs: pd.DataFrame, metrics: Sequence[str]) -> None:
+    """Add one median [IQR] table per metric, with planners or scenarios as columns, whichever are fewer."""
     from pathzoo.analysis.summary import summarize
 
-    parts = []
     for m in metrics:
         s = summarize(runs, m)
         info = s.attrs["metric"]
         s["cell"] = [f"{format_number(a)} [{format_number(b)}]" for a, b in zip(s["median"], s["iqr"])]
-        wide = s.pivot(index="scenario", columns="config", values="cell").fillna("–").reset_index()
+        rows, cols = ("scenario", "config")
+        if s["config"].nunique() > s["scenario"].nunique():
+            rows, cols = cols, rows
+        wide = s.pivot(index=rows, columns=cols, values="cell").fillna("–").reset_index()
         wide.columns.name = None
-        parts.append(render_table(wide, "html", title=f"{info.label}: median [IQR] over successful runs, "
-                                  f"{info.better}"))
-    return "\n".join(parts)
+        wide = wide.rename(columns={"config": "planner"})
+        page.table(render_table(wide, "html", title=f"{info.label}: median [IQR] over successful runs, "
+                                f"{info.better}"))
 
 
 def _outcomes(df: pd.DataFrame) -> pd.DataFrame:
@@ -166,26 +164,6 @@ def _failures(df: pd.DataFrame, limit: int = 60) -> tuple[pd.DataFrame, int]:
         "reason": [str(r)[:140] for r in reason],
     })
     return table.head(limit), len(table)
-
-
-def _power_warning(runs: pd.DataFrame, metric: str, reference: str, alpha: float) -> str:
-    """Say so when too few paired runs make every Holm-corrected test unable to reach ``alpha``."""
-    from pathzoo.analysis.stats import pairwise_tests
-
-    tests = pairwise_tests(runs, metric, reference=reference, alpha=alpha)
-    paired = tests[tests["paired"]]
-    if paired.empty:
-        return ""
-    m = int(tests.groupby("scenario").size().max())
-    n = int(paired["n_a"].min())
-    if m * 2.0 ** (1 - n) < alpha:
-        return ""
-    need = math.floor(1 + math.log2(m / alpha)) + 1
-    return (
-        f"Too few runs to show any difference: with {n} paired runs the smallest possible two-sided Wilcoxon "
-        f"p-value is {2.0 ** (1 - n):.3g}, and Holm's correction over {m} comparisons per scenario lifts it to "
-        f"at least {min(1.0, m * 2.0 ** (1 - n)):.3g} ≥ α = {alpha:g}. Run at least {need} seeds."
-    )
 
 
 def render_report(
@@ -239,7 +217,7 @@ def render_report(
     from pathzoo.analysis.comparison_table import format_paper_table, paper_table
     from pathzoo.analysis.ranks import friedman
     from pathzoo.analysis.summary import median_runs
-    from pathzoo.plotting.boxplots import plot_metric_boxes
+    from pathzoo.plotting.boxplots import plot_metric_panels
     from pathzoo.plotting.cd_diagram import plot_cd_diagram
     from pathzoo.plotting.convergence import plot_convergence
     from pathzoo.plotting.ecdf import plot_time_to_target_ecdf
@@ -263,8 +241,7 @@ def render_report(
     if reference:
         lines["reference"] = reference
     lines["generated"] = _dt.datetime.now().astimezone().strftime("%Y-%m-%d %H:%M %Z")
-    page.add('<p class="meta">' + "<br>".join(
-        f"<b>{html.escape(k)}</b>: <code>{html.escape(v)}</code>" for k, v in lines.items()) + "</p>")
+    page.meta(lines)
     sections = [("outcomes", "Runs"), ("leaderboard", "Leaderboard")]
     if reference:
         sections.append(("comparison", f"Comparison with {reference}"))
@@ -272,24 +249,22 @@ def render_report(
     if has_history:
         sections.append(("anytime", "Time to target"))
     sections += [("metrics", "All metrics"), ("failures", "Unsuccessful runs")]
-    page.add("<nav>" + "".join(f'<a href="#{a}">{html.escape(t)}</a>' for a, t in sections) + "</nav>")
+    page.nav(sections)
 
     page.heading(2, "Runs", "outcomes")
     page.table(render_table(_outcomes(df), "html", title="Run outcomes per planner"))
     planners = df.drop_duplicates("config")[["config", "planner", "planner_version", "params"]].sort_values("config")
-    page.add("<details><summary>Planner parameters</summary>")
+    page.begin("details", "Planner parameters")
     page.table(render_table(pd.DataFrame({
         "planner": planners["config"], "id": planners["planner"], "version": planners["planner_version"].astype(str),
         "parameters": [str(p) for p in planners["params"]]}), "html"))
-    page.add("</details>")
+    page.end()
 
     page.heading(2, "Leaderboard", "leaderboard")
     lb = leaderboard(runs, metric, reference=reference, alpha=alpha)
     page.table(format_leaderboard(lb, "html"))
-    if reference:
-        warning = _power_warning(runs, metric, reference, alpha)
-        if warning:
-            page.note(warning, "warn")
+    if power_note(lb):
+        page.note(power_note(lb), "warn")
 
     if reference:
         page.heading(2, f"Comparison with {reference}", "comparison")
@@ -312,18 +287,17 @@ def render_report(
             )
             if fr.dropped:
                 page.note(f"Left out (not every planner ran there): {', '.join(fr.dropped)}.")
-            page.figure(plot_cd_diagram(fr), "cd",
+            page.figure(plot_cd_diagram(fr, palette=palette), "cd",
                         "Mean ranks of the penalized median per scenario (1 = best). Planners joined by a bar do "
                         "not differ significantly (Nemenyi).")
 
     page.heading(2, "Distributions", "boxes")
     box_metrics = [m for m in dict.fromkeys((metric, *BOX_METRICS)) if _present(runs, m)]
-    page.add('<div class="grid">')
     for m in box_metrics:
         mi = metric_info(m)
-        page.figure(plot_metric_boxes(runs, m), f"box-{m}",
-                    f"{mi.label} over successful runs; red numbers are success rates below 100%.")
-    page.add("</div>")
+        page.figure(plot_metric_panels(runs, m, palette=palette), f"box-{m}",
+                    f"{mi.label} over successful runs, one panel (and axis) per scenario; red numbers are success "
+                    "rates below 100%.")
 
     page.heading(2, "Per scenario", "scenarios")
     shown_ids = scenario_ids[:max_scenarios]
@@ -336,7 +310,7 @@ def render_report(
                   "experiment (Scenario objects passed to pathzoo.run are not stored); pass scenarios=.")
     for sid in shown_ids:
         page.heading(3, sid)
-        page.add('<div class="grid">')
+        page.begin("grid")
         if scenarios and sid in scenarios and typical is not None:
             picks = typical[typical["scenario"] == sid]
             paths, colors = {}, {}
@@ -354,20 +328,21 @@ def render_report(
             if len(sub_hist) and df.loc[df["scenario"] == sid, "success"].any():
                 fig = new_figure((5.6, 7.0))
                 ax1, ax2 = fig.subplots(2, 1)
-                plot_convergence(sub_hist, runs, sid, x="iteration", ax=ax1)
-                plot_convergence(sub_hist, runs, sid, x="time_s", ax=ax2, log=None)
+                plot_convergence(sub_hist, runs, sid, x="iteration", ax=ax1, log=None, palette=palette)
+                plot_convergence(sub_hist, runs, sid, x="time_s", ax=ax2, log=None, palette=palette)
                 ax1.set_title(f"{sid}: best cost against iterations", fontsize="medium")
                 ax2.set_title("and against time", fontsize="medium")
                 ax2.get_legend().remove()
                 page.figure(fig, f"conv-{sid}",
                             "Median best cost (planner's own objective) with interquartile band; a curve starts "
                             "once at least half of the runs hold a solution.")
-        page.add("</div>")
+        page.end()
 
     if has_history:
         page.heading(2, "Time to target", "anytime")
         if _present(runs, "length"):
-            page.figure(plot_time_to_target_ecdf(history, runs, eps=0.05), "ecdf",  # type: ignore[arg-type]
+            page.figure(plot_time_to_target_ecdf(history, runs, eps=0.05, palette=palette),  # type: ignore[arg-type]
+                        "ecdf",
                         "Share of runs whose best cost came within 5% of the best known length, against time. "
                         "Only runs whose reported best cost equals their measured length count (planners "
                         "optimising other objectives are 'not comparable'); unsuccessful runs never arrive.")
@@ -375,9 +350,9 @@ def render_report(
             page.note("No length metric stored; no time-to-target view.")
 
     page.heading(2, "All metrics", "metrics")
-    page.add("<details><summary>Median [IQR] of every metric</summary>")
-    page.add(_metric_tables(runs, [m for m in TABLE_METRICS if _present(runs, m)]))
-    page.add("</details>")
+    page.begin("details", "Median [IQR] of every metric")
+    _metric_tables(page, runs, [m for m in TABLE_METRICS if _present(runs, m)])
+    page.end()
 
     page.heading(2, "Unsuccessful runs", "failures")
     fails, n_fail = _failures(df)

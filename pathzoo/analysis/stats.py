@@ -13,6 +13,7 @@ explained in ``docs/statistics.md``.
 from __future__ import annotations
 
 import itertools
+import math
 import warnings
 from typing import Sequence
 
@@ -28,6 +29,8 @@ __all__ = [
     "a12",
     "a12_magnitude",
     "holm",
+    "min_pvalue",
+    "runs_needed",
     "compare_losses",
     "pair_by_seed",
     "pairwise_tests",
@@ -38,25 +41,48 @@ A12_THRESHOLDS: tuple[tuple[float, str], ...] = ((0.71, "large"), (0.64, "medium
 
 
 def holm(pvalues: Sequence[float] | np.ndarray) -> np.ndarray:
-    """Holm's step-down adjusted p-values.
+    """Holm's step-down adjusted p-values (statsmodels' ``multipletests(method="holm")``).
 
-    With the ``m`` p-values sorted ascending, ``p_(1) <= ... <= p_(m)``, the
-    adjusted value is ``max_{j <= i} min(1, (m - j + 1) p_(j))``; rejecting
-    where the adjusted value is below alpha controls the family-wise error
-    rate at alpha (Holm 1979). NaN p-values (undefined tests) count as 1 in
-    the family and stay NaN in the output.
+    Rejecting where the adjusted value is below alpha controls the family-wise
+    error rate at alpha (Holm 1979). NaN p-values (undefined tests) count as 1
+    in the family and stay NaN in the output.
     """
+    from statsmodels.stats.multitest import multipletests
+
     p = np.asarray(pvalues, dtype=np.float64).reshape(-1)
-    m = len(p)
-    if m == 0:
+    if len(p) == 0:
         return p.copy()
-    filled = np.where(np.isnan(p), 1.0, p)
-    order = np.argsort(filled, kind="stable")
-    scaled = np.minimum(1.0, (m - np.arange(m)) * filled[order])
-    adj = np.empty(m)
-    adj[order] = np.maximum.accumulate(scaled)
+    adj = multipletests(np.where(np.isnan(p), 1.0, p), method="holm")[1]
     adj[np.isnan(p)] = np.nan
     return adj
+
+
+def min_pvalue(n_a: int, n_b: int, *, paired: bool) -> float:
+    """The smallest two-sided p-value a rank test can reach with these sample sizes.
+
+    Wilcoxon signed-rank on ``n`` pairs (``n = n_a = n_b``): ``2 / 2**n``, when
+    every difference has the same sign. Mann-Whitney U: ``2 / C(n_a + n_b, n_a)``,
+    when the two samples do not overlap (exact null distribution). Both are
+    capped at 1. Below ``alpha`` after the multiple-comparison correction is
+    a precondition for any ``better``/``worse`` verdict.
+    """
+    if n_a < 1 or n_b < 1:
+        return 1.0
+    if paired:
+        return min(1.0, 2.0 * 0.5 ** min(n_a, n_b))
+    return min(1.0, 2.0 / math.comb(n_a + n_b, n_a))
+
+
+def runs_needed(family: int, alpha: float, *, paired: bool, limit: int = 1000) -> int:
+    """Fewest runs per configuration for which one test in a Holm family of ``family`` can reach ``alpha``.
+
+    With equal sample sizes ``n`` per side; the smallest Holm-adjusted p-value
+    is ``family * min_pvalue(n, n)``. Returns ``limit`` when even that is not enough.
+    """
+    for n in range(1, limit):
+        if family * min_pvalue(n, n, paired=paired) < alpha:
+            return n
+    return limit
 
 
 def a12(loss_a: np.ndarray, loss_b: np.ndarray) -> float:
@@ -245,8 +271,11 @@ def pairwise_tests(
     DataFrame
         One row per (scenario, a, b): ``n_a, n_b, test, paired, statistic,
         p, p_holm, a12`` (probability that a run of ``a`` beats a run of
-        ``b``), ``magnitude`` and ``winner`` (``"a"``, ``"b"`` or ``"tie"``:
-        the better side when ``p_holm < alpha``). ``attrs["metric"]`` holds
+        ``b``), ``magnitude``, ``testable`` (whether the sample sizes can reach
+        ``alpha`` at all after Holm's correction over the scenario's family, see
+        :func:`min_pvalue`), ``runs_needed`` (runs per side for which they
+        could) and ``winner`` (``"a"``, ``"b"`` or ``"tie"``: the better side
+        when ``p_holm < alpha``). ``attrs["metric"]`` holds
         the metric's :class:`~pathzoo.analysis.frame.MetricInfo`.
 
     Raises
@@ -290,9 +319,12 @@ def pairwise_tests(
         for r, q in zip(block, adj):
             sign = r.pop("_sign")
             r["p_holm"] = q
+            r["testable"] = len(block) * min_pvalue(r["n_a"], r["n_b"], paired=r["paired"]) < alpha
+            r["runs_needed"] = runs_needed(len(block), alpha, paired=r["paired"])
             r["winner"] = ("a" if sign < 0 else "b" if sign > 0 else "tie") if q < alpha else "tie"
         rows += block
-    cols = ["scenario", "a", "b", "n_a", "n_b", "test", "paired", "statistic", "p", "p_holm", "a12", "magnitude", "winner"]
+    cols = ["scenario", "a", "b", "n_a", "n_b", "test", "paired", "statistic", "p", "p_holm", "a12", "magnitude",
+            "testable", "runs_needed", "winner"]
     out = pd.DataFrame(rows, columns=cols)
     out.attrs["metric"] = info
     out.attrs["alpha"] = alpha

@@ -14,7 +14,7 @@ if TYPE_CHECKING:
 
 __all__ = ["add_parser", "add_table_options", "load_runs", "render_leaderboard"]
 
-FORMATS = ("text", "markdown", "csv", "html")
+FORMATS = ("text", "markdown", "csv", "json", "latex", "html")
 
 
 def load_runs(db: str | Path, experiment: str | None) -> "pd.DataFrame":

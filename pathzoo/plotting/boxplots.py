@@ -3,18 +3,21 @@
 from __future__ import annotations
 
 import warnings
-from typing import Sequence
+import math
+from typing import Any, Mapping, Sequence
 
 import pandas as pd
 import seaborn as sns
 from matplotlib import MatplotlibDeprecationWarning
 from matplotlib.axes import Axes
+from matplotlib.figure import Figure
+from matplotlib.patches import Patch
 
 from pathzoo.analysis.frame import Direction, metric_info, with_config
 from pathzoo.analysis.formatting import format_percent
-from pathzoo.plotting.figure import new_axes, planner_colors
+from pathzoo.plotting.figure import new_axes, new_figure, planner_colors
 
-__all__ = ["plot_metric_boxes"]
+__all__ = ["plot_metric_boxes", "plot_metric_panels"]
 
 
 def plot_metric_boxes(
@@ -26,6 +29,7 @@ def plot_metric_boxes(
     direction: Direction | None = None,
     unit: str | None = None,
     log: bool | None = None,
+    palette: Mapping[str, Any] | None = None,
 ) -> Axes:
     """Box plot of ``metric`` over successful runs: scenarios on the x axis, one box per configuration.
 
@@ -48,6 +52,12 @@ def plot_metric_boxes(
     log : bool, optional
         Logarithmic y axis. By default only for times (unit ``s``) whose
         positive values span more than a factor of 30.
+    palette : mapping, optional
+        Colour per configuration (default: :func:`~pathzoo.plotting.figure.planner_colors` of those shown).
+
+    See Also
+    --------
+    plot_metric_panels : one panel per scenario, each with its own axis.
     """
     info = metric_info(metric, direction, unit)
     df = with_config(runs, metric)
@@ -59,7 +69,7 @@ def plot_metric_boxes(
     with warnings.catch_warnings():  # seaborn 0.13 still passes matplotlib's deprecated ``vert``
         warnings.simplefilter("ignore", MatplotlibDeprecationWarning)
         sns.boxplot(data=good, x="scenario", y=metric, hue="config", order=order, hue_order=hue_order, ax=ax,
-                    palette=planner_colors(hue_order), fliersize=2.5, linewidth=1.0)
+                    palette=planner_colors(hue_order) if palette is None else palette, fliersize=2.5, linewidth=1.0)
     rate = df.groupby(["scenario", "config"])["success"].mean()
     width = 0.8 / max(len(hue_order), 1)
     ymax = good[metric].max() if len(good) else 1.0
@@ -87,3 +97,57 @@ def plot_metric_boxes(
     if ax.get_legend() is not None:
         sns.move_legend(ax, "upper left", bbox_to_anchor=(1.01, 1.0), title="planner", fontsize="small", frameon=False)
     return ax
+
+
+def plot_metric_panels(
+    runs: pd.DataFrame,
+    metric: str = "length",
+    *,
+    scenarios: Sequence[str] | None = None,
+    palette: Mapping[str, Any] | None = None,
+    ncols: int = 3,
+    log: bool | None = None,
+) -> Figure:
+    """One box-plot panel per scenario, each with its own y axis, and one legend for the figure.
+
+    A 60 m grid map and a 400 m terrain stay readable side by side, which a
+    shared axis (:func:`plot_metric_boxes`) does not allow. Success rates
+    below 100 % are printed above the boxes as there.
+
+    Parameters
+    ----------
+    runs : DataFrame
+        One row per run.
+    metric : str
+        Metric id.
+    scenarios : sequence of str, optional
+        Scenarios to show, in order (default: all, sorted).
+    palette : mapping, optional
+        Colour per configuration (default: :func:`~pathzoo.plotting.figure.planner_colors` of all configurations).
+    ncols : int
+        Panels per row.
+    log : bool, optional
+        As in :func:`plot_metric_boxes`, decided per panel.
+    """
+    df = with_config(runs, metric)
+    order = sorted(df["scenario"].unique()) if scenarios is None else list(scenarios)
+    configs = sorted(df["config"].unique())
+    palette = planner_colors(configs) if palette is None else palette
+    ncols = max(1, min(ncols, len(order)))
+    nrows = max(1, math.ceil(len(order) / ncols))
+    fig = new_figure((max(4.2 * ncols, 6.0), 3.3 * nrows + 0.5 + 0.22 * math.ceil(len(configs) / 4)))
+    axes = fig.subplots(nrows, ncols, squeeze=False).ravel()
+    for ax, sc in zip(axes, order):
+        plot_metric_boxes(runs, metric, ax, scenarios=[sc], palette=palette, log=log)
+        ax.set_title(sc, fontsize="medium")
+        ax.set_xlabel("")
+        ax.set_xticks([])
+        if ax.get_legend() is not None:
+            ax.get_legend().remove()
+    for ax in axes[len(order):]:
+        ax.set_visible(False)
+    handles = [Patch(facecolor=palette[c], edgecolor="#333333", label=c) for c in configs]
+    fig.legend(handles=handles, loc="outside lower center", ncol=min(4, len(configs)), fontsize="small",
+               frameon=False)
+    fig.suptitle(f"{metric_info(metric).label} over successful runs", fontsize="medium")
+    return fig

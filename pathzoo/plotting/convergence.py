@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import Any, Mapping
+
 import pandas as pd
 from matplotlib.axes import Axes
 from matplotlib.ticker import NullFormatter
@@ -24,6 +26,7 @@ def plot_convergence(
     ax: Axes | None = None,
     log: bool | None = False,
     n_points: int = 100,
+    palette: Mapping[str, Any] | None = None,
 ) -> Axes:
     """Median best cost (line) and interquartile band (shaded) of each configuration on one scenario.
 
@@ -50,6 +53,8 @@ def plot_convergence(
         factor of 20.
     n_points : int
         Grid size.
+    palette : mapping, optional
+        Colour per configuration (default: :func:`~pathzoo.plotting.figure.planner_colors` of those shown).
     """
     scenarios = sorted(runs["scenario"].unique())
     if scenario is None:
@@ -67,7 +72,7 @@ def plot_convergence(
                                 log=log)
     ax = new_axes(ax, (6.0, 4.0))
     configs = sorted(curves["config"].unique())
-    colors = planner_colors(configs)
+    colors = planner_colors(configs) if palette is None else palette
     for cfg, c in curves.groupby("config", sort=True):
         ax.plot(c["x"], c["median"], color=colors[cfg], lw=1.8, label=f"{cfg} (n={c['n_runs'].iloc[0]})")
         ax.fill_between(c["x"], c["q25"], c["q75"], color=colors[cfg], alpha=0.2, lw=0)

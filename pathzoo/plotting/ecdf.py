@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import Mapping
+from typing import Any, Mapping
 
 import numpy as np
 import pandas as pd
@@ -27,6 +27,7 @@ def plot_time_to_target_ecdf(
     ax: Axes | None = None,
     log: bool = True,
     rtol: float = 1e-3,
+    palette: Mapping[str, Any] | None = None,
 ) -> Axes:
     """Fraction of runs that reached ``(1 + eps) * optimum`` by each ``x``, per configuration, pooled over scenarios.
 
@@ -55,11 +56,13 @@ def plot_time_to_target_ecdf(
         Logarithmic x axis.
     rtol : float
         Tolerance deciding whether a run's objective is ``metric``.
+    palette : mapping, optional
+        Colour per configuration (default: :func:`~pathzoo.plotting.figure.planner_colors` of those shown).
     """
     hits = time_to_target(history, runs, eps=eps, optimum=optimum, metric=metric, x=x, rtol=rtol)
     ax = new_axes(ax, (6.0, 4.0))
     configs = sorted(hits["config"].unique())
-    colors = planner_colors(configs)
+    colors = planner_colors(configs) if palette is None else palette
     finite = hits["hit"][np.isfinite(hits["hit"])]
     positive = finite[finite > 0]
     x_lo = float(positive.min()) if len(positive) else 1.0

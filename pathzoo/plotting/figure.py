@@ -65,6 +65,16 @@ def legend_below(ax: Axes, ncol: int | None = None) -> None:
 
 
 def planner_colors(labels: Iterable[str]) -> dict[str, Any]:
-    """One colour-blind-safe colour per label, assigned in sorted order (the same in every figure)."""
+    """One distinct colour per label, assigned in sorted order.
+
+    The first ten labels get seaborn's colour-blind-safe ``colorblind``
+    palette; further labels get the same ten hues darkened, then lightened,
+    so no two labels share a colour (up to 30; beyond that colours repeat and
+    the legend is the only guide). Pass the mapping built from *all*
+    configurations of an experiment to every plotting function (their
+    ``palette`` argument) so a planner keeps its colour across figures.
+    """
     names = sorted(set(labels))
-    return dict(zip(names, sns.color_palette("colorblind", max(len(names), 1))))
+    base = sns.color_palette("colorblind", 10)
+    shades = [*base, *(tuple(0.62 * c for c in rgb) for rgb in base), *(tuple(c + 0.5 * (1 - c) for c in rgb) for rgb in base)]
+    return {name: shades[i % len(shades)] for i, name in enumerate(names)}

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import json
+
 import numpy as np
 import pandas as pd
 import pytest
@@ -88,6 +90,32 @@ def test_reference_columns():
     assert lb.loc["same", "a12"] == pytest.approx(0.5)
     with pytest.raises(InvalidParameterError, match="reference 'nope'"):
         leaderboard(runs, reference="nope")
+
+
+def test_too_few_runs_are_marked_not_testable():
+    # 6 seeds, 7 planners against the reference: Holm over 7 tests cannot reach 0.05 (issue 13)
+    worse = {f"p{i}": [10.0 + i + 0.1 * j for j in range(6)] for i in range(7)}
+    runs = make_runs({"s": {"ref": [1.0 + 0.1 * j for j in range(6)], **worse}})
+    lb = leaderboard(runs, reference="ref").set_index("config")
+    assert (lb.drop(index="ref")["vs_reference"] == "n/s").all()
+    assert (lb.drop(index="ref")["a12"] == 0.0).all() and (lb.drop(index="ref")["runs_needed"] == 9).all()
+    text = format_leaderboard(leaderboard(runs, reference="ref"))
+    assert "7 comparison(s) marked n/s" in text and "run at least 9 seeds" in text
+    # with 9 seeds the same data is testable and every one is worse
+    worse9 = {f"p{i}": [10.0 + i + 0.1 * j for j in range(9)] for i in range(7)}
+    runs9 = make_runs({"s": {"ref": [1.0 + 0.1 * j for j in range(9)], **worse9}})
+    lb9 = leaderboard(runs9, reference="ref").set_index("config")
+    assert (lb9.drop(index="ref")["vs_reference"] == "worse").all()
+
+
+def test_json_and_latex_formats():
+    runs = make_runs({"s_1": {"a": [1.0, 2.0], "b%": [3.0, 4.0]}})
+    lb = leaderboard(runs, reference="a")
+    doc = json.loads(format_leaderboard(lb, "json"))
+    assert doc["title"].startswith("Leaderboard") and doc["notes"]
+    assert {r["config"] for r in doc["rows"]} == {"a", "b%"} and doc["rows"][0]["median"] == 1.5
+    tex = format_leaderboard(lb, "latex")
+    assert "\\begin{table}" in tex and "\\toprule" in tex and "s\\_1" in tex and "b\\%" in tex
 
 
 def test_bad_inputs():

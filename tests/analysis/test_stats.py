@@ -10,7 +10,7 @@ import pytest
 from scipy import stats
 
 from pathzoo.analysis.ranks import friedman, friedman_statistic, nemenyi_cd, nemenyi_q
-from pathzoo.analysis.stats import a12, a12_magnitude, compare_losses, holm, pairwise_tests
+from pathzoo.analysis.stats import a12, a12_magnitude, compare_losses, holm, min_pvalue, pairwise_tests, runs_needed
 from pathzoo.analysis.summary import summarize_metrics
 from pathzoo.analysis.synthetic import make_runs, random_runs
 from pathzoo.core.errors import InvalidParameterError
@@ -25,6 +25,39 @@ def test_holm_hand_computed():
     out = holm([0.01, nan, 0.02])  # NaN counts as 1 in a family of 3
     assert out[0] == pytest.approx(0.03) and out[2] == pytest.approx(0.04) and np.isnan(out[1])
     assert len(holm([])) == 0
+
+
+def previous_holm(pvalues):
+    """The hand-written Holm step-down that statsmodels replaced, kept here as the oracle."""
+    p = np.asarray(pvalues, dtype=np.float64).reshape(-1)
+    m = len(p)
+    filled = np.where(np.isnan(p), 1.0, p)
+    order = np.argsort(filled, kind="stable")
+    adj = np.empty(m)
+    adj[order] = np.maximum.accumulate(np.minimum(1.0, (m - np.arange(m)) * filled[order]))
+    adj[np.isnan(p)] = np.nan
+    return adj
+
+
+def test_holm_from_statsmodels_gives_the_previous_numbers():
+    rng = np.random.default_rng(3)
+    for m in (1, 2, 5, 17):
+        for _ in range(50):
+            p = rng.uniform(0, 0.2, m) ** rng.uniform(0.5, 3)
+            p[rng.uniform(size=m) < 0.1] = nan
+            assert holm(p) == pytest.approx(previous_holm(p), nan_ok=True, abs=1e-15)
+
+
+def test_min_pvalue_matches_scipy_at_the_extremes():
+    for n in range(2, 9):
+        a, b = np.arange(n, dtype=float), np.arange(n, dtype=float) + 100
+        assert min_pvalue(n, n, paired=False) == pytest.approx(stats.mannwhitneyu(a, b, method="exact").pvalue)
+        assert min_pvalue(n, n, paired=True) == pytest.approx(stats.wilcoxon(a - b).pvalue)
+    assert min_pvalue(0, 5, paired=False) == 1.0
+    # the issue's case: 6 seeds, 7 comparisons -> smallest Holm-adjusted p is 7 * 2/64 = 0.22
+    assert 7 * min_pvalue(6, 6, paired=True) == pytest.approx(0.21875)
+    assert runs_needed(7, 0.05, paired=True) == 9 and 7 * min_pvalue(9, 9, paired=True) < 0.05
+    assert 7 * min_pvalue(8, 8, paired=True) >= 0.05
 
 
 def brute_a12(a, b):
@@ -179,6 +212,17 @@ def test_friedman_on_runs():
     assert res2.dropped == ("s0",) and res2.n_scenarios == 5
     with pytest.raises(InvalidParameterError, match="at least 2 planners"):
         friedman(runs[runs.planner == "p1"], "length")
+
+
+def test_nemenyi_pvalues_from_scikit_posthocs_agree_with_the_critical_difference():
+    for seed in range(8):
+        runs = random_runs(("p1", "p2", "p3", "p4", "p5"), [f"s{i}" for i in range(12)], n_seeds=3, seed=seed)
+        res = friedman(runs, "length")
+        p = res.nemenyi_pvalues()
+        r = res.mean_ranks
+        for a_, b_ in itertools.combinations(r.index, 2):
+            if abs(abs(r[a_] - r[b_]) - res.cd) > 1e-9:
+                assert (p.loc[a_, b_] < res.alpha) == (abs(r[a_] - r[b_]) > res.cd)
 
 
 def test_cliques():

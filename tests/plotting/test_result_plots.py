@@ -12,11 +12,11 @@ from pathzoo.analysis.ranks import friedman
 from pathzoo.analysis.synthetic import make_runs, random_history, random_runs
 from pathzoo.core import Scenario
 from pathzoo.core.errors import InvalidParameterError
-from pathzoo.plotting.boxplots import plot_metric_boxes
+from pathzoo.plotting.boxplots import plot_metric_boxes, plot_metric_panels
 from pathzoo.plotting.cd_diagram import plot_cd_diagram
 from pathzoo.plotting.convergence import plot_convergence
 from pathzoo.plotting.ecdf import plot_time_to_target_ecdf
-from pathzoo.plotting.figure import new_figure, png_bytes
+from pathzoo.plotting.figure import new_figure, planner_colors, png_bytes
 from pathzoo.plotting.paths import plot_paths
 
 LEN = dict(direction="min", unit="m")  # no registry needed
@@ -73,12 +73,30 @@ def test_ecdf_reaches_the_share_of_hits(runs):
         assert f"n={len(h)}" in line.get_label()
 
 
+def test_panels_give_each_scenario_its_own_axis():
+    runs = make_runs({"small": {"a": [60.0, 61.0], "b": [62.0, 63.0]},
+                      "large": {"a": [400.0, 410.0], "b": [420.0, 430.0]}})
+    fig = plot_metric_panels(runs, "length")
+    shown = [ax for ax in fig.axes if ax.get_visible()]
+    assert [ax.get_title() for ax in shown] == ["large", "small"]
+    (lo1, hi1), (lo2, hi2) = (ax.get_ylim() for ax in shown)
+    assert lo1 > 300 and hi2 < 100  # no panel squashed under the other's range
+    assert [t.get_text() for t in fig.legends[0].get_texts()] == ["a", "b"]
+
+
+def test_palette_is_distinct_and_stable():
+    labels = [f"p{i:02d}" for i in range(30)]
+    colors = planner_colors(labels)
+    assert len({tuple(np.round(c, 6)) for c in colors.values()}) == 30
+    assert planner_colors(labels[:5]) == {k: colors[k] for k in labels[:5]}  # sorted-order assignment
+
+
 def test_cd_diagram_labels_ranks_and_cd():
     rows = {f"s{i}": {"a": [1.0], "b": [2.0], "c": [3.0]} for i in range(5)}
     res = friedman(make_runs(rows), "length", direction="min")
     ax = plot_cd_diagram(res)
     texts = [t.get_text() for t in ax.texts]
-    assert "a (1.00)" in texts and "c (3.00)" in texts and f"CD = {res.cd:.2f}" in texts
+    assert "a (1.00)" in texts and "(3.00) c" in texts and any(t.startswith("CD = 1.5") for t in texts)
     assert f"p = {res.pvalue:.3g}" in ax.get_title()
 
 
