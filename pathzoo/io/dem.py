@@ -1,4 +1,4 @@
-"""Digital elevation models: ESRI ASCII grids (``.asc``) and NumPy DEMs (``.npz``/``.npy``).
+"""Digital elevation models: ESRI ASCII grids (``.asc``), GeoTIFF (``.tif``) and NumPy DEMs (``.npz``/``.npy``).
 
 Rows are kept in file order, so row 0 is the first data row: the northern
 edge for ``.asc`` files, which list rows north to south. Cells equal to a
@@ -18,6 +18,7 @@ import numpy as np
 from pathzoo.core.errors import InvalidScenarioError
 from pathzoo.io.arrays import NodataPolicy, as_elevation, load_array, read_npz, select_array
 from pathzoo.io.geographic import GridUnits, detect_units, geographic_to_metric
+from pathzoo.io.geotiff import GEOTIFF_SUFFIXES, read_geotiff
 from pathzoo.io.provenance import file_record
 
 __all__ = ["DEM", "read_asc", "read_elevation", "ASC_HEADER_KEYS"]
@@ -178,7 +179,7 @@ def read_asc(path: str | Path, *, units: GridUnits = "auto", nodata: NodataPolic
 def read_elevation(
     path: str | Path, *, key: str | None = None, units: GridUnits = "auto", nodata: NodataPolicy = "error"
 ) -> DEM:
-    """Read an elevation grid from ``.asc``, ``.npz`` or ``.npy``.
+    """Read an elevation grid from ``.asc``, ``.tif``/``.tiff`` (:func:`~pathzoo.io.geotiff.read_geotiff`), ``.npz`` or ``.npy``.
 
     An ``.npz`` DEM holds the grid (``key``, default ``"elevation"`` or the
     only array) and may hold scalar ``dx``/``dy`` (cell size along columns and
@@ -199,8 +200,12 @@ def read_elevation(
         if key is not None:
             raise InvalidScenarioError("'key' applies to .npz files only", source=src, field="key")
         return read_asc(path, units=units, nodata=nodata)
+    if suffix in GEOTIFF_SUFFIXES:
+        if key is not None:
+            raise InvalidScenarioError("'key' applies to .npz files only", source=src, field="key")
+        return read_geotiff(path, units=units, nodata=nodata)
     if suffix not in (".npy", ".npz"):
-        raise InvalidScenarioError("an elevation file must be .asc, .npy or .npz", source=src)
+        raise InvalidScenarioError("an elevation file must be .asc, .tif, .tiff, .npy or .npz", source=src)
     if suffix == ".npy":
         grid = load_array(path, key=key)
         return DEM(as_elevation(grid, nodata=nodata, source=src, field="elevation"), None, file_record(path))

@@ -37,7 +37,12 @@ def detect_units(
 
 
 def geographic_to_metric(
-    elevation: np.ndarray, dlon: float, dlat: float, lat_centre: float
+    elevation: np.ndarray,
+    dlon: float,
+    dlat: float,
+    lat_centre: float,
+    *,
+    cell_metres: tuple[float, float, str] | None = None,
 ) -> tuple[np.ndarray, float, dict[str, Any]]:
     """Resample a longitude/latitude grid to square cells in metres.
 
@@ -55,6 +60,10 @@ def geographic_to_metric(
     spherical formula and the single latitude are within about 0.5 % of the
     ellipsoid over a few tenths of a degree.
 
+    ``cell_metres = (dx, dy, how)`` replaces the spherical formula by cell
+    sizes measured otherwise (e.g. geodesics on the CRS's ellipsoid, see
+    :func:`pathzoo.io.geotiff.read_geotiff`); ``how`` is recorded.
+
     Returns
     -------
     elevation : ndarray of float64
@@ -64,8 +73,12 @@ def geographic_to_metric(
     record : dict
         The numbers used, for ``Scenario.metadata``.
     """
-    dy = EARTH_RADIUS_M * math.radians(dlat)
-    dx = EARTH_RADIUS_M * math.cos(math.radians(lat_centre)) * math.radians(dlon)
+    if cell_metres is None:
+        dy = EARTH_RADIUS_M * math.radians(dlat)
+        dx = EARTH_RADIUS_M * math.cos(math.radians(lat_centre)) * math.radians(dlon)
+        how = "dy = R*radians(dlat); dx = R*cos(lat_centre)*radians(dlon)"
+    else:
+        dx, dy, how = cell_metres
     n_cols = elevation.shape[1]
     new_cols = int(math.floor((n_cols - 1) * dx / dy + 1e-9)) + 1
     pos = np.arange(new_cols) * (dy / dx)  # new centres in source-column units
@@ -83,7 +96,6 @@ def geographic_to_metric(
         "cell_dy_m": dy,
         "columns_in_file": n_cols,
         "columns_resampled": new_cols,
-        "conversion": "dy = R*radians(dlat); dx = R*cos(lat_centre)*radians(dlon); rows kept, columns linearly "
-        "resampled from spacing dx to dy",
+        "conversion": f"{how}; rows kept, columns linearly resampled from spacing dx to dy",
     }
     return resampled, dy, record

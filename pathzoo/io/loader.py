@@ -11,7 +11,7 @@ from pathzoo.io.scenario_toml import read_scenario_toml
 
 __all__ = ["load_scenario_file", "load_scenario_files"]
 
-_BARE_MAPS = (".map", ".npy", ".npz", ".asc")
+_BARE_MAPS = (".map", ".npy", ".npz", ".asc", ".tif", ".tiff")
 
 
 def load_scenario_file(path: str | Path) -> Scenario:

@@ -97,7 +97,7 @@ def _elevation(table: Table, base: Path, cell_size: float | None, top: Table) ->
         elev, record = _run_generator(table, size, "elevation")
         return elev, size, record
     table.reject_unknown(("file", "key", "units", "nodata"))
-    path = _data_file(table, base, (".asc", ".npy", ".npz"))
+    path = _data_file(table, base, (".asc", ".tif", ".tiff", ".npy", ".npz"))
     units = table.string("units", default="auto", choices=("auto", "metres", "degrees"))
     try:
         dem = read_elevation(path, key=table.string("key", default=None), units=units, nodata=nodata)
