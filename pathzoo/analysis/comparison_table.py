@@ -8,7 +8,9 @@ reference's side:
 
 - ``↑``: the reference is significantly better than this configuration;
 - ``↓``: the reference is significantly worse;
-- ``≈``: no significant difference.
+- ``≈``: no significant difference;
+- ``n/s``: not testable: with this many runs no outcome could reach the
+  level after Holm's correction (see :func:`pathzoo.analysis.stats.min_pvalue`).
 
 The w/t/l counts give, per metric and configuration, on how many scenarios
 the reference wins, ties and loses. Unlike the paper, the success rate is
@@ -29,10 +31,13 @@ from pathzoo.analysis.stats import pairwise_tests
 from pathzoo.analysis.summary import summarize
 from pathzoo.core.errors import InvalidParameterError
 
-__all__ = ["PaperTable", "paper_table", "format_paper_table", "MARKS"]
+__all__ = ["PaperTable", "paper_table", "format_paper_table", "MARKS", "NOT_TESTABLE"]
 
 MARKS = {"a": "↑", "b": "↓", "tie": "≈"}
 """Winner of a reference-vs-other test (reference is side ``a``) to the mark shown."""
+
+NOT_TESTABLE = "n/s"
+"""The mark of a comparison the run count cannot decide (instead of ``≈``)."""
 
 
 @dataclass(frozen=True)
@@ -47,7 +52,8 @@ class PaperTable:
         <m>_mark`` (the reference's marks are empty).
     wtl : DataFrame
         One row per (metric, configuration other than the reference):
-        ``wins, ties, losses`` of the reference over the scenarios.
+        ``wins, ties, losses`` of the reference over the scenarios where the
+        comparison was testable, and ``untestable`` (the other scenarios).
     reference : str
         The reference configuration.
     metrics : tuple of MetricInfo
@@ -100,22 +106,25 @@ def paper_table(
     for info in infos:
         tests = pairwise_tests(runs, info.id, reference=reference, alpha=alpha, paired=paired)
         summ = summarize(runs, info.id)[["scenario", "config", "success_rate", "median", "sd"]]
-        marks = tests.assign(mark=tests["winner"].map(MARKS))[["scenario", "b", "mark"]]
+        marks = tests.assign(mark=tests["winner"].map(MARKS).where(tests["testable"].astype(bool), NOT_TESTABLE))
+        marks = marks[["scenario", "b", "mark"]]
         summ = summ.merge(marks.rename(columns={"b": "config"}), on=["scenario", "config"], how="left")
         summ["mark"] = summ["mark"].fillna("")
         summ = summ.rename(columns={"median": f"{info.id}_median", "sd": f"{info.id}_sd", "mark": f"{info.id}_mark"})
         table = summ if table is None else table.merge(summ.drop(columns="success_rate"), on=["scenario", "config"])
         for cfg, g in tests.groupby("b", sort=True):
-            counts = g["winner"].value_counts()
+            decided = g[g["testable"].astype(bool)]
+            counts = decided["winner"].value_counts()
             wtl_rows.append(dict(metric=info.id, config=cfg, wins=int(counts.get("a", 0)),
-                                 ties=int(counts.get("tie", 0)), losses=int(counts.get("b", 0))))
+                                 ties=int(counts.get("tie", 0)), losses=int(counts.get("b", 0)),
+                                 untestable=len(g) - len(decided)))
     assert table is not None
     order = table["config"].ne(reference).astype(int)
     table = (
         table.assign(_o=order).sort_values(["scenario", "_o", "config"], kind="stable").drop(columns="_o")
         .reset_index(drop=True)
     )
-    wtl = pd.DataFrame(wtl_rows, columns=["metric", "config", "wins", "ties", "losses"])
+    wtl = pd.DataFrame(wtl_rows, columns=["metric", "config", "wins", "ties", "losses", "untestable"])
     return PaperTable(table=table, wtl=wtl, reference=reference, metrics=infos, alpha=alpha)
 
 
@@ -144,13 +153,19 @@ def format_paper_table(pt: PaperTable, fmt: str = "text") -> str:
         cells = []
         for info in pt.metrics:
             row = pt.wtl[(pt.wtl["metric"] == info.id) & (pt.wtl["config"] == cfg)]
-            cells.append(f"{row.wins.iloc[0]}/{row.ties.iloc[0]}/{row.losses.iloc[0]}" if len(row) else "–")
+            if not len(row):
+                cells.append("–")
+                continue
+            cell = f"{row.wins.iloc[0]}/{row.ties.iloc[0]}/{row.losses.iloc[0]}"
+            cells.append(cell + (f" +{row.untestable.iloc[0]} n/s" if row.untestable.iloc[0] else ""))
         wtl_display[cfg] = cells
     legend = [
         f"Median and SD over successful runs; marks compare {pt.reference} with each planner "
         f"(two-sided rank tests, Holm-corrected per scenario and metric, alpha={pt.alpha:g}).",
-        f"↑: {pt.reference} significantly better; ↓: {pt.reference} significantly worse; ≈: no significant difference.",
-        f"w/t/l: scenarios on which {pt.reference} wins/ties/loses against the planner of the column.",
+        f"↑: {pt.reference} significantly better; ↓: {pt.reference} significantly worse; ≈: no significant difference; "
+        "n/s: not testable with this many runs (no outcome could reach alpha after the correction).",
+        f"w/t/l: scenarios on which {pt.reference} wins/ties/loses against the planner of the column; "
+        "+k n/s: scenarios where the run count could not decide.",
     ]
     if fmt == "csv":
         return render_table(display, fmt, raw=t) + "\n" + render_table(wtl_display, fmt, raw=pt.wtl)

@@ -17,7 +17,7 @@ TableFormat = Literal["text", "markdown", "csv", "json", "latex", "html"]
 TABLE_FORMATS: tuple[str, ...] = ("text", "markdown", "csv", "json", "latex", "html")
 MISSING = "–"
 _NUM = r"(-?(\d[\d.]*(e[-+]?\d+)?|inf)%?|–)"
-_NUMERIC = re.compile(rf"^{_NUM}( [↑↓≈]| \[{_NUM}\])?$|^\d+/\d+/\d+$")
+_NUMERIC = re.compile(rf"^{_NUM}( [↑↓≈]| n/s| \[{_NUM}\])?$|^\d+/\d+/\d+( \+\d+ n/s)?$")
 """Cells shown right-aligned in HTML (``class="num"``): numbers, percentages, marks, w/t/l counts."""
 
 

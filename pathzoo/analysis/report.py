@@ -30,7 +30,7 @@ import pandas as pd
 
 from pathzoo.analysis.formatting import format_number, render_table
 from pathzoo.analysis.frame import metric_info, with_config
-from pathzoo.analysis.leaderboard import format_leaderboard, leaderboard, power_note
+from pathzoo.analysis.leaderboard import format_leaderboard, leaderboard
 from pathzoo.core.errors import InvalidParameterError, PathzooError
 from pathzoo.core.scenario import Scenario
 from pathzoo.core.status import RunStatus
@@ -263,8 +263,6 @@ def render_report(
     page.heading(2, "Leaderboard", "leaderboard")
     lb = leaderboard(runs, metric, reference=reference, alpha=alpha)
     page.table(format_leaderboard(lb, "html"))
-    if power_note(lb):
-        page.note(power_note(lb), "warn")
 
     if reference:
         page.heading(2, f"Comparison with {reference}", "comparison")
