@@ -22,7 +22,7 @@ __all__ = ["AcoAStar"]
 
 
 class AcoAStar(AStarPlanner):
-    """ACO-A* (Yu et al. 2018) for a single target: its A* layer on 3-D length (see the module docstring)."""
+    """ACO-A* (Yu and co-authors 2018) for a single target: its A* layer on 3-D length (see the module docstring)."""
 
     id: ClassVar[str] = "aco.aco_astar"
     version: ClassVar[str] = "1"

@@ -45,7 +45,7 @@ __all__ = ["FLACO", "FlacoState", "rank_deposits"]
 
 
 def rank_deposits(costs: np.ndarray, reached: np.ndarray, w: int, q: float) -> tuple[np.ndarray, np.ndarray]:
-    """The ranked ants of one colony and their deposits ``(w - μ) q / L_μ``, ``μ = 1 .. w-1``.
+    """The ranked ants of one colony and their deposits ``(w - μ) q / L_μ`` for ranks μ from 1 to w - 1.
 
     Parameters
     ----------
@@ -78,7 +78,10 @@ class FlacoState(ColonyState):
 
 
 class FLACO(AntColonyPlanner):
-    """FLACO (Song et al. 2020): rank-based ant system on fuzzy virtual lengths; see the module docstring."""
+    """FLACO after Song and co-authors (2020): rank-based ant system on fuzzy virtual lengths.
+
+    See the module docstring and ``docs/planners/aco.flaco.md``.
+    """
 
     id = "aco.flaco"
     version = "1"
@@ -134,7 +137,10 @@ class FLACO(AntColonyPlanner):
 
     # ------------------------------------------------------------- trail
     def initial_trail(self, problem: ColonyProblem) -> float:
-        """``τ0 = w (w - 1) / (2 ρ L)`` with ``L`` the straight start-goal distance (ASrank's rule, L_nn replaced)."""
+        """``τ0 = w (w - 1) / (2 ρ L)``, ``L`` the straight start-goal distance (ASrank's rule, L_nn replaced).
+
+        With ``w = 1`` (no ranked ants) the numerator is taken as 1 so that trails start above 0.
+        """
         length = max(float(problem.goal_distance[problem.start]), 1e-12)
         return max(self.w * (self.w - 1), 1) / (2.0 * self.rho * length)
 
