@@ -21,5 +21,7 @@ def pathzoo_register_planners() -> Sequence[type[Planner]]:
     from pathzoo_aco.fgdaco import FGDACO
     from pathzoo_aco.dsaco import DSACO
     from pathzoo_aco.iaca import IACA
+    from pathzoo_aco.flaco import FLACO
+    from pathzoo_aco.aco_astar import AcoAStar
 
-    return [AntSystem, MaxMinAntSystem, AntColonySystem, GGACO, GreenAnt, FGDACO, DSACO, IACA]
+    return [AntSystem, MaxMinAntSystem, AntColonySystem, GGACO, GreenAnt, FGDACO, DSACO, IACA, FLACO, AcoAStar]
