@@ -13,7 +13,9 @@ from __future__ import annotations
 import importlib
 import os
 import pkgutil
+import shutil
 import sys
+from pathlib import Path
 from types import ModuleType
 
 import pathzoo
@@ -29,6 +31,7 @@ extensions = [
     "numpydoc",
     "sphinx.ext.autodoc",
     "sphinx.ext.autosummary",
+    "sphinx.ext.mathjax",
     "sphinx_gallery.gen_gallery",
 ]
 
@@ -40,6 +43,28 @@ templates_path = ["api/_templates"]
 # MyST: GitHub-style heading anchors, so the notes' links like
 # ``scenario-format.md#elevation-ground-heights`` resolve as on GitHub.
 myst_heading_anchors = 3
+# $...$ and $$...$$ are mathematics (the planner pages' equations), rendered by MathJax.
+myst_enable_extensions = ["dollarmath", "amsmath"]
+
+# MathJax offline: the single-file SVG build from the installed MathJax
+# distribution (PyPI package django-static-mathjax, the docs extra) is copied
+# into _static/ after the build, so pages render their equations without any
+# network access.
+mathjax_path = "mathjax/tex-svg.js"
+MATHJAX_FILE = Path(importlib.import_module("mathjax").__file__).parent / "static" / "mathjax" / "es5" / "tex-svg.js"
+
+
+def _copy_mathjax(app, exception) -> None:  # noqa: ANN001 - Sphinx's event signature
+    """Put MathJax beside the pages (``build-finished``)."""
+    if exception is None and app.builder.format == "html":
+        target = Path(app.outdir) / "_static" / "mathjax"
+        target.mkdir(parents=True, exist_ok=True)
+        shutil.copy2(MATHJAX_FILE, target / MATHJAX_FILE.name)
+
+
+def setup(app) -> None:  # noqa: ANN001 - Sphinx's extension hook
+    """Register the MathJax copy step."""
+    app.connect("build-finished", _copy_mathjax)
 
 # autodoc / autosummary / numpydoc
 autosummary_generate = True

@@ -81,3 +81,13 @@ def test_api_reference_covers_the_public_packages(built_docs: tuple[Path, Path])
     top = (out / "gen_modules" / "pathzoo.html").read_text(encoding="utf-8")
     for name in ("load_scenario", "make_planner", "run", "Scenario", "Planner"):
         assert f'id="pathzoo.{name}"' in top, f"pathzoo.{name} is not documented on the top-level page"
+
+
+@pytest.mark.slow
+def test_equations_are_mathematics_served_offline(built_docs: tuple[Path, Path]) -> None:
+    _, out = built_docs
+    page = (out / "planners" / "aco.as.html").read_text(encoding="utf-8")
+    assert 'class="math' in page and "\\tau_{ij}" in page  # MyST dollar maths, left for MathJax to typeset
+    assert "_static/mathjax/tex-svg.js" in page and "://" not in page.split("tex-svg.js")[0].rsplit('"', 1)[-1]
+    mathjax = out / "_static" / "mathjax" / "tex-svg.js"
+    assert mathjax.is_file() and mathjax.stat().st_size > 1_000_000  # the full single-file build, not a stub
