@@ -6,7 +6,8 @@ import pytest
 from pathzoo import Budget
 from pathzoo.harness.validation import segment_problem
 from pathzoo.testing import check_scenario
-from pathzoo_ompl.engine import SegmentValidator, _Run, segment_clear
+from pathzoo_ompl.checks import segment_clear
+from pathzoo_ompl.engine import SegmentValidator, _Run
 
 
 def _grid(rng, cell_size):
