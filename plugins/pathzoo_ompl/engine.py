@@ -6,13 +6,14 @@ The state space is ``RealVectorStateSpace(2)`` bounded by the map's extent
 (x along columns, y along rows, metres). A state is valid when it lies in a
 free cell of :attr:`Scenario.blocked` (obstacles, missing elevation and weak
 soil). Motions are checked by :class:`SegmentValidator`, an OMPL
-``MotionValidator`` that calls the harness's own
-:func:`~pathzoo.harness.validation.segment_problem`, so a motion OMPL accepts
-is exactly a segment the validator accepts (closed-cell collision rule and,
-on terrain, the slope limits) instead of OMPL's sampled discrete check. The
-objective is path length in the plane; on terrain the harness measures 3-D
-length. Turn limits are not modelled; a path breaking one is rejected by the
-final check.
+``MotionValidator`` making one compiled call per motion
+(:mod:`pathzoo_ompl.checks`): the validator's closed-cell collision rule
+and, on terrain, its slope limits (conservatively), so a motion OMPL accepts
+is a segment the validator accepts, instead of OMPL's sampled discrete
+check. The objective is path length in the plane; on terrain the harness
+measures 3-D length. Turn limits are not modelled; a path breaking one is
+rejected by the final check. ``range = 0`` means
+:func:`pathzoo_ompl.planners.default_range`.
 
 Budget
 ------
