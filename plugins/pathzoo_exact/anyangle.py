@@ -29,22 +29,23 @@ __all__ = ["AnyAnglePlanner", "pushed_off"]
 
 
 def _touched_grid_points(a: np.ndarray, b: np.ndarray) -> list[tuple[int, int]]:
-    # grid points (x, y) in the relative interior of the segment a -> b (integer units, SCALE per cell)
+    # grid points (x, y) in the relative interior of the segment a -> b (integer units, SCALE per cell), from a to b
     (ax, ay), (bx, by) = (int(v) for v in a), (int(v) for v in b)
     out = []
     if ax == bx:
         if ax % SCALE == 0:
             lo, hi = sorted((ay, by))
             out = [(ax // SCALE, j) for j in range(lo // SCALE + 1, -(-hi // SCALE)) if lo < j * SCALE < hi]
-        return out
-    if ax > bx:
+        return out if ay <= by else out[::-1]
+    reverse = ax > bx
+    if reverse:
         ax, ay, bx, by = bx, by, ax, ay
     dx, dy = bx - ax, by - ay
     for i in range(ax // SCALE + 1, -(-bx // SCALE)):
         num = ay * dx + (i * SCALE - ax) * dy
         if ax < i * SCALE < bx and num % (dx * SCALE) == 0:
             out.append((i, num // (dx * SCALE)))
-    return out
+    return out[::-1] if reverse else out
 
 
 def pushed_off(blocked: np.ndarray, limit_path_cells: np.ndarray, margin: float) -> np.ndarray:
