@@ -158,6 +158,13 @@ class _Run:
                 self.progress(self.iteration, self.motions, cost)
 
 
+def _read_only(array: np.ndarray) -> np.ndarray:
+    """A read-only view: the type :func:`~pathzoo_ompl.checks.compile_now` compiled the checks for."""
+    view = array.view()
+    view.setflags(write=False)
+    return view
+
+
 class SegmentValidator(ob.MotionValidator):
     """OMPL motion validator applying the harness's segment rule, with the evaluation budget.
 
@@ -181,10 +188,10 @@ class SegmentValidator(ob.MotionValidator):
         super().__init__(si)
         self._run = run
         cell_size = float(scenario.cell_size)
-        blocked = scenario.blocked
+        blocked = _read_only(scenario.blocked)
         if scenario.kind == "terrain":
             v = scenario.vehicle
-            elevation = np.ascontiguousarray(scenario.elevation, dtype=np.float64)
+            elevation = _read_only(np.ascontiguousarray(scenario.elevation, dtype=np.float64))
             self._check = partial(
                 terrain_motion_clear, blocked, elevation, cell_size, float(v.max_climb_deg), float(v.max_descent_deg)
             )
