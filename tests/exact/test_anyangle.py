@@ -74,20 +74,23 @@ def _brute_force_valid(blocked, start, goal, eps=1e-4):
     return float(dijkstra(graph, directed=False, indices=0)[1])
 
 
-@pytest.mark.parametrize("seed", range(6))
+@pytest.mark.parametrize("seed", range(16))
 def test_matches_brute_force_on_tiny_random_maps(seed):
     rng = np.random.default_rng(seed)
-    blocked = rng.random((5, 6)) < 0.3
+    blocked = rng.random((5, 6)) < (0.2 if seed % 2 else 0.3)
+    if seed < 8:
+        start, goal = np.array([0.5, 0.5]), np.array([5.5, 4.5])  # cell centres: the int64 lattice path
+    else:
+        start, goal = rng.uniform(0.05, 0.95, 2) + [0, 0], rng.uniform(0.05, 0.95, 2) + [5, 4]  # arbitrary floats
     blocked[0, 0] = blocked[-1, -1] = False
-    start, goal = (0.5, 0.5), (5.5, 4.5)
     opt = _optimum(blocked, start, goal)
-    brute = _brute_force_valid(blocked, np.array(start), np.array(goal))
+    brute = _brute_force_valid(blocked, start, goal)
     if opt is None:
         assert math.isinf(brute)
         return
     # valid paths are never shorter than the optimum, and eps-hugging ones come within O(eps) of it
     assert opt <= brute + 1e-12
-    assert brute <= opt + 1e-2
+    assert brute <= opt + 2e-3
 
 
 def test_straight_line_when_visible_and_never_below_it():
