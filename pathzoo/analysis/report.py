@@ -41,8 +41,8 @@ BOX_METRICS: tuple[str, ...] = ("length_ratio", "planning_time", "energy", "turn
 """Metrics shown as box plots besides the ranked metric (when present and not all NaN)."""
 
 TABLE_METRICS: tuple[str, ...] = (
-    "length", "length_ratio", "planning_time", "cpu_time", "travel_time", "energy", "turns", "turning_angle",
-    "smoothness", "clearance_min", "clearance_mean",
+    "length", "length_ratio", "length_ratio_anyangle", "planning_time", "cpu_time", "travel_time", "energy", "turns",
+    "turning_angle", "smoothness", "clearance_min", "clearance_mean",
 )  # fmt: skip
 """Metrics summarised (median and IQR) in the report's metric tables."""
 

@@ -1,4 +1,14 @@
-"""The exact reference optimum: Dijkstra on a scenario's neighbourhood graph, cached per scenario.
+"""The exact reference optima of a scenario (graph optimum and any-angle optimum), cached per scenario.
+
+Two references, for two path models (``docs/metrics.md``):
+
+- the *graph optimum* (:func:`reference_path`, :func:`reference_length`):
+  Dijkstra on the scenario's neighbourhood graph, the optimum of planners
+  that move between neighbouring cells;
+- the *any-angle optimum* (:func:`anyangle_reference`,
+  :func:`anyangle_length`): the infimum of the lengths of all valid paths,
+  whatever their vertices (:mod:`pathzoo.grid.anyangle`), the optimum of
+  planners whose segments may take any direction.
 
 The harness uses it twice: as the denominator of the ``length_ratio`` metric,
 and as a witness when a planner claims that no path exists (the claim is
@@ -18,16 +28,25 @@ import math
 import threading
 import weakref
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Callable, TypeVar
 
 import numpy as np
 
+from pathzoo.grid.anyangle import AnyAngleError, AnyAnglePath, anyangle_path
 from pathzoo.grid.paths import centre_path
 
 if TYPE_CHECKING:
     from pathzoo.core.scenario import Scenario
 
-__all__ = ["ReferencePath", "reference_path", "reference_length", "GRAPH_REFERENCE_KINDS"]
+__all__ = [
+    "ReferencePath",
+    "reference_path",
+    "reference_length",
+    "GRAPH_REFERENCE_KINDS",
+    "ANYANGLE_KINDS",
+    "anyangle_reference",
+    "anyangle_length",
+]
 
 GRAPH_REFERENCE_KINDS: frozenset[str] = frozenset({"grid2d", "terrain", "air3d"})
 """Kinds whose graph optimum is the right reference for path length.
@@ -56,8 +75,24 @@ class ReferencePath:
     nodes: np.ndarray
 
 
+ANYANGLE_KINDS: frozenset[str] = frozenset({"grid2d"})
+"""Kinds with an any-angle optimum: static 2-D grids measured by plane length."""
+
+_T = TypeVar("_T")
 _cache: "weakref.WeakKeyDictionary[Scenario, ReferencePath | None]" = weakref.WeakKeyDictionary()
+_anyangle_cache: "weakref.WeakKeyDictionary[Scenario, AnyAnglePath | None | AnyAngleError]" = weakref.WeakKeyDictionary()
 _lock = threading.Lock()
+
+
+def _cached(cache: "weakref.WeakKeyDictionary[Scenario, _T]", scenario: "Scenario", compute: Callable[[], _T]) -> _T:
+    """``cache[scenario]``, computed (outside the lock) on first use."""
+    with _lock:
+        if scenario in cache:
+            return cache[scenario]
+    value = compute()
+    with _lock:
+        cache[scenario] = value
+    return value
 
 
 def _compute(scenario: "Scenario") -> ReferencePath | None:
@@ -89,13 +124,7 @@ def reference_path(scenario: "Scenario") -> ReferencePath | None:
     Computed once per scenario object (Dijkstra from the start cell with
     :func:`scipy.sparse.csgraph.dijkstra`) and cached while the scenario lives.
     """
-    with _lock:
-        if scenario in _cache:
-            return _cache[scenario]
-    ref = _compute(scenario)
-    with _lock:
-        _cache[scenario] = ref
-    return ref
+    return _cached(_cache, scenario, lambda: _compute(scenario))
 
 
 def reference_length(scenario: "Scenario") -> float:
@@ -110,4 +139,40 @@ def reference_length(scenario: "Scenario") -> float:
     if scenario.kind not in GRAPH_REFERENCE_KINDS:
         return math.nan
     ref = reference_path(scenario)
+    return math.nan if ref is None else ref.length
+
+
+def _compute_anyangle(scenario: "Scenario") -> AnyAnglePath | None | AnyAngleError:
+    if scenario.kind not in ANYANGLE_KINDS:
+        return AnyAngleError(f"no any-angle optimum for kind {scenario.kind!r} (only {sorted(ANYANGLE_KINDS)})")
+    try:
+        return anyangle_path(scenario.blocked, scenario.start, scenario.goal, scenario.cell_size)
+    except AnyAngleError as exc:
+        return exc
+
+
+def anyangle_reference(scenario: "Scenario") -> AnyAnglePath | None:
+    """The exact any-angle optimum of ``scenario``, or ``None`` when the goal is unreachable.
+
+    Computed once per scenario object and cached while it lives.
+
+    Raises
+    ------
+    AnyAngleError
+        For kinds outside :data:`ANYANGLE_KINDS`, maps larger than
+        :data:`pathzoo.grid.anyangle.MAX_EXACT_CELLS` and endpoints off the
+        search's lattice: the optimum is then not computed, never approximated.
+    """
+    ref = _cached(_anyangle_cache, scenario, lambda: _compute_anyangle(scenario))
+    if isinstance(ref, AnyAngleError):
+        raise ref
+    return ref
+
+
+def anyangle_length(scenario: "Scenario") -> float:
+    """The any-angle optimum in metres, or NaN when it is not computed or the goal is unreachable."""
+    try:
+        ref = anyangle_reference(scenario)
+    except AnyAngleError:
+        return math.nan
     return math.nan if ref is None else ref.length

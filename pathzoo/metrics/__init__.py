@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from pathzoo.core.metric import Metric
 from pathzoo.metrics.clearance import ClearanceMean, ClearanceMin
-from pathzoo.metrics.optimality import LengthRatio
+from pathzoo.metrics.optimality import LengthRatio, LengthRatioAnyAngle
 from pathzoo.metrics.outcome import CpuTime, Evaluations, Iterations, PlanningTime, Success
 from pathzoo.metrics.path_shape import Length, Smoothness, TurningAngle, Turns
 from pathzoo.metrics.travel import Energy, TravelTime
@@ -19,6 +19,7 @@ __all__ = [
     "Iterations",
     "Length",
     "LengthRatio",
+    "LengthRatioAnyAngle",
     "PlanningTime",
     "Smoothness",
     "Success",
@@ -31,6 +32,7 @@ BUILTIN_METRICS: list[type[Metric]] = [
     Success,
     Length,
     LengthRatio,
+    LengthRatioAnyAngle,
     PlanningTime,
     CpuTime,
     TravelTime,

@@ -1,4 +1,4 @@
-"""The optimality metric: path length relative to the exact reference length."""
+"""The optimality metrics: path length relative to the graph optimum and to the any-angle optimum."""
 
 from __future__ import annotations
 
@@ -7,7 +7,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from pathzoo.grid.reference import reference_length
+from pathzoo.grid.reference import anyangle_length, reference_length
 from pathzoo.metrics.base import PathMetric
 from pathzoo.metrics.geometry import path_pieces
 
@@ -15,7 +15,7 @@ if TYPE_CHECKING:
     from pathzoo.core.results import RunRecord
     from pathzoo.core.scenario import Scenario
 
-__all__ = ["LengthRatio"]
+__all__ = ["LengthRatio", "LengthRatioAnyAngle"]
 
 
 class LengthRatio(PathMetric):
@@ -35,10 +35,32 @@ class LengthRatio(PathMetric):
 
     def measure(self, scenario: "Scenario", path: np.ndarray, record: "RunRecord") -> float:
         """``length / reference``; 1 when both are 0, NaN without a reference."""
-        ref = reference_length(scenario)
-        length = float(path_pieces(scenario, path)[0].sum())
-        if math.isnan(ref):
-            return math.nan
-        if ref == 0.0:
-            return 1.0 if length == 0.0 else math.inf
-        return length / ref
+        return _ratio(float(path_pieces(scenario, path)[0].sum()), reference_length(scenario))
+
+
+class LengthRatioAnyAngle(PathMetric):
+    """Path length divided by the exact any-angle optimum (1 = as short as any valid path can be).
+
+    The reference is :func:`pathzoo.grid.reference.anyangle_length`, the
+    infimum of the lengths of all valid paths, so no valid path scores
+    below 1. NaN where it is not computed: kinds other than ``grid2d`` and
+    maps larger than :data:`pathzoo.grid.anyangle.MAX_EXACT_CELLS` cells
+    (``docs/metrics.md`` says which ratio suits which planner).
+    """
+
+    id = "length_ratio_anyangle"
+    unit = "1"
+    direction = "min"
+    summary = "length / exact any-angle optimum (grid2d up to 256x256; never below 1)"
+
+    def measure(self, scenario: "Scenario", path: np.ndarray, record: "RunRecord") -> float:
+        """``length / any-angle optimum``; 1 when both are 0, NaN without one."""
+        return _ratio(float(path_pieces(scenario, path)[0].sum()), anyangle_length(scenario))
+
+
+def _ratio(length: float, ref: float) -> float:
+    if math.isnan(ref):
+        return math.nan
+    if ref == 0.0:
+        return 1.0 if length == 0.0 else math.inf
+    return length / ref

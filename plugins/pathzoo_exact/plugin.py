@@ -1,4 +1,4 @@
-"""The ``exact`` plugin: registers Dijkstra, A* and Theta* through pathzoo's entry points."""
+"""The ``exact`` plugin: registers Dijkstra, A*, Theta* and the any-angle optimum through pathzoo's entry points."""
 
 from __future__ import annotations
 
@@ -12,9 +12,10 @@ __all__ = ["pathzoo_register_planners"]
 
 @hookimpl
 def pathzoo_register_planners() -> Sequence[type[Planner]]:
-    """The exact reference planners ``exact.dijkstra``, ``exact.astar`` and ``exact.thetastar``."""
+    """The exact reference planners ``exact.dijkstra``, ``exact.astar``, ``exact.thetastar`` and ``exact.anyangle``."""
+    from pathzoo_exact.anyangle import AnyAnglePlanner
     from pathzoo_exact.astar import AStarPlanner
     from pathzoo_exact.dijkstra import DijkstraPlanner
     from pathzoo_exact.thetastar import ThetaStarPlanner
 
-    return [DijkstraPlanner, AStarPlanner, ThetaStarPlanner]
+    return [DijkstraPlanner, AStarPlanner, ThetaStarPlanner, AnyAnglePlanner]

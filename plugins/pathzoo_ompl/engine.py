@@ -6,13 +6,14 @@ The state space is ``RealVectorStateSpace(2)`` bounded by the map's extent
 (x along columns, y along rows, metres). A state is valid when it lies in a
 free cell of :attr:`Scenario.blocked` (obstacles, missing elevation and weak
 soil). Motions are checked by :class:`SegmentValidator`, an OMPL
-``MotionValidator`` that calls the harness's own
-:func:`~pathzoo.harness.validation.segment_problem`, so a motion OMPL accepts
-is exactly a segment the validator accepts (closed-cell collision rule and,
-on terrain, the slope limits) instead of OMPL's sampled discrete check. The
-objective is path length in the plane; on terrain the harness measures 3-D
-length. Turn limits are not modelled; a path breaking one is rejected by the
-final check.
+``MotionValidator`` making one compiled call per motion
+(:mod:`pathzoo_ompl.checks`): the validator's closed-cell collision rule
+and, on terrain, its slope limits (conservatively), so a motion OMPL accepts
+is a segment the validator accepts, instead of OMPL's sampled discrete
+check. The objective is path length in the plane; on terrain the harness
+measures 3-D length. Turn limits are not modelled; a path breaking one is
+rejected by the final check. ``range = 0`` means
+:func:`pathzoo_ompl.planners.default_range`.
 
 Budget
 ------
@@ -72,10 +73,11 @@ sampling-based planners cannot prove that no path exists.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+import time
+from dataclasses import dataclass, field
+from functools import partial
 from typing import TYPE_CHECKING, Any, Callable
 
-import numba
 import numpy as np
 from ompl import base as ob
 from ompl import geometric as og
@@ -84,13 +86,15 @@ from scipy.sparse import csr_matrix
 from scipy.sparse.csgraph import dijkstra
 
 from pathzoo.core import Budget, BudgetClock, PlanResult, ProgressCallback, Scenario, Status
-from pathzoo.grid.segments import segment_blocked_2d
-from pathzoo.harness.validation import segment_problem, validate_path
+from pathzoo.harness.validation import validate_path
+from pathzoo_ompl.checks import compile_now, segment_clear, terrain_motion_clear
 
 if TYPE_CHECKING:
     from pathzoo_ompl.planners import OmplPlanner
 
-__all__ = ["DEFAULT_TIME_S", "SegmentValidator", "segment_clear", "solve"]
+__all__ = ["DEFAULT_TIME_S", "SegmentValidator", "solve"]
+
+compile_now()
 
 DEFAULT_TIME_S = 1.0
 """Planning time when the budget sets no limit (OMPL's default for ``SimpleSetup.solve``)."""
@@ -98,7 +102,13 @@ DEFAULT_TIME_S = 1.0
 
 @dataclass
 class _Run:
-    """Counters and best cost of one ``plan()`` call, shared by the callbacks OMPL makes."""
+    """Counters and best cost of one ``plan()`` call, shared by the callbacks OMPL makes.
+
+    OMPL calls :meth:`step` once per planner-loop step and the motion
+    validator once per motion, so both read plain attributes (limits are
+    resolved once here) rather than properties: these callbacks are the
+    Python part of every motion check.
+    """
 
     budget: Budget
     clock: BudgetClock
@@ -109,27 +119,29 @@ class _Run:
     best: float = math.inf
     error: BaseException | None = None
     reserve_s: float = 0.0
+    step_limit: float = field(init=False)
+    motion_limit: float = field(init=False)
+    deadline: float = field(init=False)
+
+    def __post_init__(self) -> None:
+        b = self.budget
+        self.step_limit = math.inf if b.iterations is None else b.iterations * self.steps_per_iteration
+        self.motion_limit = math.inf if b.evaluations is None else b.evaluations
+        self.deadline = math.inf if b.time_s is None else self.clock.started + b.time_s
 
     @property
     def iteration(self) -> int:
         """Iterations begun so far (``ceil(steps / iteration_steps)``)."""
         return -(-self.steps // self.steps_per_iteration)
 
-    @property
-    def motion_limit(self) -> float:
-        """Largest number of motion checks allowed."""
-        return math.inf if self.budget.evaluations is None else self.budget.evaluations
-
     def spent(self) -> bool:
         """True once a limit is reached (or a callback failed)."""
-        b = self.budget
-        if self.error is not None:
-            return True
-        if b.iterations is not None and self.steps >= b.iterations * self.steps_per_iteration:
-            return True
-        if self.motions >= self.motion_limit:
-            return True
-        return b.time_s is not None and self.clock.elapsed + self.reserve_s >= b.time_s
+        return (
+            self.error is not None
+            or self.steps >= self.step_limit
+            or self.motions >= self.motion_limit
+            or time.perf_counter() + self.reserve_s >= self.deadline
+        )
 
     def step(self, until: float = math.inf) -> bool:
         """One termination-condition check: count a step and return False; True once spent or at ``until`` steps."""
@@ -146,63 +158,45 @@ class _Run:
                 self.progress(self.iteration, self.motions, cost)
 
 
-@numba.njit(cache=True)
-def _cell_unit(v: float, cell_size: float) -> float:
-    # one coordinate of pathzoo.grid.segments.to_cell_units (snap within 1e-9 of a multiple of 0.5),
-    # as a scalar numba function; tests/ompl/test_ompl_validator.py checks that they agree
-    u = v / cell_size
-    twice = np.round(u * 2.0)
-    return twice / 2.0 if abs(u * 2.0 - twice) < 1e-9 else u
-
-
-@numba.njit(cache=True)
-def segment_clear(blocked: np.ndarray, cell_size: float, x0: float, y0: float, x1: float, y1: float) -> bool:
-    """The closed-cell collision rule of the validator for a world-coordinate segment, without numpy overhead."""
-    return not segment_blocked_2d(
-        blocked,
-        _cell_unit(x0, cell_size),
-        _cell_unit(y0, cell_size),
-        _cell_unit(x1, cell_size),
-        _cell_unit(y1, cell_size),
-    )
-
-
-def _compile() -> None:
-    """Compile :func:`segment_clear` for read-only maps now, at import, not inside a timed ``plan()``."""
-    blocked = np.zeros((2, 2), dtype=bool)
-    blocked.setflags(write=False)
-    segment_clear(blocked, 1.0, 0.5, 0.5, 1.5, 1.5)
-
-
-_compile()
+def _read_only(array: np.ndarray) -> np.ndarray:
+    """A read-only view: the type :func:`~pathzoo_ompl.checks.compile_now` compiled the checks for."""
+    view = array.view()
+    view.setflags(write=False)
+    return view
 
 
 class SegmentValidator(ob.MotionValidator):
     """OMPL motion validator applying the harness's segment rule, with the evaluation budget.
 
-    The collision part runs through :func:`segment_clear` (the validator's
-    rule on the validator's snapped cell units, compiled); segments that pass
-    it on terrain then go through
-    :func:`~pathzoo.harness.validation.segment_problem` itself for the slope
-    limits.
+    Each motion costs one compiled call on arrays prepared here:
+    :func:`~pathzoo_ompl.checks.segment_clear` (the validator's closed-cell
+    rule) or, on terrain,
+    :func:`~pathzoo_ompl.checks.terrain_motion_clear` (the same rule, then
+    the slope limits, conservatively).
 
     Parameters
     ----------
     si : ompl.base.SpaceInformation
         The space information it validates for.
     scenario : Scenario
-        Gives :func:`~pathzoo.harness.validation.segment_problem` its map.
+        The map: its blocked cells and, on terrain, its elevation and the vehicle's slope limits.
     run : _Run
         Counts motion checks; beyond ``run.motion_limit`` every motion is refused unchecked.
     """
 
     def __init__(self, si: Any, scenario: Scenario, run: _Run) -> None:
         super().__init__(si)
-        self._scenario = scenario
         self._run = run
-        self._blocked = scenario.blocked
-        self._cell_size = float(scenario.cell_size)
-        self._terrain = scenario.kind == "terrain"
+        cell_size = float(scenario.cell_size)
+        blocked = _read_only(scenario.blocked)
+        if scenario.kind == "terrain":
+            v = scenario.vehicle
+            elevation = _read_only(np.ascontiguousarray(scenario.elevation, dtype=np.float64))
+            self._check = partial(
+                terrain_motion_clear, blocked, elevation, cell_size, float(v.max_climb_deg), float(v.max_descent_deg)
+            )
+        else:
+            self._check = partial(segment_clear, blocked, cell_size)
 
     def checkMotion(self, s1: Any, s2: Any) -> bool:  # noqa: N802 (OMPL's name)
         """True when the straight segment ``s1 -> s2`` passes the validator's segment rule."""
@@ -210,21 +204,18 @@ class SegmentValidator(ob.MotionValidator):
         if run.motions >= run.motion_limit:
             return False
         run.motions += 1
-        x0, y0, x1, y1 = s1[0], s1[1], s2[0], s2[1]
-        if not segment_clear(self._blocked, self._cell_size, x0, y0, x1, y1):
-            return False
-        return not self._terrain or segment_problem(self._scenario, np.array((x0, y0)), np.array((x1, y1))) is None
+        return self._check(s1[0], s1[1], s2[0], s2[1])
 
 
 def _state_checker(scenario: Scenario) -> Callable[[Any], bool]:
-    """OMPL state validity: inside the map and in a free cell."""
-    blocked = scenario.blocked
-    h, w = blocked.shape
-    cs = scenario.cell_size
+    """OMPL state validity: inside the map and in a free cell (a lookup in a flat list of booleans)."""
+    h, w = scenario.shape
+    free = (~scenario.blocked).ravel().tolist()
+    cs = float(scenario.cell_size)
 
     def valid(state: Any) -> bool:
         col, row = math.floor(state[0] / cs), math.floor(state[1] / cs)
-        return 0 <= row < h and 0 <= col < w and not blocked[row, col]
+        return 0 <= row < h and 0 <= col < w and free[row * w + col]
 
     return valid
 
@@ -387,10 +378,7 @@ def _solve(spec: "OmplPlanner", scenario: Scenario, seed: int, run: _Run) -> Pla
 def _simplified(si: Any, raw: np.ndarray, scenario: Scenario, run: _Run) -> tuple[np.ndarray, bool]:
     """OMPL's PathSimplifier on ``raw``; the raw path is kept if the result fails the validator."""
     geometric = og.PathGeometric(si, _states(si, raw))
-    limit = run.budget.time_s
-    og.PathSimplifier(si).simplify(
-        geometric, ob.PlannerTerminationCondition(lambda: limit is not None and run.clock.elapsed >= limit)
-    )
+    og.PathSimplifier(si).simplify(geometric, ob.PlannerTerminationCondition(lambda: time.perf_counter() >= run.deadline))
     shorter = _array(geometric)
     if validate_path(scenario, shorter):
         return shorter, True

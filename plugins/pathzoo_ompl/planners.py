@@ -18,6 +18,8 @@ __all__ = [
     "BITStar",
     "FMTStar",
     "OMPL_PLANNERS",
+    "DEFAULT_RANGE_CELLS",
+    "default_range",
 ]
 
 
@@ -38,7 +40,30 @@ def _common(iteration_steps: int) -> dict[str, Param]:
         ),
     }
 
-_RANGE = Param(0.0, "maximum extension length in metres; 0 lets OMPL choose (20% of the map's larger side)", low=0.0)
+DEFAULT_RANGE_CELLS = 8.0
+"""Longest default extension, in cells (see :func:`default_range`)."""
+
+_RANGE = Param(
+    0.0,
+    "maximum extension length in metres; 0 = pathzoo's default: OMPL's 20% of the map's larger side, "
+    f"capped at {DEFAULT_RANGE_CELLS:g} cells",
+    low=0.0,
+)
+
+
+def default_range(scenario: Scenario) -> float:
+    """The extension length ``range=0`` stands for: min(20 % of the larger map side, 8 cells), in metres.
+
+    OMPL's own default (20 % of the space's largest extent) grows with the
+    map, so on a 512 x 512 map every extension is about 100 cells long and
+    almost none survives the walls of a map of small rooms. Capping it at
+    :data:`DEFAULT_RANGE_CELLS` cells leaves maps up to 40 cells across
+    unchanged and keeps extensions at the scale of corridors and rooms on
+    large maps. The cap is one constant for every map, chosen from a sweep on
+    ``8room_000`` (``docs/planners/ompl.md``), never tuned per map.
+    """
+    return min(0.2 * float(np.max(scenario.extent)), DEFAULT_RANGE_CELLS * float(scenario.cell_size))
+
 _GOAL_BIAS = Param(0.05, "probability of sampling the goal", low=0.0, high=1.0)
 _REWIRE = Param(
     1.1, "rewiring factor: multiplies the asymptotically optimal connection radius or k", low=0.0, low_open=True
@@ -58,7 +83,7 @@ class OmplPlanner(Planner):
     """
 
     kinds: ClassVar[frozenset[str]] = frozenset({"grid2d", "terrain"})
-    version: ClassVar[str] = "1"
+    version: ClassVar[str] = "2"
     ompl_class: ClassVar[str] = ""
     anytime: ClassVar[bool] = False
 
@@ -98,8 +123,7 @@ class RRT(OmplPlanner):
 
     def configure(self, planner: Any, scenario: Scenario) -> None:
         """Set range and goal bias."""
-        if self.range > 0:
-            planner.setRange(self.range)
+        planner.setRange(self.range if self.range > 0 else default_range(scenario))
         planner.setGoalBias(self.goal_bias)
 
 
@@ -113,8 +137,7 @@ class RRTConnect(OmplPlanner):
 
     def configure(self, planner: Any, scenario: Scenario) -> None:
         """Set range."""
-        if self.range > 0:
-            planner.setRange(self.range)
+        planner.setRange(self.range if self.range > 0 else default_range(scenario))
 
 
 class RRTStar(OmplPlanner):
@@ -133,8 +156,7 @@ class RRTStar(OmplPlanner):
 
     def configure(self, planner: Any, scenario: Scenario) -> None:
         """Set range, goal bias and rewiring factor."""
-        if self.range > 0:
-            planner.setRange(self.range)
+        planner.setRange(self.range if self.range > 0 else default_range(scenario))
         planner.setGoalBias(self.goal_bias)
         planner.setRewireFactor(self.rewire_factor)
 

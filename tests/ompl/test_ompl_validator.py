@@ -6,7 +6,8 @@ import pytest
 from pathzoo import Budget
 from pathzoo.harness.validation import segment_problem
 from pathzoo.testing import check_scenario
-from pathzoo_ompl.engine import SegmentValidator, _Run, segment_clear
+from pathzoo_ompl.checks import segment_clear
+from pathzoo_ompl.engine import SegmentValidator, _Run
 
 
 def _grid(rng, cell_size):
@@ -66,3 +67,40 @@ def test_motions_beyond_the_evaluation_limit_are_refused_unchecked():
     free = (tuple((1.5, 1.5)), tuple((2.5, 2.5)))
     assert [validator.checkMotion(*free) for _ in range(5)] == [True, True, True, False, False]
     assert run.motions == 3
+
+
+def test_terrain_check_is_never_laxer_than_the_judge_near_the_limit():
+    from pathzoo import Scenario, VehicleModel
+
+    # a ramp rising along x: every piece of a segment along x has the same slope, so the limit can be hit exactly
+    cols = np.arange(12, dtype=float)
+    rng = np.random.default_rng(2)
+    for limit_offset in (-1e-5, -1e-8, 0.0, 1e-8, 1e-5):
+        slope_deg = 20.0
+        elevation = np.tile(np.tan(np.radians(slope_deg)) * cols, (6, 1))
+        scenario = Scenario(
+            id="ramp", kind="terrain", occupancy=np.zeros((6, 12), dtype=bool), cell_size=1.0,
+            start=[0.5, 0.5], goal=[11.5, 5.5], elevation=elevation,
+            vehicle=VehicleModel(max_climb_deg=slope_deg + limit_offset, max_descent_deg=slope_deg + limit_offset),
+        )
+        validator, _, _ = _validator(scenario, None)
+        for _ in range(200):
+            a = rng.uniform([0.5, 0.5], [11.5, 5.5])
+            b = rng.uniform([0.5, 0.5], [11.5, 5.5])
+            if rng.random() < 0.5:
+                b[1] = a[1]  # along the ramp: the steepest direction, slope exactly slope_deg
+            if validator.checkMotion(tuple(a), tuple(b)):
+                assert segment_problem(scenario, a, b) is None, (a, b, limit_offset)
+
+
+def test_default_range_caps_ompls_choice_at_eight_cells():
+    from pathzoo import Scenario
+    from pathzoo_ompl.planners import default_range
+
+    def grid(side, cell_size):
+        return Scenario(id="g", kind="grid2d", occupancy=np.zeros((side, side), dtype=bool), cell_size=cell_size,
+                        start=[0.5 * cell_size] * 2, goal=[(side - 0.5) * cell_size] * 2)
+
+    assert default_range(grid(32, 1.0)) == pytest.approx(6.4)  # OMPL's own 20% on small maps
+    assert default_range(grid(512, 1.0)) == pytest.approx(8.0)
+    assert default_range(grid(512, 0.5)) == pytest.approx(4.0)
