@@ -1,0 +1,18 @@
+"""The ``rivals`` plugin: registers the non-ant rivals of the papers' tables through pathzoo's entry points."""
+
+from __future__ import annotations
+
+from typing import Sequence
+
+from pathzoo.core import Planner
+from pathzoo.plugins.hookspecs import hookimpl
+
+__all__ = ["pathzoo_register_planners"]
+
+
+@hookimpl
+def pathzoo_register_planners() -> Sequence[type[Planner]]:
+    """``exact.zstar`` (Ganganath, Cheng and Tse 2015)."""
+    from pathzoo_rivals.zstar import ZStarPlanner
+
+    return [ZStarPlanner]
