@@ -12,7 +12,9 @@ __all__ = ["pathzoo_register_planners"]
 
 @hookimpl
 def pathzoo_register_planners() -> Sequence[type[Planner]]:
-    """``exact.zstar`` (Ganganath, Cheng and Tse 2015)."""
+    """``exact.zstar``, and the reconstructions ``swarm.mosfla`` and ``search.movns`` (Hidalgo-Paniagua et al.)."""
+    from pathzoo_rivals.mosfla import MosflaPlanner
+    from pathzoo_rivals.movns import MovnsPlanner
     from pathzoo_rivals.zstar import ZStarPlanner
 
-    return [ZStarPlanner]
+    return [ZStarPlanner, MosflaPlanner, MovnsPlanner]

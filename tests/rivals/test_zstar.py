@@ -13,7 +13,6 @@ import pathzoo
 from pathzoo.core import Budget, Scenario, Status, VehicleModel
 from pathzoo.core.vehicle import GRAVITY
 from pathzoo.harness.validation import validate_path
-from pathzoo.testing import check_planner
 from pathzoo.testing.scenarios import check_scenario
 from pathzoo_rivals.zstar import ZStarPlanner, zstar_edge_cost, zstar_heuristic
 
@@ -120,10 +119,6 @@ def test_no_path_above_the_climb_limit():
     result = ZStarPlanner(max_climb_deg=10.0).plan(s, budget=Budget(), rng=np.random.default_rng(0))
     assert result.status == Status.NO_PATH
     assert ZStarPlanner().plan(s, budget=Budget(), rng=np.random.default_rng(0)).status == Status.SOLVED
-
-
-def test_conformance():
-    check_planner(ZStarPlanner())
 
 
 def test_grid2d_is_flat_energy_search():

@@ -1,0 +1,169 @@
+"""Routes as waypoint cells: the path encoding, feasibility rule, random routes and three objectives of the MO rivals.
+
+A *route* is an ``int64`` array of node ids (cells), from the start cell to
+the goal cell; the robot drives straight between the centres of consecutive
+waypoints. This encoding is pathzoo's, written for the multi-objective rivals
+(``swarm.mosfla``, ``search.movns``): their papers' own encodings were not
+reachable (see their pages).
+
+Feasibility is exact: a segment is allowed only when the judge's own
+:func:`~pathzoo.harness.validation.segment_problem` finds nothing wrong with
+it (the closed-cell rule of ``docs/corner-rule.md``) and, on terrain, its
+steepest piece is at least :data:`SLOPE_MARGIN_DEG` inside the vehicle's
+climb and descent limits, so a route never depends on the judge's angle
+tolerance. Every route a planner keeps has passed this test segment by
+segment; operators that would break it are rejected, never repaired silently.
+
+Objectives, all minimised (the three of Hidalgo-Paniagua et al.):
+
+- **length**: 3-D length in metres (:func:`pathzoo.metrics.geometry.path_pieces`);
+- **risk** (path safety): minus the smallest clearance, in metres, of the
+  cells sampled every half cell along the route (clearance from
+  :attr:`Scenario.clearance`), so safer routes have lower risk;
+- **turning** (path smoothness): the sum of the heading changes at the
+  waypoints in radians (:func:`pathzoo.metrics.geometry.turn_angles`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.sparse import csr_matrix
+from scipy.sparse.csgraph import dijkstra
+
+from pathzoo.core import Scenario
+from pathzoo.grid.paths import centre_path
+from pathzoo.grid.terrain import segment_profile
+from pathzoo.harness.validation import segment_problem
+from pathzoo.metrics.geometry import path_pieces, travel_time_energy, turn_angles
+
+__all__ = ["RouteProblem", "SLOPE_MARGIN_DEG", "N_OBJECTIVES", "OBJECTIVES"]
+
+SLOPE_MARGIN_DEG = 1e-6
+"""How far inside the climb and descent limits every segment of a route must stay, degrees."""
+
+OBJECTIVES = ("length_m", "risk_m", "turning_rad")
+"""Names of the three objectives, in the order of :meth:`RouteProblem.objectives`."""
+
+N_OBJECTIVES = len(OBJECTIVES)
+
+
+class RouteProblem:
+    """Routes on one scenario: segment feasibility (cached), random routes, objectives and selection criteria.
+
+    Parameters
+    ----------
+    scenario : Scenario
+        A ``grid2d`` or ``terrain`` scenario.
+    """
+
+    def __init__(self, scenario: Scenario) -> None:
+        self.scenario = scenario
+        self.start = int(scenario.start_node)
+        self.goal = int(scenario.goal_node)
+        self.shape = scenario.shape
+        self.centres = scenario.point_of(np.arange(int(np.prod(self.shape))))
+        self.free = ~scenario.blocked
+        self.clearance = scenario.clearance
+        self._segment_ok: dict[tuple[int, int], bool] = {}
+        graph = scenario.graph
+        n = graph.n_nodes
+        self._adjacency = (graph.sources, graph.indices, graph.length, n)
+
+    # ------------------------------------------------------------ feasibility
+    def segment_ok(self, u: int, v: int) -> bool:
+        """Whether the straight segment between the centres of cells ``u`` and ``v`` is allowed (see module)."""
+        key = (u, v)
+        known = self._segment_ok.get(key)
+        if known is not None:
+            return known
+        s = self.scenario
+        p0, p1 = self.centres[u], self.centres[v]
+        ok = u != v and bool(self.free.flat[u] and self.free.flat[v]) and segment_problem(s, p0, p1) is None
+        if ok and s.kind == "terrain":
+            _, slopes = segment_profile(s.elevation, p0, p1, s.cell_size)
+            deg = np.degrees(slopes)
+            ok = bool(deg.max() <= s.vehicle.max_climb_deg - SLOPE_MARGIN_DEG
+                      and -deg.min() <= s.vehicle.max_descent_deg - SLOPE_MARGIN_DEG)
+        self._segment_ok[key] = ok
+        return ok
+
+    def route_ok(self, route: np.ndarray) -> bool:
+        """Whether a route runs from the start cell to the goal cell through allowed segments only."""
+        if len(route) < 2 or int(route[0]) != self.start or int(route[-1]) != self.goal:
+            return False
+        return all(self.segment_ok(int(a), int(b)) for a, b in zip(route[:-1], route[1:]))
+
+    def reachable(self) -> bool:
+        """Whether the goal cell can be reached from the start cell in the neighbourhood graph."""
+        return bool(np.isfinite(self._tree(np.ones(len(self._adjacency[0])))[0][self.goal]))
+
+    # ------------------------------------------------------------ construction
+    def _tree(self, factor: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        sources, targets, length, n = self._adjacency
+        matrix = csr_matrix((length * factor, (sources, targets)), shape=(n, n))
+        dist, pred = dijkstra(matrix, indices=self.start, return_predecessors=True)
+        return dist, pred
+
+    def random_route(self, rng: np.random.Generator, noise: float = 2.0) -> np.ndarray | None:
+        """A feasible route: the shortest path under edge lengths scaled by ``U(1, 1 + noise)``, string-pulled.
+
+        Returns ``None`` when the goal cell is unreachable.
+        """
+        dist, pred = self._tree(rng.uniform(1.0, 1.0 + noise, len(self._adjacency[0])))
+        if not np.isfinite(dist[self.goal]):
+            return None
+        nodes = [self.goal]
+        while nodes[-1] != self.start:
+            nodes.append(int(pred[nodes[-1]]))
+        return self.pull_string(np.array(nodes[::-1], dtype=np.int64))
+
+    def pull_string(self, nodes: np.ndarray) -> np.ndarray:
+        """Drop waypoints greedily: from each kept waypoint, go straight to the last node still in reach.
+
+        ``nodes`` must be a feasible route (every consecutive pair allowed);
+        the result is one too, with the same first and last node.
+        """
+        keep = [int(nodes[0])]
+        anchor = 0
+        i = 1
+        while i < len(nodes):
+            j = i
+            while j + 1 < len(nodes) and self.segment_ok(int(nodes[anchor]), int(nodes[j + 1])):
+                j += 1
+            keep.append(int(nodes[j]))
+            anchor = j
+            i = j + 1
+        return np.array(keep, dtype=np.int64)
+
+    # ------------------------------------------------------------ objectives
+    def polyline(self, route: np.ndarray) -> np.ndarray:
+        """Cell-centre polyline of a route (world coordinates, no endpoint connectors)."""
+        return self.centres[route]
+
+    def objectives(self, route: np.ndarray) -> np.ndarray:
+        """``(length, risk, turning)`` of a route, all to be minimised (see module)."""
+        pts = self.polyline(route)
+        lengths, _ = path_pieces(self.scenario, pts)
+        return np.array([float(lengths.sum()), -self.min_clearance(pts), float(turn_angles(pts).sum())])
+
+    def min_clearance(self, pts: np.ndarray) -> float:
+        """Smallest clearance (m) of the cells under points sampled every half cell along a polyline."""
+        cs = self.scenario.cell_size
+        seg = np.diff(pts, axis=0)
+        steps = np.maximum(1, np.ceil(np.hypot(seg[:, 0], seg[:, 1]) / (0.5 * cs)).astype(np.int64))
+        which = np.repeat(np.arange(len(seg)), steps)
+        frac = (np.arange(len(which)) - np.repeat(np.cumsum(steps) - steps, steps)) / steps[which]
+        samples = np.vstack([pts[:-1][which] + frac[:, None] * seg[which], pts[-1:]])
+        cols = np.clip((samples[:, 0] / cs).astype(np.int64), 0, self.shape[1] - 1)
+        rows = np.clip((samples[:, 1] / cs).astype(np.int64), 0, self.shape[0] - 1)
+        return float(self.clearance[rows, cols].min())
+
+    def world_path(self, route: np.ndarray) -> np.ndarray:
+        """The route as a world path from exactly ``scenario.start`` to exactly ``scenario.goal``."""
+        return centre_path(self.scenario, route)
+
+    def criterion(self, route: np.ndarray, rule: str) -> float:
+        """Selection criterion of a route: its 3-D length (m) or the harness's energy metric (J)."""
+        if rule == "length":
+            return float(self.objectives(route)[0])
+        return travel_time_energy(self.scenario, self.world_path(route))[1]
