@@ -2,14 +2,14 @@
 
 Non-dominated sorting and crowding distances are pymoo's
 (:class:`~pymoo.util.nds.non_dominated_sorting.NonDominatedSorting`,
-:func:`~pymoo.operators.survival.rank_and_crowding.metrics.calc_crowding_distance`).
+:func:`~pymoo.operators.survival.rank_and_crowding.metrics.calc_crowding_distance`),
+imported when first used so that listing plugins does not load pymoo (an
+optional dependency, extra ``evo``).
 """
 
 from __future__ import annotations
 
 import numpy as np
-from pymoo.operators.survival.rank_and_crowding.metrics import calc_crowding_distance
-from pymoo.util.nds.non_dominated_sorting import NonDominatedSorting
 
 __all__ = ["dominates", "rank_and_crowding_order", "ParetoArchive"]
 
@@ -23,6 +23,8 @@ def _crowding(front: np.ndarray) -> np.ndarray:
     """Crowding distances of one front; fronts of one or two points are all boundary (``inf``)."""
     if len(front) <= 2:
         return np.full(len(front), np.inf)
+    from pymoo.operators.survival.rank_and_crowding.metrics import calc_crowding_distance
+
     return calc_crowding_distance(front)
 
 
@@ -31,6 +33,8 @@ def rank_and_crowding_order(objectives: np.ndarray) -> np.ndarray:
 
     Ties keep the input order (stable sort), so the order is deterministic.
     """
+    from pymoo.util.nds.non_dominated_sorting import NonDominatedSorting
+
     objectives = np.asarray(objectives, dtype=np.float64)
     fronts = NonDominatedSorting().do(objectives)
     rank = np.empty(len(objectives), dtype=np.int64)

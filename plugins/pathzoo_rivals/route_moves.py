@@ -79,14 +79,17 @@ def resample(points: np.ndarray, n: int) -> np.ndarray:
 def leap(problem: RouteProblem, worst: np.ndarray, best: np.ndarray, rng: np.random.Generator) -> np.ndarray | None:
     """SFLA's leap ``X_w + r (X_b - X_w)``, ``r ~ U(0, 1)``, on routes resampled to a common number of points.
 
-    Both routes are resampled by arc length to ``max(len)`` points, blended,
-    snapped to the cells under the blended points (start and goal cells
-    forced), with repeated cells merged. Returns ``None`` if the result is
-    not a feasible route.
+    Both routes are resampled by arc length to one point per cell of the
+    longer route, blended, and snapped to the cells under the blended points
+    (start and goal cells forced), with repeated cells merged. A feasible
+    result is string-pulled (:meth:`RouteProblem.pull_string`), the same
+    simplification random routes get; otherwise returns ``None``.
     """
-    n = max(len(worst), len(best))
-    a = resample(problem.polyline(worst), n)
-    b = resample(problem.polyline(best), n)
+    pa, pb = problem.polyline(worst), problem.polyline(best)
+    longest = max(float(np.hypot(*np.diff(p, axis=0).T).sum()) for p in (pa, pb))
+    n = max(len(worst), len(best), int(np.ceil(longest / problem.scenario.cell_size)) + 1)
+    a = resample(pa, n)
+    b = resample(pb, n)
     blend = a + rng.uniform() * (b - a)
     cs = problem.scenario.cell_size
     h, w = problem.shape
@@ -94,5 +97,26 @@ def leap(problem: RouteProblem, worst: np.ndarray, best: np.ndarray, rng: np.ran
     rows = np.clip((blend[:, 1] / cs).astype(np.int64), 0, h - 1)
     cells = rows * w + cols
     cells[0], cells[-1] = problem.start, problem.goal
-    cells = cells[np.concatenate([[True], cells[1:] != cells[:-1]])]
-    return cells if problem.route_ok(cells) else None
+    cells = _bridge_corners(problem, cells[np.concatenate([[True], cells[1:] != cells[:-1]])])
+    return problem.pull_string(cells) if problem.route_ok(cells) else None
+
+
+def _bridge_corners(problem: RouteProblem, cells: np.ndarray) -> np.ndarray:
+    """Replace each diagonal step the corner rule forbids by two straight steps through a free side cell, if one works.
+
+    Snapping a smooth blend to cells often produces a diagonal step past a
+    blocked corner; the blend itself does not cross the obstacle, so going
+    round the corner on the free side is the faithful cell route.
+    """
+    w = problem.shape[1]
+    out = [int(cells[0])]
+    for v in (int(c) for c in cells[1:]):
+        u = out[-1]
+        (ru, cu), (rv, cv) = divmod(u, w), divmod(v, w)
+        if abs(ru - rv) == 1 and abs(cu - cv) == 1 and not problem.segment_ok(u, v):
+            for side in (ru * w + cv, rv * w + cu):
+                if problem.segment_ok(u, side) and problem.segment_ok(side, v):
+                    out.append(side)
+                    break
+        out.append(v)
+    return np.array(out, dtype=np.int64)

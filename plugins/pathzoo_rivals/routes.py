@@ -17,9 +17,11 @@ segment; operators that would break it are rejected, never repaired silently.
 Objectives, all minimised (the three of Hidalgo-Paniagua et al.):
 
 - **length**: 3-D length in metres (:func:`pathzoo.metrics.geometry.path_pieces`);
-- **risk** (path safety): minus the smallest clearance, in metres, of the
-  cells sampled every half cell along the route (clearance from
-  :attr:`Scenario.clearance`), so safer routes have lower risk;
+- **risk** (path safety): minus the mean clearance, in metres, of the cells
+  under points sampled every half cell along the route (clearance from
+  :attr:`Scenario.clearance`), so routes that keep away from obstacles have
+  lower risk. The mean, not the minimum: the minimum is often fixed by the
+  start or goal cell and would then not separate any two routes;
 - **turning** (path smoothness): the sum of the heading changes at the
   waypoints in radians (:func:`pathzoo.metrics.geometry.turn_angles`).
 """
@@ -79,7 +81,7 @@ class RouteProblem:
         s = self.scenario
         p0, p1 = self.centres[u], self.centres[v]
         ok = u != v and bool(self.free.flat[u] and self.free.flat[v]) and segment_problem(s, p0, p1) is None
-        if ok and s.kind == "terrain":
+        if ok and s.kind == "terrain" and min(s.vehicle.max_climb_deg, s.vehicle.max_descent_deg) < 90.0:
             _, slopes = segment_profile(s.elevation, p0, p1, s.cell_size)
             deg = np.degrees(slopes)
             ok = bool(deg.max() <= s.vehicle.max_climb_deg - SLOPE_MARGIN_DEG
@@ -144,10 +146,10 @@ class RouteProblem:
         """``(length, risk, turning)`` of a route, all to be minimised (see module)."""
         pts = self.polyline(route)
         lengths, _ = path_pieces(self.scenario, pts)
-        return np.array([float(lengths.sum()), -self.min_clearance(pts), float(turn_angles(pts).sum())])
+        return np.array([float(lengths.sum()), -self.mean_clearance(pts), float(turn_angles(pts).sum())])
 
-    def min_clearance(self, pts: np.ndarray) -> float:
-        """Smallest clearance (m) of the cells under points sampled every half cell along a polyline."""
+    def mean_clearance(self, pts: np.ndarray) -> float:
+        """Mean clearance (m) of the cells under points sampled every half cell along a polyline."""
         cs = self.scenario.cell_size
         seg = np.diff(pts, axis=0)
         steps = np.maximum(1, np.ceil(np.hypot(seg[:, 0], seg[:, 1]) / (0.5 * cs)).astype(np.int64))
@@ -156,7 +158,7 @@ class RouteProblem:
         samples = np.vstack([pts[:-1][which] + frac[:, None] * seg[which], pts[-1:]])
         cols = np.clip((samples[:, 0] / cs).astype(np.int64), 0, self.shape[1] - 1)
         rows = np.clip((samples[:, 1] / cs).astype(np.int64), 0, self.shape[0] - 1)
-        return float(self.clearance[rows, cols].min())
+        return float(self.clearance[rows, cols].mean())
 
     def world_path(self, route: np.ndarray) -> np.ndarray:
         """The route as a world path from exactly ``scenario.start`` to exactly ``scenario.goal``."""
