@@ -31,8 +31,13 @@ exactly the paper's heuristic. The derivation is in
 ``docs/planners/exact.zstar.md``.
 
 The search itself, endpoints, connectors and budgets are the exact family's
-(:class:`pathzoo_exact.base.GraphSearchPlanner`); the numba batch kernel
-:func:`zstar_batch` is A* with the heuristic read from a precomputed array.
+(:class:`pathzoo_exact.base.GraphSearchPlanner`). A* with a consistent
+heuristic ``h`` expands nodes in the same order as Dijkstra on the *reduced*
+costs ``c(u, v) + h(v) - h(u)`` (non-negative by consistency), whose path sums
+are the energies minus ``h(start)``; so Z* runs the exact family's numba
+kernel with the zero heuristic on reduced costs (:func:`reduced_costs`) and
+adds ``h(start)`` back to the goal's cost (only ties may be broken
+differently, which never changes the optimal energy).
 """
 
 from __future__ import annotations
@@ -41,14 +46,13 @@ import math
 from functools import partial
 from typing import ClassVar
 
-import numba
 import numpy as np
 
-from pathzoo.core import Param, Scenario
+from pathzoo.core import Param, PlanResult, ProgressCallback, Scenario
 from pathzoo_exact.base import BatchFn, GraphSearchPlanner
-from pathzoo_exact.kernel import RUNNING, FOUND, end_batch, heap_push, next_open, run_batch
+from pathzoo_exact.kernel import H_ZERO, SearchState, astar_batch, goal_cell, run_batch
 
-__all__ = ["ZStarPlanner", "zstar_heuristic", "zstar_edge_cost", "zstar_batch"]
+__all__ = ["ZStarPlanner", "zstar_heuristic", "zstar_edge_cost", "reduced_costs"]
 
 SLOPE_SLACK = 1e-9
 """Relative slack on ``tan θ_M`` in the zigzag bound, so that an edge the graph admits at exactly
@@ -97,50 +101,14 @@ def zstar_heuristic(scenario: Scenario, max_climb_rad: float) -> np.ndarray:
     return np.where(np.isfinite(h), h, 0.0)
 
 
-@numba.njit(cache=True)
-def zstar_batch(
-    indptr: np.ndarray,
-    indices: np.ndarray,
-    weights: np.ndarray,
-    h: np.ndarray,
-    target: int,
-    g: np.ndarray,
-    parent: np.ndarray,
-    closed: np.ndarray,
-    heap_node: np.ndarray,
-    heap_f: np.ndarray,
-    heap_g: np.ndarray,
-    counters: np.ndarray,
-    max_expansions: int,
-    max_degree: int,
-) -> int:
-    """Up to ``max_expansions`` expansions of A* with the per-node heuristic ``h``.
+def reduced_costs(scenario: Scenario, cost: np.ndarray, h: np.ndarray) -> np.ndarray:
+    """Edge costs ``c(u, v) + h(v) - h(u)``: Dijkstra on them is A* with ``h`` (``inf`` stays ``inf``).
 
-    Nodes are closed on expansion and never reopened, which is exact because
-    Z*'s heuristic is consistent (proved in the paper, checked edge by edge in
-    ``tests/rivals/test_zstar.py``). Returns the kernel status codes of
-    :mod:`pathzoo_exact.kernel`.
+    Consistency makes them non-negative up to rounding (at most about 1e-10
+    of the edge costs on the pack's DEMs, see ``tests/rivals/test_zstar.py``).
     """
-    size = counters[0]
-    status = RUNNING
-    done = 0
-    while done < max_expansions:
-        u, size, status = next_open(closed, heap_node, heap_f, heap_g, size, max_degree)
-        if status != RUNNING:
-            break
-        done += 1
-        if u == target:
-            status = FOUND
-            break
-        gu = g[u]
-        for e in range(indptr[u], indptr[u + 1]):
-            v = indices[e]
-            cand = gu + weights[e]
-            if cand < g[v] and not closed[v]:
-                g[v] = cand
-                parent[v] = u
-                size = heap_push(heap_node, heap_f, heap_g, size, v, cand + h[v], cand)
-    return end_batch(counters, size, done, status)
+    graph = scenario.graph
+    return cost + h[graph.indices] - h[graph.sources]
 
 
 class ZStarPlanner(GraphSearchPlanner):
@@ -172,6 +140,16 @@ class ZStarPlanner(GraphSearchPlanner):
     def _make_batch(self, scenario: Scenario, target: int) -> BatchFn:
         graph = scenario.graph
         theta_m = self.max_climb_rad(scenario)
-        args = (graph.indptr, graph.indices, zstar_edge_cost(scenario, theta_m), zstar_heuristic(scenario, theta_m),
-                target)
-        return partial(run_batch, zstar_batch, args, len(graph.offsets))
+        weights = reduced_costs(scenario, zstar_edge_cost(scenario, theta_m), zstar_heuristic(scenario, theta_m))
+        dims = np.array((1,) * (3 - len(graph.shape)) + tuple(graph.shape), dtype=np.int64)
+        args = (graph.indptr, graph.indices, weights, target, goal_cell(target, dims), H_ZERO, dims,
+                np.zeros(3), 0.0)
+        return partial(run_batch, astar_batch, args, len(graph.offsets))
+
+    def _solved(
+        self, scenario: Scenario, state: SearchState, target: int, progress: ProgressCallback | None
+    ) -> PlanResult:
+        """Turn the goal's reduced cost back into energy (add ``h(start)``), then build the result as usual."""
+        h = zstar_heuristic(scenario, self.max_climb_rad(scenario))
+        state.g[target] += h[scenario.start_node]
+        return super()._solved(scenario, state, target, progress)
