@@ -117,3 +117,29 @@ def test_snapped_diagonal_past_a_blocked_corner_goes_round_on_the_free_side():
     # both sides blocked: nothing to bridge with, the step stays (and the route stays infeasible)
     s2 = open_grid(blocked=[(0, 1), (1, 0)])
     assert list(_bridge_corners(RouteProblem(s2), np.array([a, b]))) == [a, b]
+
+
+@pytest.mark.parametrize("scenario_id", ["ggaco.frontrange", "ggaco.hugo"])
+def test_segment_verdicts_equal_the_judges(scenario_id):
+    """The collision-only fast path (frontrange: no limits, no missing heights) and the full path (hugo) agree
+    with the judge's segment_problem on random segments."""
+    import pathzoo
+    from pathzoo.harness.validation import segment_problem
+
+    s = pathzoo.load_scenario(scenario_id)
+    problem = RouteProblem(s)
+    rng = np.random.default_rng(0)
+    free = np.flatnonzero(~s.blocked.ravel())
+    h, w = s.shape
+    agree = rejected = 0
+    for u in rng.choice(free, 400):
+        r, c = divmod(int(u), w)
+        rr, cc = np.clip(r + rng.integers(-8, 9), 0, h - 1), np.clip(c + rng.integers(-8, 9), 0, w - 1)
+        v = int(rr * w + cc)
+        if v == u or s.blocked[rr, cc]:
+            continue
+        judge = segment_problem(s, *s.point_of(np.array([u, v]))) is None
+        assert problem.segment_ok(int(u), v) == judge
+        agree += 1
+        rejected += not judge
+    assert agree > 200 and rejected > 10
