@@ -16,7 +16,7 @@ __all__ = ["relocate", "insert", "remove", "leap", "resample"]
 
 
 def _cell_near(problem: RouteProblem, node: int, radius: int, rng: np.random.Generator) -> int | None:
-    """A free cell at Chebyshev distance 1..radius from ``node``, or ``None`` if the draw leaves the map or hits a block."""
+    """A free cell at Chebyshev distance 1..radius from ``node``; ``None`` if the draw leaves the map or is blocked."""
     h, w = problem.shape
     r, c = divmod(int(node), w)
     dr, dc = 0, 0
@@ -36,7 +36,8 @@ def relocate(problem: RouteProblem, route: np.ndarray, rng: np.random.Generator,
     for _ in range(tries):
         i = int(rng.integers(1, len(route) - 1))
         cell = _cell_near(problem, int(route[i]), radius, rng)
-        if cell is not None and problem.segment_ok(int(route[i - 1]), cell) and problem.segment_ok(cell, int(route[i + 1])):
+        before, after = int(route[i - 1]), int(route[i + 1])
+        if cell is not None and problem.segment_ok(before, cell) and problem.segment_ok(cell, after):
             out = route.copy()
             out[i] = cell
             return out

@@ -14,8 +14,10 @@ climb and descent limits, so a route never depends on the judge's angle
 tolerance. When no slope can break a limit (both limits 90° and no missing
 height in the DEM), only the collision test is left, and the route calls
 the judge's collision function :func:`~pathzoo.grid.segments.first_blocked_cell_2d`
-directly: the same verdict without the slope profile (about 0.7 ms a segment). Every route a planner keeps has passed this test segment by
-segment; operators that would break it are rejected, never repaired silently.
+directly: the same verdict without the slope profile (about 0.7 ms a
+segment). Every route a planner keeps has passed this test segment by
+segment; operators that would break it are rejected, never repaired silently
+(the leap's corner bridging builds a different route and tests it too).
 
 Objectives, all minimised (the three of Hidalgo-Paniagua et al.):
 
@@ -39,7 +41,17 @@ from pathzoo.grid.segments import first_blocked_cell_2d, to_cell_units
 from pathzoo.grid.terrain import segment_profile
 from pathzoo.harness.validation import segment_problem
 from pathzoo.metrics.geometry import path_pieces, travel_time_energy, turn_angles
-from pathzoo_exact.kernel import FOUND, H_OCTILE, HEAP_FULL, RUNNING, SearchState, astar_batch, goal_cell, run_batch, trace_path
+from pathzoo_exact.kernel import (
+    FOUND,
+    H_OCTILE,
+    HEAP_FULL,
+    RUNNING,
+    SearchState,
+    astar_batch,
+    goal_cell,
+    run_batch,
+    trace_path,
+)
 
 __all__ = ["RouteProblem", "SLOPE_MARGIN_DEG", "N_OBJECTIVES", "OBJECTIVES"]
 

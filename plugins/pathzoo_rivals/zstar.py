@@ -1,4 +1,4 @@
-"""``exact.zstar``: Z*, the constraint-aware energy-optimal heuristic search of Ganganath, Cheng and Tse (IEEE TII 2015).
+"""``exact.zstar``: Z*, the constraint-aware energy-optimal search of Ganganath, Cheng and Tse (IEEE TII 2015).
 
 Z* is A* on a grid elevation map whose edge cost is the energy a wheeled
 robot spends on the edge and whose heuristic is a lower bound on the energy
@@ -123,7 +123,8 @@ class ZStarPlanner(GraphSearchPlanner):
 
     id: ClassVar[str] = "exact.zstar"
     version: ClassVar[str] = "1"
-    summary: ClassVar[str] = "Z* (Ganganath, Cheng & Tse 2015): energy-optimal A* with a zigzag heuristic above the climb limit"
+    summary: ClassVar[str] = ("Z* (Ganganath, Cheng & Tse 2015): energy-optimal A* with a zigzag heuristic above "
+                              "the climb limit")
     kinds: ClassVar[frozenset[str]] = frozenset({"terrain", "grid2d"})
     params = {
         "max_climb_deg": Param(90.0, "climbing limit θ_M in degrees (the scenario vehicle's limit applies too)",
