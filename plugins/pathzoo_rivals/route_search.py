@@ -131,5 +131,8 @@ class RouteSearchPlanner(Planner, abc.ABC):
         if not problem.reachable():
             return PlanResult(Status.NO_PATH, message="the goal cell is not reachable from the start cell")
         run = RouteRun(problem, budget, progress, self.select, self.archive_size)
-        self.search(run, rng)
+        if problem.start == problem.goal:
+            run.evaluate(np.array([problem.start], dtype=np.int64))  # one cell: the only route is to stay in it
+        else:
+            self.search(run, rng)
         return run.result()

@@ -52,3 +52,12 @@ def test_more_iterations_never_cost_more(hugo, planner_id):
     short = planner.plan(hugo, budget=Budget(iterations=1), rng=np.random.default_rng(2))
     longer = planner.plan(hugo, budget=Budget(iterations=4), rng=np.random.default_rng(2))
     assert longer.extras["best_cost"] <= short.extras["best_cost"]
+
+
+@pytest.mark.parametrize("planner_id", IDS)
+def test_start_and_goal_in_one_cell(planner_id):
+    s = Scenario(id="test.one_cell", kind="grid2d", occupancy=np.zeros((6, 6), dtype=bool), cell_size=1.0,
+                 start=np.array([0.3, 0.3]), goal=np.array([0.7, 0.6]))
+    result = pathzoo.make_planner(planner_id).plan(s, budget=Budget(iterations=2), rng=np.random.default_rng(0))
+    assert result.status == Status.SOLVED and validate_path(s, result.path).valid
+    np.testing.assert_array_equal(result.path[[0, -1]], [s.start, s.goal])
