@@ -74,7 +74,9 @@ autodoc_typehints = "none"  # numpydoc sections already give the types
 autodoc_member_order = "bysource"
 numpydoc_show_class_members = False  # autodoc documents the members (autodoc_default_options)
 
-API_PACKAGES = ("pathzoo", "pathzoo_exact", "pathzoo_aco", "pathzoo_baselines", "pathzoo_ompl", "pathzoo_scenarios")
+API_PACKAGES = (
+    "pathzoo", "pathzoo_exact", "pathzoo_aco", "pathzoo_baselines", "pathzoo_ompl", "pathzoo_rivals", "pathzoo_scenarios",
+)
 
 
 def _modules(package: str) -> list[ModuleType]:

@@ -70,7 +70,7 @@ def test_unknown_ids_and_globs(fake_plugins):
 
 def test_builtins_come_through_entry_points():
     names = {ep.name for ep in md.entry_points(group="pathzoo")}
-    assert {"core", "exact", "aco", "baselines", "ompl", "scenarios"} <= names
+    assert {"core", "exact", "aco", "baselines", "ompl", "rivals", "scenarios"} <= names
     with pytest.raises(UnknownPluginError):
         pathzoo.make_planner("no.such.planner")
 
