@@ -7,7 +7,7 @@ The state space is ``RealVectorStateSpace(2)`` bounded by the map's extent
 free cell of :attr:`Scenario.blocked` (obstacles, missing elevation and weak
 soil). Motions are checked by :class:`SegmentValidator`, an OMPL
 ``MotionValidator`` that calls the harness's own
-:func:`~pathzoo.harness.validation.segment_problem`, so a motion OMPL accepts
+:func:`~pathzoo.rules.segment_problem`, so a motion OMPL accepts
 is exactly a segment the validator accepts (closed-cell collision rule and,
 on terrain, the slope limits) instead of OMPL's sampled discrete check. The
 objective is path length in the plane; on terrain the harness measures 3-D
@@ -63,7 +63,7 @@ The path is the solution's states, from the exact start to the exact goal.
 With ``simplify=True`` OMPL's ``PathSimplifier`` shortens it (its motions go
 through the same validator); if the simplified path failed the final check,
 the raw one is kept and ``extras['simplified']`` says so. The returned path
-always passes :func:`~pathzoo.harness.validation.validate_path`; otherwise
+always passes :func:`~pathzoo.rules.validate_path`; otherwise
 the status is ``FAILED`` with the validator's reason. Without an exact
 solution (OMPL's approximate solutions are ignored) the status is ``FAILED``:
 sampling-based planners cannot prove that no path exists.
@@ -85,7 +85,7 @@ from scipy.sparse.csgraph import dijkstra
 
 from pathzoo.core import Budget, BudgetClock, PlanResult, ProgressCallback, Scenario, Status
 from pathzoo.grid.segments import segment_blocked_2d
-from pathzoo.harness.validation import segment_problem, validate_path
+from pathzoo.rules import segment_problem, validate_path
 
 if TYPE_CHECKING:
     from pathzoo_ompl.planners import OmplPlanner
@@ -183,7 +183,7 @@ class SegmentValidator(ob.MotionValidator):
     The collision part runs through :func:`segment_clear` (the validator's
     rule on the validator's snapped cell units, compiled); segments that pass
     it on terrain then go through
-    :func:`~pathzoo.harness.validation.segment_problem` itself for the slope
+    :func:`~pathzoo.rules.segment_problem` itself for the slope
     limits.
 
     Parameters
@@ -191,7 +191,7 @@ class SegmentValidator(ob.MotionValidator):
     si : ompl.base.SpaceInformation
         The space information it validates for.
     scenario : Scenario
-        Gives :func:`~pathzoo.harness.validation.segment_problem` its map.
+        Gives :func:`~pathzoo.rules.segment_problem` its map.
     run : _Run
         Counts motion checks; beyond ``run.motion_limit`` every motion is refused unchecked.
     """

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from pathzoo import MovingObstacle, Scenario, VehicleModel
-from pathzoo.harness.validation import validate_path
+from pathzoo.rules import validate_path
 
 
 @pytest.fixture
@@ -111,7 +111,7 @@ def test_min_distance_is_exact_against_sampling():
 
 def _slow_verdict(scenario, path):
     """The definition: the first segment, in order, that segment_problem rejects."""
-    from pathzoo.harness.validation import segment_problem
+    from pathzoo.rules import segment_problem
 
     for k in range(len(path) - 1):
         problem = segment_problem(scenario, path[k], path[k + 1])
