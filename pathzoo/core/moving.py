@@ -60,10 +60,10 @@ def _min_distance(cycle, cum, speed, phase, p0x, p0y, p1x, p1y, t0, t1, max_piec
     # linearly from p0 at t0 to p1 at t1; a lower bound when the interval is too long
     k_count = cycle.shape[0]
     total = cum[k_count - 1]
+    if t1 <= t0:  # no time passes: the vehicle is at p0 (moving in no time breaks the speed rule)
+        p1x, p1y, t1 = p0x, p0y, t0
     if total == 0.0 or speed == 0.0:
         return _point_segment_distance(cycle[0, 0], cycle[0, 1], p0x, p0y, p1x, p1y)
-    if t1 <= t0:
-        t1 = t0
     period = total / speed
     if (t1 - t0) / period * (k_count - 1) > max_pieces:
         best = math.inf

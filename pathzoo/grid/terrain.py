@@ -162,11 +162,52 @@ def _grad(z: np.ndarray, i: int, j: int, vary_x: bool, vary_y: bool, u: float, v
 
 
 @numba.njit(cache=True)
+def _on_lattice_diagonal(xa: float, ya: float, xb: float, yb: float, w: int, h: int) -> int:
+    # +1 if the segment lies on a line X - Y = k, -1 on X + Y = k (k integer, within the margin),
+    # inside the ring of centres; 0 otherwise
+    if xa == xb or min(xa, xb) < -_EPS or max(xa, xb) > w - 1 + _EPS or min(ya, yb) < -_EPS or max(ya, yb) > h - 1 + _EPS:
+        return 0
+    for sign in (1, -1):
+        ka, kb = xa - sign * ya, xb - sign * yb
+        k = round(ka)
+        if abs(ka - k) <= _EPS and abs(kb - k) <= _EPS:
+            return sign
+    return 0
+
+
+@numba.njit(cache=True)
+def _snap(a: float) -> float:
+    # a lattice coordinate within the margin of a centre is that centre
+    k = round(a)
+    return float(k) if abs(a - k) <= _EPS else a
+
+
+@numba.njit(cache=True)
+def _lattice_diagonal_range(z: np.ndarray, xa: float, ya: float, xb: float, yb: float, sign: int) -> tuple[float, float]:
+    # the papers' slope between diagonal neighbours: linear between consecutive centres on the line
+    k = round(xa - sign * ya)
+    lo_x, hi_x = _snap(min(xa, xb)), _snap(max(xa, xb))
+    direction = 1.0 if xb > xa else -1.0
+    g_lo, g_hi = math.inf, -math.inf
+    for m in range(int(math.floor(lo_x)), max(int(math.ceil(hi_x)), int(math.floor(lo_x)) + 1)):
+        r0 = (m - k) if sign == 1 else (k - m)
+        r1 = (m + 1 - k) if sign == 1 else (k - m - 1)
+        g = direction * (z[r1, m + 1] - z[r0, m]) / math.sqrt(2.0)
+        if not math.isfinite(g):
+            return math.nan, math.nan
+        g_lo, g_hi = min(g_lo, g), max(g_hi, g)
+    return g_lo, g_hi
+
+
+@numba.njit(cache=True)
 def segment_slope_range(z: np.ndarray, x0: float, y0: float, x1: float, y1: float) -> tuple[float, float]:
     """Least and greatest ground gradient along a segment (height units per cell travelled).
 
     ``z`` is the cell-centre height grid ``[row, col]``; the segment is in cell
-    units. The range is exact for the bilinear surface (see the module
+    units. On a diagonal line of the centre lattice (the line through diagonal
+    neighbours' centres) the ground is linear between consecutive centres:
+    the slope between diagonal neighbours that the papers and the graph use.
+    Everywhere else the range is exact for the bilinear surface (see the module
     docstring) up to the coordinate margin
     :data:`~pathzoo.core.tolerances.TOUCH_EPS_CELLS`, whose effect (at most
     the margin times the patch's twist) is added to both ends. NaN when the
@@ -181,6 +222,9 @@ def segment_slope_range(z: np.ndarray, x0: float, y0: float, x1: float, y1: floa
     ex, ey = dx / length, dy / length
     X0, Y0 = x0 - 0.5, y0 - 0.5
     dX, dY = dx, dy
+    diagonal = _on_lattice_diagonal(X0, Y0, X0 + dX, Y0 + dY, w, h)
+    if diagonal != 0:
+        return _lattice_diagonal_range(z, X0, Y0, X0 + dX, Y0 + dY, diagonal)
     # breakpoints: where the segment crosses a centre line X = k or Y = k
     ts = [0.0, 1.0]
     for a0, da, n in ((X0, dX, w), (Y0, dY, h)):
