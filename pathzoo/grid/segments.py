@@ -147,17 +147,11 @@ def _slab(p: float, d: float, lo: float, hi: float) -> tuple[float, float]:
 
 
 @numba.njit(cache=True)
-def segment_blocked_3d(blocked: np.ndarray, p0: np.ndarray, p1: np.ndarray) -> bool:
-    """True if the segment touches (or comes within the margin of) a blocked or out-of-grid voxel.
-
-    ``blocked`` is indexed ``[z, y, x]``; ``p0`` and ``p1`` are ``(x, y, z)`` in
-    cell units (each axis divided by its own cell size). The voxels are walked
-    slab by slab (x columns, then y rows inside each, then the z range), so the
-    work grows with the number of voxels the segment passes, not with its
-    bounding box.
-    """
-    nz, ny, nx = blocked.shape
+def _voxels_3d(p0: np.ndarray, p1: np.ndarray) -> np.ndarray:
+    # voxels (z, y, x) whose cube, grown by the margin, the segment meets: x slabs, then
+    # y rows inside each, then the z range, so the work grows with the voxels passed
     d = p1 - p0
+    found = [(0, 0, 0) for _ in range(0)]
     cx_lo, cx_hi = _cell_range(min(p0[0], p1[0]), max(p0[0], p1[0]))
     for cx in range(cx_lo, cx_hi + 1):
         ta, tb = _slab(p0[0], d[0], cx - _EPS, cx + 1 + _EPS)
@@ -173,35 +167,31 @@ def segment_blocked_3d(blocked: np.ndarray, p0: np.ndarray, p1: np.ndarray) -> b
             za, zb = p0[2] + ua * d[2], p0[2] + ub * d[2]
             cz_lo, cz_hi = _cell_range(min(za, zb), max(za, zb))
             for cz in range(cz_lo, cz_hi + 1):
-                if cx < 0 or cy < 0 or cz < 0 or cx >= nx or cy >= ny or cz >= nz:
-                    return True
-                if blocked[cz, cy, cx]:
-                    return True
+                found.append((cz, cy, cx))
+    out = np.empty((len(found), 3), dtype=np.int64)
+    for i in range(len(found)):
+        out[i, 0], out[i, 1], out[i, 2] = found[i]
+    return out
+
+
+@numba.njit(cache=True)
+def segment_blocked_3d(blocked: np.ndarray, p0: np.ndarray, p1: np.ndarray) -> bool:
+    """True if the segment touches (or comes within the margin of) a blocked or out-of-grid voxel.
+
+    ``blocked`` is indexed ``[z, y, x]``; ``p0`` and ``p1`` are ``(x, y, z)`` in
+    cell units (each axis divided by its own cell size).
+    """
+    nz, ny, nx = blocked.shape
+    for v in _voxels_3d(p0, p1):
+        cz, cy, cx = v[0], v[1], v[2]
+        if cx < 0 or cy < 0 or cz < 0 or cx >= nx or cy >= ny or cz >= nz or blocked[cz, cy, cx]:
+            return True
     return False
 
 
 def touched_cells_3d(p0: np.ndarray, p1: np.ndarray) -> np.ndarray:
     """All voxels ``(z, y, x)`` whose closed cube the segment touches or comes within the margin of (cell units)."""
-    p0 = np.asarray(p0, dtype=np.float64)
-    p1 = np.asarray(p1, dtype=np.float64)
-    d = p1 - p0
-    out = []
-    cx_lo, cx_hi = _cell_range(min(p0[0], p1[0]), max(p0[0], p1[0]))
-    for cx in range(cx_lo, cx_hi + 1):
-        ta, tb = _slab(p0[0], d[0], cx - _EPS, cx + 1 + _EPS)
-        if ta > tb:
-            continue
-        ya, yb = p0[1] + ta * d[1], p0[1] + tb * d[1]
-        cy_lo, cy_hi = _cell_range(min(ya, yb), max(ya, yb))
-        for cy in range(cy_lo, cy_hi + 1):
-            ua, ub = _slab(p0[1], d[1], cy - _EPS, cy + 1 + _EPS)
-            ua, ub = max(ua, ta), min(ub, tb)
-            if ua > ub:
-                continue
-            za, zb = p0[2] + ua * d[2], p0[2] + ub * d[2]
-            cz_lo, cz_hi = _cell_range(min(za, zb), max(za, zb))
-            out.extend((cz, cy, cx) for cz in range(cz_lo, cz_hi + 1))
-    return np.array(out, dtype=np.int64).reshape(-1, 3)
+    return _voxels_3d(np.asarray(p0, dtype=np.float64), np.asarray(p1, dtype=np.float64))
 
 
 @numba.njit(cache=True)

@@ -14,7 +14,8 @@ One module per rule:
 
 Every tolerance makes a rule stricter (:mod:`pathzoo.core.tolerances`,
 ``docs/corner-rule.md``). This package imports only :mod:`pathzoo.core` and
-:mod:`pathzoo.grid`; the harness, the planners and the graph builder import it.
+:mod:`pathzoo.grid` (whose kernels the graph builder shares); the harness and the
+planners import it.
 """
 
 from __future__ import annotations
