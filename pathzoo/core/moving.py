@@ -55,6 +55,16 @@ def _segment_segment_distance(a0x, a0y, a1x, a1y, b0x, b0y, b1x, b1y) -> float:
 
 
 @numba.njit(cache=True)
+def _route_distance(cycle, p0x, p0y, p1x, p1y) -> float:
+    # least distance between the vehicle's segment and any point of the obstacle's route: a lower bound
+    best = math.inf
+    for k in range(cycle.shape[0] - 1):
+        d = _segment_segment_distance(p0x, p0y, p1x, p1y, cycle[k, 0], cycle[k, 1], cycle[k + 1, 0], cycle[k + 1, 1])
+        best = min(best, d)
+    return best
+
+
+@numba.njit(cache=True)
 def _min_distance(cycle, cum, speed, phase, p0x, p0y, p1x, p1y, t0, t1, max_pieces):
     # exact minimum distance between a disc centre on its cycle and a vehicle moving
     # linearly from p0 at t0 to p1 at t1; a lower bound when the interval is too long
@@ -65,19 +75,18 @@ def _min_distance(cycle, cum, speed, phase, p0x, p0y, p1x, p1y, t0, t1, max_piec
     if total == 0.0 or speed == 0.0:
         return _point_segment_distance(cycle[0, 0], cycle[0, 1], p0x, p0y, p1x, p1y)
     period = total / speed
-    if (t1 - t0) / period * (k_count - 1) > max_pieces:
-        best = math.inf
-        for k in range(k_count - 1):
-            d = _segment_segment_distance(p0x, p0y, p1x, p1y, cycle[k, 0], cycle[k, 1], cycle[k + 1, 0], cycle[k + 1, 1])
-            best = min(best, d)
-        return best
     s = ((t0 + phase) * speed) % total
+    if (t1 - t0) / period * (k_count - 1) > max_pieces or not math.isfinite(s):
+        # too many pieces (or a time beyond float range): the distance to the whole route bounds it
+        return _route_distance(cycle, p0x, p0y, p1x, p1y)
     k = 0
     while k < k_count - 2 and cum[k + 1] <= s:
         k += 1
+    # rounding of the obstacle's position grows with the time: subtract a bound on it
+    rounding = 1e-15 * ((abs(t0) + abs(t1) + abs(phase)) * speed + total)
     ta = t0
     best = math.inf
-    while True:
+    for _ in range(max_pieces + 2 * k_count):  # a bound on the loop even when rounding stalls time
         seg_len = cum[k + 1] - cum[k]
         tb = min(t1, ta + (cum[k + 1] - s) / speed)
         sb = s + (tb - ta) * speed
@@ -96,13 +105,14 @@ def _min_distance(cycle, cum, speed, phase, p0x, p0y, p1x, p1y, t0, t1, max_piec
         # relative motion is linear on [ta, tb]: distance from the origin to the segment rel_a -> rel_b
         best = min(best, _point_segment_distance(0.0, 0.0, vax - oax, vay - oay, vbx - obx, vby - oby))
         if tb >= t1:
-            return best
+            return max(0.0, best - rounding)
         ta = tb
         k += 1
         s = cum[k]
         if k == k_count - 1:
             k = 0
             s = 0.0
+    return _route_distance(cycle, p0x, p0y, p1x, p1y)
 
 
 @numba.njit(cache=True)

@@ -179,6 +179,9 @@ def test_huge_wait_is_judged_in_bounded_time():
                   goal=(4.5, 9.5), moving_obstacles=(crossing,))
     res = validate_path(s2, [(4.5, 0.5), (4.5, 0.5), (4.5, 9.5)], times=[0.0, 1e12, 1e12 + 4.5])
     assert not res and "moving obstacle 0" in res.reason
+    # times so large that a time step is below their rounding: bounded work, still judged
+    far = validate_path(s, [(0.5, 0.5), (0.5, 9.5)], times=[1e300, 1e300 + 4.5e290])
+    assert far
     assert time.process_time() - t0 < 2.0
 
 
