@@ -37,7 +37,7 @@ from scipy.sparse.csgraph import dijkstra
 import pathzoo
 from pathzoo import Budget, Scenario, VehicleModel
 from pathzoo.generators import fractal_terrain, random_obstacles
-from pathzoo.harness.validation import validate_path
+from pathzoo.rules import validate_path
 from pathzoo.io.movingai import read_map, read_scen
 
 SHARED = Path(__file__).resolve().parents[1] / ".." / "shared" / "data"

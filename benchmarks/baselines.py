@@ -37,7 +37,7 @@ from pathlib import Path
 import pandas as pd
 
 import pathzoo
-from pathzoo.harness.validation import validate_path
+from pathzoo.rules import validate_path
 from pathzoo.plugins.manager import get_registry
 
 BASELINES = (

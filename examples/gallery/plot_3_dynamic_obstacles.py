@@ -32,7 +32,7 @@ from matplotlib.patches import Circle
 import pathzoo
 from pathzoo.harness import read_path
 from pathzoo.grid.reference import reference_length
-from pathzoo.harness.validation import path_times
+from pathzoo.rules import path_times
 from pathzoo.plotting.scenario import plot_scenario
 
 FULL = os.environ.get("PATHZOO_DOCS_BUDGET", "tiny") == "full"

@@ -265,7 +265,7 @@ class Scenario:
         ``t0`` and reaches ``p1`` at ``t1`` (default: at cruise speed). Turn
         limits involve two segments and are checked only on whole paths.
         """
-        from pathzoo.harness.validation import segment_problem
+        from pathzoo.rules import segment_problem
 
         return segment_problem(self, np.asarray(p0, float), np.asarray(p1, float), t0, t1) is None
 

@@ -24,6 +24,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from pathzoo.grid.segments import touched_cells_2d, touched_cells_3d
+from pathzoo.grid.terrain import lattice_slope_range, slope_exceeds
 
 if TYPE_CHECKING:
     from pathzoo.core.scenario import Scenario
@@ -165,7 +166,7 @@ def build_graph(scenario: "Scenario") -> GridGraph:
         if ndim == 3:
             vert = float(step[0])
             pitch = math.degrees(math.atan2(abs(vert), horiz))
-            if pitch > vehicle.max_pitch_deg + 1e-9:
+            if pitch > vehicle.max_pitch_deg:
                 ok[:] = False
             length[:, j] = math.sqrt(horiz**2 + vert**2)
             slope[:, j] = math.atan2(vert, horiz)
@@ -178,10 +179,10 @@ def build_graph(scenario: "Scenario") -> GridGraph:
             target[src] = elev[dst]
             dz = target - elev
             theta = np.arctan2(dz, horiz)
+            # validity: the exact ground-slope range along the move, the validator's own rule
+            grad_lo, grad_hi = lattice_slope_range(elev, (int(dr), int(dc)))
             with np.errstate(invalid="ignore"):
-                ok &= (np.degrees(theta) <= vehicle.max_climb_deg + 1e-9) & (
-                    np.degrees(theta) >= -vehicle.max_descent_deg - 1e-9
-                )
+                ok &= ~slope_exceeds(grad_lo, grad_hi, float(sizes[-1]), vehicle)
             ok &= np.isfinite(dz)
             length[:, j] = np.sqrt(horiz**2 + np.nan_to_num(dz) ** 2).ravel()
             slope[:, j] = np.nan_to_num(theta).ravel()

@@ -1,8 +1,10 @@
-"""Exact segment-versus-grid tests under the closed-cell (no corner cutting) rule.
+"""Conservative segment-versus-grid tests under the closed-cell (no corner cutting) rule.
 
 A cell is the *closed* square ``[c, c+1] x [r, r+1]`` in cell units (voxels:
 closed cubes). A segment is blocked if it touches any blocked cell, even at a
-single boundary point. For a diagonal move between the centres of two
+single boundary point, or comes within :data:`~pathzoo.core.tolerances.TOUCH_EPS_CELLS`
+of one (per axis): every test here runs against the cells grown by that margin,
+so floating-point rounding (far smaller) can only make it reject more. For a diagonal move between the centres of two
 8-neighbours the segment passes through the shared corner, so it touches all
 four cells: exactly the MovingAI rule that a diagonal needs both orthogonal
 neighbours free. The same functions serve graph construction, line-of-sight
@@ -19,6 +21,8 @@ import math
 import numba
 import numpy as np
 
+from pathzoo.core.tolerances import TOUCH_EPS_CELLS
+
 __all__ = [
     "to_cell_units",
     "segment_blocked_2d",
@@ -30,24 +34,22 @@ __all__ = [
     "touched_cells_3d",
 ]
 
-_SNAP = 1e-9
+_EPS = TOUCH_EPS_CELLS
 
 
 def to_cell_units(points: np.ndarray, cell_size: float | np.ndarray) -> np.ndarray:
-    """Convert world coordinates to cell units, snapping near half-integers.
+    """Convert world coordinates to cell units (a plain division, no snapping).
 
-    Values within 1e-9 of a multiple of 0.5 are snapped onto it, so that
-    cell-centre paths stay exact despite floating-point division.
+    Nothing is snapped: the rounding of the division (about 1e-16 relative)
+    is covered by the margin the tests here add around every blocked cell.
     """
-    u = np.asarray(points, dtype=np.float64) / cell_size
-    twice = np.round(u * 2.0)
-    return np.where(np.abs(u * 2.0 - twice) < _SNAP, twice / 2.0, u)
+    return np.asarray(points, dtype=np.float64) / cell_size
 
 
 @numba.njit(cache=True)
 def _cell_range(lo: float, hi: float) -> tuple[int, int]:
-    # closed cells [k, k+1] that intersect [lo, hi]
-    return int(math.ceil(lo)) - 1, int(math.floor(hi))
+    # cells [k, k+1] grown by _EPS on both sides that intersect [lo, hi]
+    return int(math.ceil(lo - _EPS)) - 1, int(math.floor(hi + _EPS))
 
 
 @numba.njit(cache=True)
@@ -63,8 +65,8 @@ def _scan_2d(blocked: np.ndarray, x0: float, y0: float, x1: float, y1: float, fi
     count, first_r, first_c = 0, -2, -2
     c_lo, c_hi = _cell_range(x0, x1)
     for c in range(c_lo, c_hi + 1):
-        xa = max(x0, float(c))
-        xb = min(x1, float(c + 1))
+        xa = max(x0, c - _EPS)
+        xb = min(x1, c + 1 + _EPS)
         if dx == 0.0:
             ya, yb = y0, y1
         else:
@@ -114,85 +116,82 @@ def segment_blocked_2d(blocked: np.ndarray, x0: float, y0: float, x1: float, y1:
 
 
 def touched_cells_2d(x0: float, y0: float, x1: float, y1: float) -> np.ndarray:
-    """All cells ``(row, col)`` whose closed square the segment touches (cell units)."""
+    """All cells ``(row, col)`` whose closed square the segment touches or comes within the margin of (cell units)."""
     if x0 > x1:
         x0, x1, y0, y1 = x1, x0, y1, y0
     dx, dy = x1 - x0, y1 - y0
     out = []
-    c_lo, c_hi = math.ceil(x0) - 1, math.floor(x1)
+    c_lo, c_hi = _cell_range(x0, x1)
     for c in range(c_lo, c_hi + 1):
-        xa, xb = max(x0, float(c)), min(x1, float(c + 1))
+        xa, xb = max(x0, c - _EPS), min(x1, c + 1 + _EPS)
         ya, yb = (y0, y1) if dx == 0.0 else (y0 + (xa - x0) * dy / dx, y0 + (xb - x0) * dy / dx)
         ya, yb = min(ya, yb), max(ya, yb)
-        for r in range(math.ceil(ya) - 1, math.floor(yb) + 1):
+        r_lo, r_hi = _cell_range(ya, yb)
+        for r in range(r_lo, r_hi + 1):
             out.append((r, c))
     return np.array(out, dtype=np.int64).reshape(-1, 2)
 
 
 @numba.njit(cache=True)
-def _segment_touches_box(p0: np.ndarray, d: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> bool:
-    tmin, tmax = 0.0, 1.0
-    for k in range(3):
-        if d[k] == 0.0:
-            if p0[k] < lo[k] or p0[k] > hi[k]:
-                return False
-        else:
-            t1 = (lo[k] - p0[k]) / d[k]
-            t2 = (hi[k] - p0[k]) / d[k]
-            if t1 > t2:
-                t1, t2 = t2, t1
-            tmin = max(tmin, t1)
-            tmax = min(tmax, t2)
-            if tmin > tmax:
-                return False
-    return True
+def _slab(p: float, d: float, lo: float, hi: float) -> tuple[float, float]:
+    # parameters t in [0, 1] with lo <= p + t d <= hi (empty when first > second)
+    if d == 0.0:
+        if p < lo or p > hi:
+            return 1.0, 0.0
+        return 0.0, 1.0
+    t1 = (lo - p) / d
+    t2 = (hi - p) / d
+    if t1 > t2:
+        t1, t2 = t2, t1
+    return max(0.0, t1), min(1.0, t2)
+
+
+@numba.njit(cache=True)
+def _voxels_3d(p0: np.ndarray, p1: np.ndarray) -> np.ndarray:
+    # voxels (z, y, x) whose cube, grown by the margin, the segment meets: x slabs, then
+    # y rows inside each, then the z range, so the work grows with the voxels passed
+    d = p1 - p0
+    found = [(0, 0, 0) for _ in range(0)]
+    cx_lo, cx_hi = _cell_range(min(p0[0], p1[0]), max(p0[0], p1[0]))
+    for cx in range(cx_lo, cx_hi + 1):
+        ta, tb = _slab(p0[0], d[0], cx - _EPS, cx + 1 + _EPS)
+        if ta > tb:
+            continue
+        ya, yb = p0[1] + ta * d[1], p0[1] + tb * d[1]
+        cy_lo, cy_hi = _cell_range(min(ya, yb), max(ya, yb))
+        for cy in range(cy_lo, cy_hi + 1):
+            ua, ub = _slab(p0[1], d[1], cy - _EPS, cy + 1 + _EPS)
+            ua, ub = max(ua, ta), min(ub, tb)
+            if ua > ub:
+                continue
+            za, zb = p0[2] + ua * d[2], p0[2] + ub * d[2]
+            cz_lo, cz_hi = _cell_range(min(za, zb), max(za, zb))
+            for cz in range(cz_lo, cz_hi + 1):
+                found.append((cz, cy, cx))
+    out = np.empty((len(found), 3), dtype=np.int64)
+    for i in range(len(found)):
+        out[i, 0], out[i, 1], out[i, 2] = found[i]
+    return out
 
 
 @numba.njit(cache=True)
 def segment_blocked_3d(blocked: np.ndarray, p0: np.ndarray, p1: np.ndarray) -> bool:
-    """True if the segment touches a blocked or out-of-grid voxel.
+    """True if the segment touches (or comes within the margin of) a blocked or out-of-grid voxel.
 
     ``blocked`` is indexed ``[z, y, x]``; ``p0`` and ``p1`` are ``(x, y, z)`` in
     cell units (each axis divided by its own cell size).
     """
     nz, ny, nx = blocked.shape
-    d = p1 - p0
-    lo = np.empty(3)
-    hi = np.empty(3)
-    ranges = np.empty((3, 2), dtype=np.int64)
-    for k in range(3):
-        a, b = min(p0[k], p1[k]), max(p0[k], p1[k])
-        ranges[k, 0] = int(math.ceil(a)) - 1
-        ranges[k, 1] = int(math.floor(b))
-    for z in range(ranges[2, 0], ranges[2, 1] + 1):
-        for y in range(ranges[1, 0], ranges[1, 1] + 1):
-            for x in range(ranges[0, 0], ranges[0, 1] + 1):
-                lo[0], lo[1], lo[2] = x, y, z
-                hi[0], hi[1], hi[2] = x + 1, y + 1, z + 1
-                if not _segment_touches_box(p0, d, lo, hi):
-                    continue
-                if x < 0 or y < 0 or z < 0 or x >= nx or y >= ny or z >= nz:
-                    return True
-                if blocked[z, y, x]:
-                    return True
+    for v in _voxels_3d(p0, p1):
+        cz, cy, cx = v[0], v[1], v[2]
+        if cx < 0 or cy < 0 or cz < 0 or cx >= nx or cy >= ny or cz >= nz or blocked[cz, cy, cx]:
+            return True
     return False
 
 
 def touched_cells_3d(p0: np.ndarray, p1: np.ndarray) -> np.ndarray:
-    """All voxels ``(z, y, x)`` whose closed cube the segment touches (cell units)."""
-    p0 = np.asarray(p0, dtype=np.float64)
-    p1 = np.asarray(p1, dtype=np.float64)
-    d = p1 - p0
-    lo = np.minimum(p0, p1)
-    hi = np.maximum(p0, p1)
-    rng = [range(math.ceil(lo[k]) - 1, math.floor(hi[k]) + 1) for k in range(3)]
-    out = []
-    for z in rng[2]:
-        for y in rng[1]:
-            for x in rng[0]:
-                if _segment_touches_box(p0, d, np.array([x, y, z], float), np.array([x + 1, y + 1, z + 1], float)):
-                    out.append((z, y, x))
-    return np.array(out, dtype=np.int64).reshape(-1, 3)
+    """All voxels ``(z, y, x)`` whose closed cube the segment touches or comes within the margin of (cell units)."""
+    return _voxels_3d(np.asarray(p0, dtype=np.float64), np.asarray(p1, dtype=np.float64))
 
 
 @numba.njit(cache=True)

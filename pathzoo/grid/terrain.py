@@ -1,51 +1,85 @@
-"""Terrain geometry: bilinear heights, 3-D segment profiles and slopes."""
+"""Terrain geometry: the bilinear ground surface, segment profiles and exact slope bounds.
+
+The ground is the bilinear interpolant of the cell-centre heights: between the
+four centres ``(i, j), (i+1, j), (i, j+1), (i+1, j+1)`` (a *patch*, in lattice
+coordinates ``X = x - 1/2``, ``Y = y - 1/2`` with ``x, y`` in cell units) the
+height is ``z = a + b X + c Y + d X Y``, and outside the ring of centres the
+surface continues flat (coordinates clamped to the border centres). Along a
+straight segment inside one patch the height is quadratic in the distance
+travelled, so its slope is linear and takes its extremes at the ends of the
+piece. :func:`segment_slope_range` cuts a segment at every patch boundary it
+crosses and evaluates the slope at both ends of every piece: the exact range of
+the ground slope along the whole segment, not a sample of it.
+"""
 
 from __future__ import annotations
 
 import math
 
+from typing import TYPE_CHECKING
+
+import numba
 import numpy as np
 
-__all__ = ["bilinear_elevation", "path_profile", "segment_profile", "MAX_PIECE_CELLS"]
+from pathzoo.core.tolerances import TOUCH_EPS_CELLS
+
+if TYPE_CHECKING:
+    from pathzoo.core.vehicle import VehicleModel
+
+__all__ = [
+    "bilinear_elevation",
+    "path_profile",
+    "segment_profile",
+    "segment_slope_range",
+    "path_slope_ranges",
+    "lattice_slope_range",
+    "slope_exceeds",
+    "MAX_PIECE_CELLS",
+]
 
 MAX_PIECE_CELLS = math.sqrt(2.0) + 1e-9
-"""Longest horizontal piece (in cells) a segment is split into for slope checks.
+"""Longest horizontal piece (in cells) a segment is split into for lengths and energy.
 
-A move between 8-neighbours is never split, so its slope is exactly the slope
-of the graph edge between the two cell centres.
+A move between 8-neighbours is never split, so its length and energy are
+exactly those of the graph edge between the two cell centres.
 """
+
+_EPS = TOUCH_EPS_CELLS
 
 
 def bilinear_elevation(elevation: np.ndarray, xy_cells: np.ndarray) -> np.ndarray:
     """Bilinear interpolation of cell-centre heights at points given in cell units.
 
     Points outside the ring of cell centres are clamped to the border centres.
-    NaN heights propagate to the points that use them.
+    A neighbour whose weight is zero is never read, so a point on the line
+    between two centres does not see a NaN cell beside it; NaN heights with a
+    non-zero weight propagate.
     """
     h, w = elevation.shape
     x = np.clip(np.asarray(xy_cells[:, 0], dtype=np.float64) - 0.5, 0.0, w - 1.0)
     y = np.clip(np.asarray(xy_cells[:, 1], dtype=np.float64) - 0.5, 0.0, h - 1.0)
-    c0 = np.minimum(np.floor(x).astype(np.int64), max(w - 2, 0))
-    r0 = np.minimum(np.floor(y).astype(np.int64), max(h - 2, 0))
+    c0 = np.floor(x).astype(np.int64)
+    r0 = np.floor(y).astype(np.int64)
     c1 = np.minimum(c0 + 1, w - 1)
     r1 = np.minimum(r0 + 1, h - 1)
     fx = x - c0
     fy = y - r0
-    # exact at cell centres (fx or fy == 0 must not mix in a NaN neighbour)
-    top = np.where(fx == 0, elevation[r0, c0], elevation[r0, c0] * (1 - fx) + elevation[r0, c1] * fx)
-    bot = np.where(fx == 0, elevation[r1, c0], elevation[r1, c0] * (1 - fx) + elevation[r1, c1] * fx)
-    return np.where(fy == 0, top, top * (1 - fy) + bot * fy)
+    with np.errstate(invalid="ignore"):
+        top = np.where(fx == 0, elevation[r0, c0], elevation[r0, c0] * (1 - fx) + elevation[r0, c1] * fx)
+        bot = np.where(fx == 0, elevation[r1, c0], elevation[r1, c0] * (1 - fx) + elevation[r1, c1] * fx)
+        return np.where(fy == 0, top, top * (1 - fy) + bot * fy)
 
 
 def path_profile(
     elevation: np.ndarray | None, path: np.ndarray, cell_size: float
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """3-D lengths and signed slopes (radians) of the pieces of every segment of a ground path.
+    """3-D lengths and signed mean slopes (radians) of the pieces of every segment of a ground path.
 
-    Each segment is split into equal pieces no longer than
-    :data:`MAX_PIECE_CELLS` cells; heights come from :func:`bilinear_elevation`.
-    Without elevation every segment is one flat piece. Vectorised over the
-    whole path.
+    This is the *driven profile* used for lengths and energy. Each segment is
+    split into equal pieces no longer than :data:`MAX_PIECE_CELLS` cells;
+    heights come from :func:`bilinear_elevation`. Without elevation every
+    segment is one flat piece. Vectorised over the whole path. Slope *limits*
+    are judged on the exact ground slope instead (:func:`segment_slope_range`).
 
     Returns
     -------
@@ -76,9 +110,210 @@ def path_profile(
 def segment_profile(
     elevation: np.ndarray | None, p0: np.ndarray, p1: np.ndarray, cell_size: float
 ) -> tuple[np.ndarray, np.ndarray]:
-    """3-D lengths and signed slopes (radians) of the pieces of one ground segment.
+    """3-D lengths and signed mean slopes (radians) of the pieces of one ground segment.
 
     The one-segment case of :func:`path_profile`.
     """
     lengths, slopes, _ = path_profile(elevation, np.stack([np.asarray(p0, float)[:2], np.asarray(p1, float)[:2]]), cell_size)
     return lengths, slopes
+
+
+@numba.njit(cache=True)
+def _axis_cell(m: float, n: int) -> tuple[int, bool]:
+    # lattice cell of coordinate m on an axis of n centres: (index, whether the surface varies along it)
+    if n == 1 or m <= 0.0:
+        return 0, False
+    if m >= n - 1.0:
+        return n - 1, False
+    return min(int(math.floor(m)), n - 2), True
+
+
+@numba.njit(cache=True)
+def _weight(f: float) -> float:
+    # fractional lattice coordinate; within the margin of a centre line it is that line
+    # (a neighbour's weight becomes 0, so a NaN beside the line is not read)
+    if f <= _EPS:
+        return 0.0
+    if f >= 1.0 - _EPS:
+        return 1.0
+    return f
+
+
+@numba.njit(cache=True)
+def _grad(z: np.ndarray, i: int, j: int, vary_x: bool, vary_y: bool, u: float, v: float, ex: float, ey: float) -> float:
+    # derivative of the bilinear height along (ex, ey) at lattice offset (u, v) in patch (i, j);
+    # terms with a zero factor are skipped so that a NaN with no weight is never read
+    g = 0.0
+    if vary_x and ex != 0.0:
+        dzx = 0.0
+        if v != 1.0:
+            dzx += (z[j, i + 1] - z[j, i]) * (1.0 - v)
+        if vary_y and v != 0.0:
+            dzx += (z[j + 1, i + 1] - z[j + 1, i]) * v
+        g += dzx * ex
+    if vary_y and ey != 0.0:
+        dzy = 0.0
+        if u != 1.0:
+            dzy += (z[j + 1, i] - z[j, i]) * (1.0 - u)
+        if vary_x and u != 0.0:
+            dzy += (z[j + 1, i + 1] - z[j, i + 1]) * u
+        g += dzy * ey
+    return g
+
+
+@numba.njit(cache=True)
+def _on_lattice_diagonal(xa: float, ya: float, xb: float, yb: float, w: int, h: int) -> int:
+    # +1 if the segment lies on a line X - Y = k, -1 on X + Y = k (k integer, within the margin),
+    # inside the ring of centres; 0 otherwise
+    if xa == xb or min(xa, xb) < -_EPS or max(xa, xb) > w - 1 + _EPS or min(ya, yb) < -_EPS or max(ya, yb) > h - 1 + _EPS:
+        return 0
+    for sign in (1, -1):
+        ka, kb = xa - sign * ya, xb - sign * yb
+        k = round(ka)
+        if abs(ka - k) <= _EPS and abs(kb - k) <= _EPS:
+            return sign
+    return 0
+
+
+@numba.njit(cache=True)
+def _snap(a: float) -> float:
+    # a lattice coordinate within the margin of a centre is that centre
+    k = round(a)
+    return float(k) if abs(a - k) <= _EPS else a
+
+
+@numba.njit(cache=True)
+def _lattice_diagonal_range(z: np.ndarray, xa: float, ya: float, xb: float, yb: float, sign: int) -> tuple[float, float]:
+    # the papers' slope between diagonal neighbours: linear between consecutive centres on the line
+    k = round(xa - sign * ya)
+    lo_x, hi_x = _snap(min(xa, xb)), _snap(max(xa, xb))
+    direction = 1.0 if xb > xa else -1.0
+    g_lo, g_hi = math.inf, -math.inf
+    for m in range(int(math.floor(lo_x)), max(int(math.ceil(hi_x)), int(math.floor(lo_x)) + 1)):
+        r0 = (m - k) if sign == 1 else (k - m)
+        r1 = (m + 1 - k) if sign == 1 else (k - m - 1)
+        g = direction * (z[r1, m + 1] - z[r0, m]) / math.sqrt(2.0)
+        if not math.isfinite(g):
+            return math.nan, math.nan
+        g_lo, g_hi = min(g_lo, g), max(g_hi, g)
+    return g_lo, g_hi
+
+
+@numba.njit(cache=True)
+def segment_slope_range(z: np.ndarray, x0: float, y0: float, x1: float, y1: float) -> tuple[float, float]:
+    """Least and greatest ground gradient along a segment (height units per cell travelled).
+
+    ``z`` is the cell-centre height grid ``[row, col]``; the segment is in cell
+    units. On a diagonal line of the centre lattice (the line through diagonal
+    neighbours' centres) the ground is linear between consecutive centres:
+    the slope between diagonal neighbours that the papers and the graph use.
+    Everywhere else the range is exact for the bilinear surface (see the module
+    docstring) up to the coordinate margin
+    :data:`~pathzoo.core.tolerances.TOUCH_EPS_CELLS`, whose effect (at most
+    the margin times the patch's twist) is added to both ends. NaN when the
+    segment uses a height that is missing. A zero-length segment has range
+    ``(0, 0)``.
+    """
+    h, w = z.shape
+    dx, dy = x1 - x0, y1 - y0
+    length = math.hypot(dx, dy)
+    if length == 0.0:
+        return 0.0, 0.0
+    ex, ey = dx / length, dy / length
+    X0, Y0 = x0 - 0.5, y0 - 0.5
+    dX, dY = dx, dy
+    diagonal = _on_lattice_diagonal(X0, Y0, X0 + dX, Y0 + dY, w, h)
+    if diagonal != 0:
+        return _lattice_diagonal_range(z, X0, Y0, X0 + dX, Y0 + dY, diagonal)
+    # breakpoints: where the segment crosses a centre line X = k or Y = k
+    ts = [0.0, 1.0]
+    for a0, da, n in ((X0, dX, w), (Y0, dY, h)):
+        if da != 0.0:
+            lo, hi = min(a0, a0 + da), max(a0, a0 + da)
+            for k in range(max(0, int(math.ceil(lo))), min(n - 1, int(math.floor(hi))) + 1):
+                t = (k - a0) / da
+                if 0.0 < t < 1.0:
+                    ts.append(t)
+    ts.sort()
+    g_lo, g_hi = math.inf, -math.inf
+    for p in range(len(ts) - 1):
+        ta, tb = ts[p], ts[p + 1]
+        if tb <= ta:
+            continue
+        tm = 0.5 * (ta + tb)
+        i, vary_x = _axis_cell(X0 + tm * dX, w)
+        j, vary_y = _axis_cell(Y0 + tm * dY, h)
+        twist = 0.0
+        if vary_x and vary_y:
+            twist = abs(z[j, i] + z[j + 1, i + 1] - z[j, i + 1] - z[j + 1, i])
+            if not math.isfinite(twist):
+                twist = 0.0
+        for t in (ta, tb):
+            u = _weight(X0 + t * dX - i) if vary_x else 0.0
+            v = _weight(Y0 + t * dY - j) if vary_y else 0.0
+            g = _grad(z, i, j, vary_x, vary_y, u, v, ex, ey)
+            if not math.isfinite(g):
+                return math.nan, math.nan
+            widen = 2.0 * _EPS * twist * (abs(ex) + abs(ey))
+            g_lo = min(g_lo, g - widen)
+            g_hi = max(g_hi, g + widen)
+    return g_lo, g_hi
+
+
+@numba.njit(cache=True)
+def _path_slope_ranges(z: np.ndarray, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    n = len(u) - 1
+    lo = np.empty(n)
+    hi = np.empty(n)
+    for k in range(n):
+        lo[k], hi[k] = segment_slope_range(z, u[k, 0], u[k, 1], u[k + 1, 0], u[k + 1, 1])
+    return lo, hi
+
+
+def path_slope_ranges(elevation: np.ndarray, path_cells: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`segment_slope_range` for every segment of a polyline in cell units (one compiled pass)."""
+    return _path_slope_ranges(np.ascontiguousarray(elevation, dtype=np.float64), np.ascontiguousarray(path_cells[:, :2], dtype=np.float64))
+
+
+def lattice_slope_range(elevation: np.ndarray, offset: tuple[int, int]) -> tuple[np.ndarray, np.ndarray]:
+    """Gradient range of the move from every cell centre by ``offset = (d_row, d_col)``.
+
+    Arrays of shape ``(H, W)`` in height units per cell travelled (NaN where
+    the target is outside the grid or a height is missing): the graph builder
+    uses them so that its edges obey exactly the rule the validator applies.
+    """
+    h, w = elevation.shape
+    rows, cols = np.mgrid[0:h, 0:w]
+    dr, dc = offset
+    src = np.stack([cols.ravel() + 0.5, rows.ravel() + 0.5], axis=1)
+    dst = src + np.array([dc, dr], dtype=np.float64)
+    inside = (dst[:, 0] > 0) & (dst[:, 0] < w) & (dst[:, 1] > 0) & (dst[:, 1] < h)
+    lo, hi = _segment_pairs_slope(np.ascontiguousarray(elevation, dtype=np.float64), src, dst)
+    lo[~inside] = np.nan
+    hi[~inside] = np.nan
+    return lo.reshape(h, w), hi.reshape(h, w)
+
+
+@numba.njit(cache=True)
+def _segment_pairs_slope(z: np.ndarray, a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    lo = np.empty(len(a))
+    hi = np.empty(len(a))
+    for k in range(len(a)):
+        lo[k], hi[k] = segment_slope_range(z, a[k, 0], a[k, 1], b[k, 0], b[k, 1])
+    return lo, hi
+
+
+def slope_exceeds(grad_lo: np.ndarray, grad_hi: np.ndarray, cell_size: float, vehicle: "VehicleModel") -> np.ndarray:
+    """Whether gradient ranges (height units per cell) break the vehicle's climb or descent limit.
+
+    No tolerance: an angle computed above the limit is a violation, and a
+    missing height (NaN) is one too. The angle is ``atan2(gradient, cell_size)``,
+    the same expression for a graph edge and for any segment.
+    """
+    lo = np.asarray(grad_lo, dtype=np.float64)
+    hi = np.asarray(grad_hi, dtype=np.float64)
+    with np.errstate(invalid="ignore"):
+        climb = np.degrees(np.arctan2(hi, cell_size))
+        descent = np.degrees(np.arctan2(-lo, cell_size))
+        ok = (climb <= vehicle.max_climb_deg) & (descent <= vehicle.max_descent_deg)
+    return ~ok

@@ -1,7 +1,6 @@
 """The experiment harness: run planners x scenarios x seeds, validate, measure and store.
 
-The public names are loaded lazily, so ``pathzoo.harness.validation`` (used by
-every scenario) stays cheap to import:
+The public names are loaded lazily, so importing the package stays cheap:
 
 - :class:`~pathzoo.harness.experiment.Experiment`,
   :class:`~pathzoo.harness.specs.PlannerSpec`;
@@ -10,7 +9,7 @@ every scenario) stays cheap to import:
   :func:`~pathzoo.harness.store.read_path`, :func:`~pathzoo.harness.store.read_record`,
   :func:`~pathzoo.harness.store.read_experiments`,
   :class:`~pathzoo.harness.store.ResultsDatabaseError`;
-- :func:`~pathzoo.harness.validation.validate_path`.
+- :func:`~pathzoo.rules.validate_path`.
 """
 
 from __future__ import annotations
@@ -41,11 +40,12 @@ _WHERE = {
     "read_record": "store",
     "read_runs": "store",
     "run_experiment": "runner",
-    "validate_path": "validation",
+    "validate_path": "pathzoo.rules",
 }
 
 
 def __getattr__(name: str) -> Any:
     if name in _WHERE:
-        return getattr(importlib.import_module(f"pathzoo.harness.{_WHERE[name]}"), name)
+        where = _WHERE[name]
+        return getattr(importlib.import_module(where if "." in where else f"pathzoo.harness.{where}"), name)
     raise AttributeError(f"module 'pathzoo.harness' has no attribute {name!r}")

@@ -7,7 +7,7 @@ Rules, applied in order:
    could not be set up, or the worker process died -> ``crash``;
 3. the planner modified the scenario's arrays -> ``invalid``;
 4. the planner says ``SOLVED``: the path must pass
-   :func:`~pathzoo.harness.validation.validate_path` -> ``solved``, else ``invalid``
+   :func:`~pathzoo.rules.validate_path` -> ``solved``, else ``invalid``
    with the validator's reason;
 5. the planner says ``NO_PATH``: if the reference path of
    :func:`~pathzoo.grid.reference.reference_path` exists *and* passes the
@@ -29,7 +29,7 @@ from typing import TYPE_CHECKING, Sequence
 from pathzoo.core.results import RunRecord
 from pathzoo.core.status import RunStatus, Status
 from pathzoo.grid.reference import reference_path
-from pathzoo.harness.validation import validate_path
+from pathzoo.rules import validate_path
 from pathzoo.metrics.outcome import RETURNED
 
 if TYPE_CHECKING:

@@ -25,7 +25,7 @@ from pathzoo.core.planner import Param, Planner
 from pathzoo.core.results import PlanResult
 from pathzoo.core.scenario import SCENARIO_KINDS, Scenario
 from pathzoo.core.status import Status
-from pathzoo.harness.validation import validate_path
+from pathzoo.rules import validate_path
 from pathzoo.testing.scenarios import check_scenario
 from pathzoo.testing.warmup import warm_up
 

@@ -20,7 +20,7 @@ where ``diagonal`` is the map diagonal in metres and ``violation`` (unitless,
 - **turns**: the number of heading changes beyond ``vehicle.max_turn_deg``
   (only when that limit is below 180 degrees; zero-length segments are not
   skipped here as the validator skips them, which is why the final path is
-  still judged by :func:`~pathzoo.harness.validation.validate_path`).
+  still judged by :func:`~pathzoo.rules.validate_path`).
 
 ``length`` is the horizontal length on ``grid2d`` maps and the 3-D length
 (sum of the pieces' lengths) on ``terrain``, i.e. the quantity the exact

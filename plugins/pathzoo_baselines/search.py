@@ -129,7 +129,7 @@ class Search:
                 message=f"the best candidate still violates the constraints (violation {self.best_violation:.3g})",
                 **common,
             )
-        from pathzoo.harness.validation import validate_path  # imports numba: not at registration time
+        from pathzoo.rules import validate_path  # imports numba: not at registration time
 
         path = self.encoding.path(self.best_genes)
         verdict = validate_path(self.scenario, path)

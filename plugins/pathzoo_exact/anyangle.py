@@ -7,7 +7,7 @@ obstacles: every grid point the limit path touches (its corner vertices and
 any grid point a segment passes through or slides past) moves by
 ``margin`` cells in each axis away from the blocked cells around it. The
 result is checked with the judge's own
-:func:`~pathzoo.harness.validation.validate_path`; if it fails (a margin too
+:func:`~pathzoo.rules.validate_path`; if it fails (a margin too
 large for a tight gap), the status is ``FAILED`` with the reason, never an
 invalid "solved" path. The path is longer than the optimum by at most
 ``2 * sqrt(2) * margin`` cells per touched grid point; ``extras`` reports
@@ -23,7 +23,7 @@ import numpy as np
 from pathzoo.core import Budget, Param, Planner, PlanResult, ProgressCallback, Scenario, Status
 from pathzoo.grid.anyangle import SCALE, AnyAngleError, SearchCapReached, anyangle_path
 from pathzoo.grid.segments import to_cell_units
-from pathzoo.harness.validation import validate_path
+from pathzoo.rules import validate_path
 
 __all__ = ["AnyAnglePlanner", "pushed_off"]
 

@@ -15,7 +15,7 @@ touches a neighbouring cell only when the point lies exactly on the cell's
 border, in which case every segment from that point touches it too. On
 terrain and in air volumes a connector can still break a slope or pitch
 limit the graph edges respect. Connectors are therefore checked with the
-validator's own :func:`~pathzoo.harness.validation.segment_problem`; a bad one
+validator's own :func:`~pathzoo.rules.segment_problem`; a bad one
 gives ``Status.FAILED`` with the reason, never an invalid "solved" path.
 The reported cost is the graph cost plus the connectors' cost, measured like
 the graph edges (3-D length from :func:`~pathzoo.grid.terrain.segment_profile`,
@@ -52,7 +52,7 @@ import numpy as np
 from pathzoo.core import Budget, Planner, PlanResult, ProgressCallback, Scenario, Status
 from pathzoo.grid.paths import centre_path, on_centre
 from pathzoo.grid.terrain import segment_profile
-from pathzoo.harness.validation import segment_problem
+from pathzoo.rules import segment_problem
 from pathzoo_exact.kernel import EXHAUSTED, FOUND, HEAP_FULL, RUNNING, SearchState, trace_path
 
 __all__ = ["GraphSearchPlanner", "BatchFn", "connector_cost", "straight_run_ends"]

@@ -64,7 +64,7 @@ The path is the solution's states, from the exact start to the exact goal.
 With ``simplify=True`` OMPL's ``PathSimplifier`` shortens it (its motions go
 through the same validator); if the simplified path failed the final check,
 the raw one is kept and ``extras['simplified']`` says so. The returned path
-always passes :func:`~pathzoo.harness.validation.validate_path`; otherwise
+always passes :func:`~pathzoo.rules.validate_path`; otherwise
 the status is ``FAILED`` with the validator's reason. Without an exact
 solution (OMPL's approximate solutions are ignored) the status is ``FAILED``:
 sampling-based planners cannot prove that no path exists.
@@ -86,7 +86,7 @@ from scipy.sparse import csr_matrix
 from scipy.sparse.csgraph import dijkstra
 
 from pathzoo.core import Budget, BudgetClock, PlanResult, ProgressCallback, Scenario, Status
-from pathzoo.harness.validation import validate_path
+from pathzoo.rules import validate_path
 from pathzoo_ompl.checks import compile_now, segment_clear, terrain_motion_clear
 
 if TYPE_CHECKING:

@@ -23,7 +23,7 @@ import numpy as np
 
 from pathzoo.core import Budget, Param, Planner, PlanResult, ProgressCallback, Scenario, Status
 from pathzoo.core.budget import BudgetClock
-from pathzoo.harness.validation import segment_problem
+from pathzoo.rules import segment_problem
 from pathzoo_rivals.pareto import ParetoArchive
 from pathzoo_rivals.routes import OBJECTIVES, RouteProblem
 

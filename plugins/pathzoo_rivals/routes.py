@@ -7,7 +7,7 @@ waypoints. This encoding is pathzoo's, written for the multi-objective rivals
 reachable (see their pages).
 
 Feasibility is exact: a segment is allowed only when the judge's own
-:func:`~pathzoo.harness.validation.segment_problem` finds nothing wrong with
+:func:`~pathzoo.rules.segment_problem` finds nothing wrong with
 it (the closed-cell rule of ``docs/corner-rule.md``) and, on terrain, its
 steepest piece is at least :data:`SLOPE_MARGIN_DEG` inside the vehicle's
 climb and descent limits, so a route never depends on the judge's angle
@@ -39,7 +39,7 @@ from pathzoo.core import Scenario
 from pathzoo.grid.paths import centre_path
 from pathzoo.grid.segments import first_blocked_cell_2d, to_cell_units
 from pathzoo.grid.terrain import segment_profile
-from pathzoo.harness.validation import segment_problem
+from pathzoo.rules import segment_problem
 from pathzoo.metrics.geometry import path_pieces, travel_time_energy, turn_angles
 from pathzoo_exact.kernel import (
     FOUND,

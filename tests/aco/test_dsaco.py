@@ -9,7 +9,7 @@ import pytest
 
 import pathzoo
 from pathzoo import Budget, Scenario, VehicleModel
-from pathzoo.harness.validation import validate_path
+from pathzoo.rules import validate_path
 from pathzoo_aco.engine import ColonyProblem, Pheromone, Walks, WalkEngine
 from pathzoo_aco.dsaco import p_schedule, q0_schedule
 

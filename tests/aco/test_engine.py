@@ -11,7 +11,7 @@ import pytest
 
 import pathzoo
 from pathzoo import Budget, VehicleModel
-from pathzoo.harness.validation import validate_path
+from pathzoo.rules import validate_path
 from pathzoo_aco.engine import (
     ABORTED,
     EXHAUSTED,

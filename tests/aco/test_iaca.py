@@ -9,7 +9,7 @@ import pytest
 
 import pathzoo
 from pathzoo import Budget, Scenario, TerrainRules, VehicleModel
-from pathzoo.harness.validation import validate_path
+from pathzoo.rules import validate_path
 from pathzoo_aco.engine import REACHED, STUCK, ColonyProblem, Pheromone, WalkEngine
 from pathzoo_scenarios.iaca import SLOPE_WEIGHTS
 

@@ -11,7 +11,7 @@ from skfuzzy import control as ctrl
 
 import pathzoo
 from pathzoo import Budget, MovingObstacle, Scenario
-from pathzoo.harness.validation import validate_path
+from pathzoo.rules import validate_path
 from pathzoo.testing.scenarios import check_scenario
 from pathzoo_aco.engine import ColonyProblem, Pheromone
 from pathzoo_aco.flaco import rank_deposits

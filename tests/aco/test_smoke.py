@@ -7,7 +7,7 @@ import pytest
 
 import pathzoo
 from pathzoo import Budget
-from pathzoo.harness.validation import validate_path
+from pathzoo.rules import validate_path
 
 CASES = [
     # G-Ant: its 10 x 10 space (Fig. 7) and terrain

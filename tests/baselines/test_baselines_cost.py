@@ -6,7 +6,7 @@ import pytest
 from pathzoo import Scenario, VehicleModel
 from pathzoo.grid.segments import count_blocked_cells_2d, segment_blocked_2d
 from pathzoo.grid.terrain import segment_profile
-from pathzoo.harness.validation import validate_path
+from pathzoo.rules import validate_path
 from pathzoo.testing import check_scenario
 from pathzoo_baselines.cost import PathCost
 

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from pathzoo.harness.validation import validate_path
+from pathzoo.rules import validate_path
 from pathzoo.testing import check_scenario
 from pathzoo_baselines.encodings import make_encoding
 

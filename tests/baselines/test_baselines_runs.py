@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from pathzoo import Budget, Status, make_planner
-from pathzoo.harness.validation import validate_path
+from pathzoo.rules import validate_path
 from pathzoo.testing import check_scenario
 from pathzoo_baselines.search import DEFAULT_ITERATIONS, Search
 

@@ -85,6 +85,7 @@ def test_3d_diagonal_touches_all_eight_voxels():
     assert len(touched_cells_3d(np.array([0.5, 0.5, 0.5]), np.array([1.5, 1.5, 1.5]))) == 8
 
 
-def test_cell_units_snap_centres():
-    u = to_cell_units(np.array([1.5 * 0.3, 2.5 * 0.1]), 0.3)
-    assert u[0] == 1.5
+def test_cell_units_are_a_plain_division():
+    # no snapping: a point 5e-10 from a cell edge stays there (issue 15)
+    u = to_cell_units(np.array([23.0000000005, 13.9999999995]), 1.0)
+    assert u[0] == 23.0000000005 and u[1] == 13.9999999995

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from pathzoo import MovingObstacle, Scenario, VehicleModel
-from pathzoo.harness.validation import validate_path
+from pathzoo.rules import validate_path
 
 
 @pytest.fixture
@@ -111,7 +111,7 @@ def test_min_distance_is_exact_against_sampling():
 
 def _slow_verdict(scenario, path):
     """The definition: the first segment, in order, that segment_problem rejects."""
-    from pathzoo.harness.validation import segment_problem
+    from pathzoo.rules import segment_problem
 
     for k in range(len(path) - 1):
         problem = segment_problem(scenario, path[k], path[k + 1])
@@ -154,3 +154,31 @@ def test_vectorised_screening_gives_the_per_segment_verdict(kind):
         assert fast.valid == (slow is None)
         if slow is not None:
             assert fast.reason == slow
+
+
+def test_slope_range_is_exact_against_dense_sampling():
+    from pathzoo.grid.terrain import bilinear_elevation, segment_slope_range
+
+    rng = np.random.default_rng(4)
+    z = rng.uniform(0, 5, (6, 7))
+    for _ in range(40):
+        x0, x1 = rng.uniform(-0.5, 7.5, 2)
+        y0, y1 = rng.uniform(-0.5, 6.5, 2)
+        lo, hi = segment_slope_range(z, x0, y0, x1, y1)
+        t = np.linspace(0, 1, 200_001)
+        heights = bilinear_elevation(z, np.stack([x0 + t * (x1 - x0), y0 + t * (y1 - y0)], axis=1))
+        grad = np.diff(heights) / (math.hypot(x1 - x0, y1 - y0) / 200_000)
+        if math.isclose(x1 - x0, y1 - y0, abs_tol=1e-12) or math.isclose(x1 - x0, y0 - y1, abs_tol=1e-12):
+            continue  # diagonal lattice lines follow the lattice model, not the bilinear surface
+        assert lo <= grad.min() + 1e-9 and hi >= grad.max() - 1e-9  # never narrower than the truth
+        assert grad.min() - lo < 1e-3 and hi - grad.max() < 1e-3  # and tight
+
+
+def test_air_segment_within_the_margin_of_a_voxel_is_blocked():
+    from pathzoo.grid.segments import segment_blocked_3d
+
+    blocked = np.zeros((3, 3, 3), bool)
+    blocked[1, 1, 1] = True
+    # a segment passing 5e-10 below the blocked voxel's bottom face, then 2e-9 below it
+    assert segment_blocked_3d(blocked, np.array([0.5, 1.5, 1 - 5e-10]), np.array([2.5, 1.5, 1 - 5e-10]))
+    assert not segment_blocked_3d(blocked, np.array([0.5, 1.5, 1 - 2e-9]), np.array([2.5, 1.5, 1 - 2e-9]))

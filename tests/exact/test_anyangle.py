@@ -11,7 +11,7 @@ from pathzoo import Budget, Scenario, Status, load_scenario, make_planner
 from pathzoo.grid.anyangle import MAX_EXACT_CELLS, AnyAngleError, anyangle_path
 from pathzoo.grid.reference import anyangle_length
 from pathzoo.grid.segments import segment_blocked_2d
-from pathzoo.harness.validation import validate_path
+from pathzoo.rules import validate_path
 
 
 def _length(path):

@@ -20,7 +20,7 @@ from scipy.sparse.csgraph import dijkstra
 import pathzoo
 from pathzoo.core import Budget, Scenario, Status, VehicleModel
 from pathzoo.grid.terrain import segment_profile
-from pathzoo.harness.validation import validate_path
+from pathzoo.rules import validate_path
 from pathzoo.io import read_asc
 
 PLANNERS = ("exact.dijkstra", "exact.astar")

@@ -9,7 +9,7 @@ import pytest
 
 import pathzoo
 from pathzoo.core import Budget, InvalidParameterError, Scenario, Status, UnsupportedScenarioError, VehicleModel
-from pathzoo.harness.validation import validate_path
+from pathzoo.rules import validate_path
 from pathzoo.testing.scenarios import check_scenario
 from pathzoo_exact.astar import AStarPlanner
 from pathzoo_exact.dijkstra import DijkstraPlanner

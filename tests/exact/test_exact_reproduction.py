@@ -16,7 +16,7 @@ import pytest
 
 import pathzoo
 from pathzoo.core import Budget, Scenario, Status
-from pathzoo.harness.validation import validate_path
+from pathzoo.rules import validate_path
 
 SCEN_FILES = {
     "grid/dao/arena.map.scen": 1,

@@ -9,7 +9,7 @@ import pytest
 
 import pathzoo
 from pathzoo.core import Budget, Scenario, Status
-from pathzoo.harness.validation import validate_path
+from pathzoo.rules import validate_path
 
 SAMPLES = {
     "grid/dao/arena.map.scen": 4,

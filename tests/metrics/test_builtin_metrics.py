@@ -9,7 +9,7 @@ import pytest
 
 from pathzoo import MovingObstacle, RunRecord, RunStatus, Scenario, VehicleModel
 from pathzoo.core.vehicle import GRAVITY
-from pathzoo.harness.validation import validate_path
+from pathzoo.rules import validate_path
 from pathzoo.metrics import BUILTIN_METRICS
 from pathzoo.metrics.geometry import clearance_samples, turn_angles
 

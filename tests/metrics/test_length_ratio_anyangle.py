@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from pathzoo import Budget, RunStatus, Scenario, make_planner
-from pathzoo.harness.validation import validate_path
+from pathzoo.rules import validate_path
 from pathzoo.metrics import BUILTIN_METRICS
 from tests.metrics.test_builtin_metrics import open_grid, record
 

@@ -9,7 +9,7 @@ import pytest
 
 from pathzoo import Scenario, load_scenarios
 from pathzoo.grid.reference import reference_length, reference_path
-from pathzoo.harness.validation import validate_path
+from pathzoo.rules import validate_path
 
 
 def test_dijkstra_matches_movingai_optimal_lengths(shared_data):

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from pathzoo import Budget, Scenario, Status, VehicleModel, make_planner
-from pathzoo.harness.validation import validate_path
+from pathzoo.rules import validate_path
 from pathzoo.testing import check_scenario
 
 IDS = [

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from pathzoo import Budget
-from pathzoo.harness.validation import segment_problem
+from pathzoo.rules import segment_problem
 from pathzoo.testing import check_scenario
 from pathzoo_ompl.checks import segment_clear
 from pathzoo_ompl.engine import SegmentValidator, _Run

@@ -7,7 +7,7 @@ import pytest
 
 import pathzoo
 from pathzoo.core import Budget, Scenario, Status
-from pathzoo.harness.validation import validate_path
+from pathzoo.rules import validate_path
 from pathzoo.metrics.geometry import path_pieces, travel_time_energy
 
 IDS = ("swarm.mosfla", "search.movns")

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from pathzoo.core import Scenario, VehicleModel
-from pathzoo.harness.validation import validate_path
+from pathzoo.rules import validate_path
 from pathzoo.testing.scenarios import check_scenario
 from pathzoo_rivals.movns import shake
 from pathzoo_rivals.route_moves import insert, leap, relocate, remove
@@ -124,7 +124,7 @@ def test_segment_verdicts_equal_the_judges(scenario_id):
     """The collision-only fast path (frontrange: no limits, no missing heights) and the full path (hugo) agree
     with the judge's segment_problem on random segments."""
     import pathzoo
-    from pathzoo.harness.validation import segment_problem
+    from pathzoo.rules import segment_problem
 
     s = pathzoo.load_scenario(scenario_id)
     problem = RouteProblem(s)

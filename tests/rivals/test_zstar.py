@@ -12,7 +12,7 @@ from scipy.sparse.csgraph import dijkstra
 import pathzoo
 from pathzoo.core import Budget, Scenario, Status, VehicleModel
 from pathzoo.core.vehicle import GRAVITY
-from pathzoo.harness.validation import validate_path
+from pathzoo.rules import validate_path
 from pathzoo.testing.scenarios import check_scenario
 from pathzoo_rivals.zstar import ZStarPlanner, zstar_edge_cost, zstar_heuristic
 

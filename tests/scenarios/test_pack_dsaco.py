@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import pathzoo
-from pathzoo.harness.validation import validate_path
+from pathzoo.rules import validate_path
 from pathzoo_scenarios import dsaco
 
 # Tables 1-3 of the paper, typed in again here: (x, y) km, height km, slope (x_s, y_s) km

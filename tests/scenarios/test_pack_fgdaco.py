@@ -7,7 +7,7 @@ import pytest
 from scipy import ndimage
 
 import pathzoo
-from pathzoo.harness.validation import validate_path
+from pathzoo.rules import validate_path
 from pathzoo_scenarios import fgdaco
 
 TABLE5 = {1: (3, 3), 2: (4, 3), 3: (2, 3)}  # static, moving obstacles per scenario

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import pathzoo
-from pathzoo.harness.validation import validate_path
+from pathzoo.rules import validate_path
 from pathzoo_scenarios import gant
 
 LARGE_IDS = [f"gant.{space}.{pair}" for space in ("simple", "moderate", "complex") for pair in (1, 2, 3)]

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import pathzoo
-from pathzoo.harness.validation import validate_path
+from pathzoo.rules import validate_path
 from pathzoo_scenarios import ggaco
 
 # section 4.1: the five test cases, rows x columns

@@ -10,7 +10,7 @@ import pytest
 
 import pathzoo
 from pathzoo.core import TerrainRules
-from pathzoo.harness.validation import validate_path
+from pathzoo.rules import validate_path
 from pathzoo_scenarios import iaca
 
 

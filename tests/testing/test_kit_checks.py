@@ -11,7 +11,7 @@ from scipy.sparse.csgraph import dijkstra
 
 import pathzoo
 from pathzoo import Param, Planner, PlanResult, Status
-from pathzoo.harness.validation import validate_path
+from pathzoo.rules import validate_path
 from pathzoo.testing import ConformanceError, check_planner, check_scenario, planner_checks
 from pathzoo.testing import checks as C
 
