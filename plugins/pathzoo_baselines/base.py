@@ -28,7 +28,10 @@ class BaselinePlanner(Planner):
 
     def __init__(self, **params: Any) -> None:
         super().__init__(**params)
-        shared = ("pathzoo_baselines.waypoints", "pathzoo_baselines.gridpath", "pathzoo.harness.validation")
+        shared = (
+            "pathzoo_baselines.waypoints", "pathzoo_baselines.gridpath", "pathzoo_baselines.routed",
+            "pathzoo_baselines.cellpath", "pathzoo.harness.validation",
+        )
         for module in (*shared, *self.preload):
             try:
                 importlib.import_module(module)

@@ -11,7 +11,9 @@ where ``diagonal`` is the map diagonal in metres and ``violation`` (unitless,
 - **collision**: the number of blocked or out-of-grid cells touched by the
   segments, under the closed-cell rule of :mod:`pathzoo.grid.segments`
   (:func:`~pathzoo.grid.segments.count_blocked_cells_2d`, on the same snapped
-  cell units as the validator), so it is 0 exactly when every segment passes;
+  cell units as the validator), plus one for each segment that touches none
+  but passes within :data:`~pathzoo_baselines.margin.MARGIN_CELLS` of one;
+  so it is 0 only when every segment passes with that margin;
 - **slope** (terrain): the horizontal length, in cells, of the segment pieces
   that climb or descend beyond the vehicle's limits. Pieces are cut exactly as
   :func:`pathzoo.grid.terrain.segment_profile` cuts them (same piece count,
@@ -35,21 +37,29 @@ import numpy as np
 from pathzoo.core import Scenario
 from pathzoo.grid.segments import count_blocked_cells_2d, to_cell_units
 from pathzoo.grid.terrain import MAX_PIECE_CELLS, bilinear_elevation
+from pathzoo_baselines.margin import MARGIN_CELLS, segment_clear
 
 __all__ = ["PathCost", "collision_counts"]
 
 
 @numba.njit(cache=True)
-def collision_counts(blocked: np.ndarray, cells: np.ndarray) -> np.ndarray:
-    """Blocked cells touched by each polyline; ``cells`` has shape (n, m, 2) in cell units (x, y)."""
+def collision_counts(blocked: np.ndarray, cells: np.ndarray, margin: float) -> np.ndarray:
+    """Collision measure of each polyline; ``cells`` has shape (n, m, 2) in cell units (x, y).
+
+    Per segment: the blocked cells it touches, or 1 when it touches none but
+    comes within ``margin`` of one (:func:`~pathzoo_baselines.margin.segment_clear`),
+    so an optimiser gains nothing by sliding along a wall.
+    """
     n, m = cells.shape[0], cells.shape[1]
     out = np.zeros(n)
     for i in range(n):
         total = 0
         for k in range(m - 1):
-            total += count_blocked_cells_2d(
-                blocked, cells[i, k, 0], cells[i, k, 1], cells[i, k + 1, 0], cells[i, k + 1, 1]
-            )
+            x0, y0, x1, y1 = cells[i, k, 0], cells[i, k, 1], cells[i, k + 1, 0], cells[i, k + 1, 1]
+            touched = count_blocked_cells_2d(blocked, x0, y0, x1, y1)
+            if touched == 0 and not segment_clear(blocked, x0, y0, x1, y1, margin):
+                touched = 1
+            total += touched
         out[i] = total
     return out
 
@@ -58,7 +68,7 @@ def _compile() -> None:
     """Compile :func:`collision_counts` for read-only maps now, at import, not inside a timed ``plan()``."""
     blocked = np.zeros((2, 2), dtype=bool)
     blocked.setflags(write=False)
-    collision_counts(blocked, np.full((1, 2, 2), 0.5))
+    collision_counts(blocked, np.full((1, 2, 2), 0.5), MARGIN_CELLS)
 
 
 _compile()
@@ -85,7 +95,7 @@ class PathCost:
         """Return ``(cost, violation)`` for polylines of shape (n, m, 2) in world coordinates."""
         sc = self.scenario
         n = paths.shape[0]
-        violation = collision_counts(sc.blocked, to_cell_units(paths, sc.cell_size))
+        violation = collision_counts(sc.blocked, to_cell_units(paths, sc.cell_size), MARGIN_CELLS)
         if self._terrain:
             length, slope_excess = self._terrain_terms(paths)
             violation = violation + slope_excess

@@ -8,7 +8,7 @@ import numpy as np
 
 from pathzoo.core import Scenario
 
-__all__ = ["Encoding", "make_encoding"]
+__all__ = ["Encoding", "FEASIBLE_ENCODINGS", "make_encoding"]
 
 
 class Encoding(Protocol):
@@ -39,13 +39,34 @@ class Encoding(Protocol):
         """The world path (N, 2) of one candidate, from ``scenario.start`` to ``scenario.goal``."""
 
 
+FEASIBLE_ENCODINGS: tuple[str, ...] = ("cells", "routed")
+"""Encodings whose every candidate decodes to a path that keeps clear of obstacles (see their modules)."""
+
+
 def make_encoding(scenario: Scenario, params: Mapping[str, Any]) -> Encoding:
     """Build the encoding a planner's parameters ask for.
 
     ``params`` holds the entries of
     :data:`~pathzoo_baselines.params.ENCODING_PARAMS` and, for
-    ``encoding='grid'``, ``moves_factor``.
+    ``encoding='grid'``, ``moves_factor``; for ``encoding='cells'``,
+    ``reroute_fraction``.
+
+    - ``cells``: :class:`~pathzoo_baselines.cellpath.CellPathEncoding`
+      (variable-length feasible chains of cells; GA only);
+    - ``routed``: :class:`~pathzoo_baselines.routed.RoutedWaypointEncoding`
+      (K waypoints, repairing decoder);
+    - ``grid``: :class:`~pathzoo_baselines.gridpath.MoveEncoding` (compass moves);
+    - ``waypoints``, ``spline``: :class:`~pathzoo_baselines.waypoints.WaypointEncoding`
+      (penalised straight or spline paths).
     """
+    if params["encoding"] == "cells":
+        from pathzoo_baselines.cellpath import CellPathEncoding
+
+        return CellPathEncoding(scenario, reroute_fraction=params["reroute_fraction"], penalty=params["penalty"])
+    if params["encoding"] == "routed":
+        from pathzoo_baselines.routed import RoutedWaypointEncoding
+
+        return RoutedWaypointEncoding(scenario, waypoints=params["waypoints"], penalty=params["penalty"])
     if params["encoding"] == "grid":
         from pathzoo_baselines.gridpath import MoveEncoding
 

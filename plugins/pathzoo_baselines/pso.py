@@ -34,8 +34,8 @@ class PsoPlanner(BaselinePlanner):
     """
 
     id: ClassVar[str] = "swarm.pso"
-    version: ClassVar[str] = "1"
-    summary: ClassVar[str] = "Particle swarm optimisation of K waypoints (pyswarms), penalised length"
+    version: ClassVar[str] = "2"
+    summary: ClassVar[str] = "Particle swarm optimisation (pyswarms) of K waypoints, decoded into a feasible path"
     preload: ClassVar[tuple[str, ...]] = ("pathzoo_baselines.pyswarms_backend",)
     params: ClassVar[Mapping[str, Param]] = {
         **ENCODING_PARAMS,

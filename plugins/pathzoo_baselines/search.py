@@ -12,6 +12,13 @@ Budgets
   most one generation.
 - No limit at all: :data:`DEFAULT_ITERATIONS` generations.
 
+Result
+------
+The best candidate is returned as solved only when its violation is 0, the
+harness's validator accepts its path and every segment keeps
+:data:`~pathzoo_baselines.margin.MARGIN_CELLS` from every blocked square
+(issue 15: a baseline never relies on the judge's tolerances).
+
 Determinism
 -----------
 pyswarms draws from ``numpy.random``'s global state and DEAP from Python's
@@ -32,7 +39,9 @@ from typing import Any, Iterator
 import numpy as np
 
 from pathzoo.core import Budget, PlanResult, ProgressCallback, Scenario, Status
+from pathzoo.grid.segments import to_cell_units
 from pathzoo_baselines.encodings import Encoding
+from pathzoo_baselines.margin import MARGIN_CELLS, polylines_clear
 
 __all__ = ["DEFAULT_ITERATIONS", "Search", "seeded_global_random"]
 
@@ -90,9 +99,12 @@ class Search:
         """True once any limit is reached."""
         return self.clock.exhausted(iterations=self.iterations, evaluations=self.evaluations)
 
-    def evaluate(self, genes: np.ndarray) -> np.ndarray:
-        """Penalised costs of a batch; candidates beyond the evaluation limit get ``inf``."""
-        genes = np.asarray(genes)
+    def evaluate(self, genes: np.ndarray | list[np.ndarray]) -> np.ndarray:
+        """Penalised costs of a batch (an array, or a list for variable-length encodings).
+
+        Candidates beyond the evaluation limit get ``inf``.
+        """
+        genes = genes if isinstance(genes, list) else np.asarray(genes)
         costs = np.full(len(genes), math.inf)
         n = int(min(len(genes), self.remaining_evaluations))
         if n <= 0:
@@ -104,7 +116,7 @@ class Search:
         if cost[i] < self.best_cost:
             self.best_cost = float(cost[i])
             self.best_violation = float(violation[i])
-            self.best_genes = genes[i].copy()
+            self.best_genes = np.array(genes[i], copy=True)
         return costs
 
     def report(self) -> None:
@@ -124,9 +136,11 @@ class Search:
         if self.best_genes is None:
             return PlanResult(Status.FAILED, message="no candidate was evaluated within the budget", **common)
         if self.best_violation > 0:
+            router = getattr(self.encoding, "router", None)
+            why = "" if router is None or router.connected else " (the goal cell is unreachable from the start cell)"
             return PlanResult(
                 Status.FAILED,
-                message=f"the best candidate still violates the constraints (violation {self.best_violation:.3g})",
+                message=f"the best candidate still violates the constraints (violation {self.best_violation:.3g}){why}",
                 **common,
             )
         from pathzoo.harness.validation import validate_path  # imports numba: not at registration time
@@ -136,4 +150,14 @@ class Search:
         if not verdict:
             message = f"the best candidate is not a valid path: {verdict.reason}"
             return PlanResult(Status.FAILED, message=message, **common)
+        near = self._segments_within_margin(path)
+        if near:
+            message = f"the best candidate has {near} segment(s) within {MARGIN_CELLS:g} cells of a blocked cell"
+            return PlanResult(Status.FAILED, message=message, **common)
         return PlanResult(Status.SOLVED, path=path, **common)
+
+    def _segments_within_margin(self, path: np.ndarray) -> int:
+        """Segments of a 2-D path closer than :data:`~pathzoo_baselines.margin.MARGIN_CELLS` to a blocked square."""
+        sc = self.scenario
+        cells = to_cell_units(path, sc.cell_size)[None]
+        return int(polylines_clear(sc.blocked, cells, MARGIN_CELLS)[0])
