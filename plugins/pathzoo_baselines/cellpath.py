@@ -18,12 +18,12 @@ Operators (all public, usable by other planners):
   Parents with no shared inner cell are returned unchanged;
 - :func:`reroute_mutation`: pick two positions ``i < j`` at most
   ``max(2, ceil(reroute_fraction * steps))`` steps apart (a share of the
-  chain, so the operator scales with the map) and replace the piece between them with a
-  new one. With probability 1/2 the new piece goes through a random usable
-  cell within the piece's neighbourhood (a detour that explores), otherwise
-  it is the shortest route between the two cells (the "shortcut" local step,
-  the grid analogue of Hu & Yang's deletion/improvement operators). Loops
-  are cut.
+  chain, so the operator scales with the map) and replace the piece between
+  them. With probability ``shortcut_rate`` (default 1/2) the new piece is the
+  shortest route between the two cells (the "shortcut" local step, the grid
+  analogue of Hu & Yang's deletion/improvement operators); otherwise it goes
+  through a random usable cell near the piece (a detour that explores).
+  Loops are cut.
 
 The cost is the graph length of the chain (3-D on terrain); the violation is
 0, except for heading changes beyond ``vehicle.max_turn_deg`` when that
@@ -124,10 +124,12 @@ def crossover_at_shared_node(
 
 
 def reroute_mutation(
-    nodes: np.ndarray, router: CellRouter, rng: np.random.Generator, reroute_fraction: float
+    nodes: np.ndarray, router: CellRouter, rng: np.random.Generator, reroute_fraction: float, shortcut_rate: float
 ) -> np.ndarray:
     """Replace a piece of at most ``max(2, ceil(reroute_fraction * steps))`` steps by a detour or a shortcut.
 
+    The piece becomes the shortest route between its ends with probability
+    ``shortcut_rate``, otherwise a route through a random usable cell near it.
     See the module docstring.
     """
     nodes = np.asarray(nodes, dtype=np.int64)
@@ -136,7 +138,7 @@ def reroute_mutation(
     reroute_span = max(2, math.ceil(reroute_fraction * (len(nodes) - 1)))
     i = int(rng.integers(len(nodes) - 1))
     j = int(rng.integers(i + 1, min(len(nodes), i + 1 + reroute_span)))
-    if rng.random() < 0.5:
+    if rng.random() >= shortcut_rate:
         w = router.width
         u, v = nodes[i], nodes[j]
         radius = max(2, int(math.ceil(0.5 * max(abs(u // w - v // w), abs(u % w - v % w)))) + 1)
@@ -162,6 +164,8 @@ class CellPathEncoding:
         The problem (``grid2d`` or ``terrain``).
     reroute_fraction : float
         Longest piece a mutation replaces, as a share of the chain's steps.
+    shortcut_rate : float
+        Probability that a mutation is the shortcut rather than a detour.
     penalty : float
         Cost of one unit of violation (turns), in map diagonals.
     """
@@ -169,10 +173,11 @@ class CellPathEncoding:
     integer = True
     variable_length = True
 
-    def __init__(self, scenario: Scenario, *, reroute_fraction: float, penalty: float) -> None:
+    def __init__(self, scenario: Scenario, *, reroute_fraction: float, shortcut_rate: float, penalty: float) -> None:
         self.scenario = scenario
         self.router = CellRouter(scenario)
         self.reroute_fraction = float(reroute_fraction)
+        self.shortcut_rate = float(shortcut_rate)
         self.n_genes = 0  # variable
         self.low = np.zeros(0)
         self.high = np.zeros(0)
@@ -190,7 +195,7 @@ class CellPathEncoding:
 
     def mutate(self, nodes: np.ndarray, rng: np.random.Generator) -> np.ndarray:
         """:func:`reroute_mutation`."""
-        return reroute_mutation(nodes, self.router, rng, self.reroute_fraction)
+        return reroute_mutation(nodes, self.router, rng, self.reroute_fraction, self.shortcut_rate)
 
     def evaluate(self, genes: list[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
         """``(cost, violation)`` of a list of chains."""

@@ -49,7 +49,7 @@ def make_encoding(scenario: Scenario, params: Mapping[str, Any]) -> Encoding:
     ``params`` holds the entries of
     :data:`~pathzoo_baselines.params.ENCODING_PARAMS` and, for
     ``encoding='grid'``, ``moves_factor``; for ``encoding='cells'``,
-    ``reroute_fraction``.
+    ``reroute_fraction`` and ``shortcut_rate``.
 
     - ``cells``: :class:`~pathzoo_baselines.cellpath.CellPathEncoding`
       (variable-length feasible chains of cells; GA only);
@@ -62,7 +62,12 @@ def make_encoding(scenario: Scenario, params: Mapping[str, Any]) -> Encoding:
     if params["encoding"] == "cells":
         from pathzoo_baselines.cellpath import CellPathEncoding
 
-        return CellPathEncoding(scenario, reroute_fraction=params["reroute_fraction"], penalty=params["penalty"])
+        return CellPathEncoding(
+            scenario,
+            reroute_fraction=params["reroute_fraction"],
+            shortcut_rate=params["shortcut_rate"],
+            penalty=params["penalty"],
+        )
     if params["encoding"] == "routed":
         from pathzoo_baselines.routed import RoutedWaypointEncoding
 

@@ -31,6 +31,10 @@ GA_PARAMS: Mapping[str, Param] = {
         0.3, "cells encoding: longest piece a mutation reroutes, as a share of the chain", low=0.0, low_open=True,
         high=1.0,
     ),
+    "shortcut_rate": Param(
+        0.5, "cells encoding: probability that a mutation replaces the piece by the shortest route between its "
+        "ends (a local step) rather than by a detour through a random nearby cell", low=0.0, high=1.0,
+    ),
     "moves_factor": Param(2.0, "grid encoding: moves per chromosome, as a multiple of H + W", low=0.05, high=100.0),
     "population": Param(50, "population size", low=2, high=100_000),
     "tournament": Param(3, "tournament size of the selection", low=1, high=1000),
