@@ -21,7 +21,11 @@ class Encoding(Protocol):
     low, high : ndarray of shape (n_genes,)
         Inclusive bounds of each gene.
     integer : bool
-        True when genes are integers (the grid-path encoding).
+        True when genes are integers (the grid-move and cell-chain encodings).
+
+    Encodings with ``variable_length = True`` (the cell chains) take and give
+    candidates as a list of int64 arrays of different lengths instead of an
+    ``(n, n_genes)`` array, and bring their own ``crossover`` and ``mutate``.
     """
 
     n_genes: int

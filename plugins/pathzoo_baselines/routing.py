@@ -5,7 +5,7 @@ neighbourhood graph (:attr:`Scenario.graph`: 8-connected, no corner cutting,
 slope limits on terrain), so every route it returns is a chain of graph
 edges and therefore a valid path under the judge's rules. A* (octile
 heuristic, admissible for 2-D and 3-D edge lengths) uses the binary heap of
-the exact planners (:mod:`pathzoo_exact.kernel`); its per-node arrays are
+the exact planners (:mod:`pathzoo_exact.kernel`, also its ``trace_path``); its per-node arrays are
 reset lazily with a search counter, so a query costs what it expands, not
 the map size.
 
@@ -25,7 +25,7 @@ from scipy import ndimage
 from scipy.sparse.csgraph import breadth_first_order
 
 from pathzoo.core import Scenario
-from pathzoo_exact.kernel import heap_pop, heap_push
+from pathzoo_exact.kernel import heap_pop, heap_push, trace_path
 
 __all__ = ["CellRouter", "remove_loops", "route_kernel"]
 
@@ -34,13 +34,13 @@ _SQRT2_M1 = float(np.sqrt(2.0) - 1.0)
 
 @numba.njit(cache=True)
 def route_kernel(indptr, indices, weights, width, step, source, target, g, parent, seen, closed, stamp,
-                 heap_node, heap_f, heap_g, out):
-    """A* from ``source`` to ``target``; writes the route's nodes into ``out``.
+                 heap_node, heap_f, heap_g):
+    """A* from ``source`` to ``target``: returns 1 when found (follow ``parent`` from ``target``), else a code.
 
     ``seen`` and ``closed`` hold the number of the search that last touched a
     node; a node's ``g`` and ``parent`` are valid only when ``seen == stamp``.
-    Returns the number of nodes written, ``-1`` when ``target`` is unreachable
-    and ``-2`` when the heap or ``out`` is too small (grow them and retry).
+    Returns ``-1`` when ``target`` is unreachable and ``-2`` when the heap is
+    too small (grow it and retry).
     """
     tr, tc = target // width, target % width
     g[source] = 0.0
@@ -72,20 +72,7 @@ def route_kernel(indptr, indices, weights, width, step, source, target, g, paren
                 if size >= cap:
                     return -2
                 size = heap_push(heap_node, heap_f, heap_g, size, v, cand + h, cand)
-    if not found:
-        return -1
-    n = 0
-    u = target
-    while u != -1:
-        n += 1
-        u = parent[u]
-    if n > out.shape[0]:
-        return -2
-    u = target
-    for i in range(n - 1, -1, -1):
-        out[i] = u
-        u = parent[u]
-    return n
+    return 1 if found else -1
 
 
 @numba.njit(cache=True)
@@ -153,7 +140,6 @@ class CellRouter:
         self._heap_node = np.empty(4096, dtype=np.int64)
         self._heap_f = np.empty(4096)
         self._heap_g = np.empty(4096)
-        self._out = np.empty(1024, dtype=np.int64)
         self.scratch = np.full(n, -1, dtype=np.int64)
         adjacency = graph.to_sparse()
         start, goal = scenario.start_node, scenario.goal_node
@@ -178,24 +164,23 @@ class CellRouter:
         """A shortest chain of graph nodes from ``source`` to ``target`` (both included), or None if there is none."""
         while True:
             self._stamp += 1
-            n = route_kernel(
+            code = route_kernel(
                 self._indptr, self._indices, self._weights, self.width, self._step, int(source), int(target),
                 self._g, self._parent, self._seen, self._closed, self._stamp,
-                self._heap_node, self._heap_f, self._heap_g, self._out,
+                self._heap_node, self._heap_f, self._heap_g,
             )
-            if n >= 0:
-                return self._out[:n].copy()
-            if n == -1:
+            if code == 1:
+                return trace_path(self._parent, int(target))
+            if code == -1:
                 return None
             self._grow()
 
     def _grow(self) -> None:
-        """Double the heap and the output buffer after a search ran out of room."""
+        """Double the heap after a search ran out of room (the search is then run again)."""
         size = 2 * len(self._heap_node)
         self._heap_node = np.empty(size, dtype=np.int64)
         self._heap_f = np.empty(size)
         self._heap_g = np.empty(size)
-        self._out = np.empty(2 * len(self._out), dtype=np.int64)
 
     def chain(self, stops: np.ndarray) -> np.ndarray:
         """Routes through ``stops`` in order, concatenated, loops removed; every stop must be usable."""
@@ -218,7 +203,7 @@ def _compile() -> None:
     indices = np.array([1, 0], dtype=np.int64)
     buf = np.zeros(2, dtype=np.int64)
     route_kernel(indptr, indices, np.ones(2), 2, 1.0, 0, 1, np.zeros(2), np.full(2, -1, dtype=np.int64),
-                 buf.copy(), buf.copy(), 1, np.empty(8, dtype=np.int64), np.empty(8), np.empty(8), np.empty(4, dtype=np.int64))
+                 buf.copy(), buf.copy(), 1, np.empty(8, dtype=np.int64), np.empty(8), np.empty(8))
     _remove_loops(np.array([0, 1, 0], dtype=np.int64), np.full(2, -1, dtype=np.int64))
 
 
