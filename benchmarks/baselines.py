@@ -91,10 +91,12 @@ def spread_problems(map_stem: str, count: int, min_bucket: int = 0) -> list[str]
     return [ids[i] for i in picks]
 
 
-def run_group(planner_id: str, scenario_ids: list[str], seeds: int, budget: pathzoo.Budget) -> Tally:
-    """Plan every scenario with every seed, judge each path and tally the outcomes."""
+def run_group(
+    planner_id: str, scenario_ids: list[str], seeds: int, budget: pathzoo.Budget, **params: object
+) -> Tally:
+    """Plan every scenario with every seed (planner ``params`` over the defaults), judge each path, tally."""
     tally = Tally()
-    planner = pathzoo.make_planner(planner_id)
+    planner = pathzoo.make_planner(planner_id, **params)
     ratio = LengthRatio()
     for sid in scenario_ids:
         scenario = pathzoo.load_scenario(sid)
@@ -166,7 +168,20 @@ def metaheuristics(quick: bool) -> bool:
               *(f"\n    failed {f}" for f in t.failures[:3]))
         all_met &= touching == 0
         print(_line("valid paths touching a blocked closed square", str(touching), "0", touching == 0))
+    ablation(per_map, room)
     return all_met
+
+
+def ablation(per_map: int, room: list[str]) -> None:
+    """``evo.ga`` without its local step (``shortcut_rate=0``): how much of its strength the step brings (no target)."""
+    print("\nevo.ga with shortcut_rate=0 (no shortest-route local step; no target, for the docs)")
+    small = [sid for stem in SMALL_MAPS for sid in spread_problems(stem, per_map)]
+    for label, ids, budget in (("32x32 maps", small, pathzoo.Budget(time_s=2.0)),
+                               ("8room_000, buckets >= 100", room, pathzoo.Budget(time_s=10.0))):
+        t = run_group("evo.ga", ids, 1, budget, shortcut_rate=0.0)
+        median = float(np.median(t.ratios)) if t.ratios else float("nan")
+        print(f"  {label}: success {t.success:.0%} of {t.runs}, median length / optimum {median:.3f}, "
+              f"touching {t.touching}")
 
 
 # ---------------------------------------------------------------------------------------------------------

@@ -38,6 +38,7 @@ corner, and a graph edge touches none.
 from __future__ import annotations
 
 import math
+from typing import Callable
 
 import numba
 import numpy as np
@@ -172,6 +173,7 @@ class CellPathEncoding:
 
     integer = True
     variable_length = True
+    costly = True  # graph searches per candidate: the search looks at the clock between candidates
 
     def __init__(self, scenario: Scenario, *, reroute_fraction: float, shortcut_rate: float, penalty: float) -> None:
         self.scenario = scenario
@@ -183,11 +185,18 @@ class CellPathEncoding:
         self.high = np.zeros(0)
         self._weight = float(penalty) * float(np.hypot(*scenario.extent))
 
-    def initial(self, rng: np.random.Generator, n: int) -> list[np.ndarray]:
-        """``n`` random feasible chains (the start cell alone when the goal cell is unreachable)."""
+    def initial(self, rng: np.random.Generator, n: int, stop: Callable[[], bool] | None = None) -> list[np.ndarray]:
+        """``n`` random feasible chains (the start cell alone when the goal cell is unreachable).
+
+        When ``stop()`` turns true (the time limit), the chains not yet drawn
+        are copies of those drawn (at least one is).
+        """
         if not self.router.connected:
             return [np.array([self.scenario.start_node], dtype=np.int64) for _ in range(n)]
-        return [random_individual(self.router, rng) for _ in range(n)]
+        out: list[np.ndarray] = []
+        while len(out) < n and not (out and stop is not None and stop()):
+            out.append(random_individual(self.router, rng))
+        return [out[i % len(out)].copy() for i in range(n)]
 
     def crossover(self, a: np.ndarray, b: np.ndarray, rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray]:
         """:func:`crossover_at_shared_node`."""

@@ -72,9 +72,15 @@ def _mate_chains(a: list, b: list, *, encoding: Any, rng: np.random.Generator) -
     return a, b
 
 
-def _mutate_chain(a: list, *, encoding: Any, rng: np.random.Generator) -> tuple[list]:
-    """DEAP mutate operator for chains: :func:`~pathzoo_baselines.cellpath.reroute_mutation`, in place."""
-    a[:] = encoding.mutate(np.asarray(a), rng).tolist()
+def _mutate_chain(a: list, *, encoding: Any, rng: np.random.Generator, stop: Callable[[], bool]) -> tuple[list]:
+    """DEAP mutate operator for chains: :func:`~pathzoo_baselines.cellpath.reroute_mutation`, in place.
+
+    Once ``stop()`` is true (the time limit), the chain is left as it is: a
+    mutation runs graph searches, which on very large maps would overrun the
+    budget by a whole generation.
+    """
+    if not stop():
+        a[:] = encoding.mutate(np.asarray(a), rng).tolist()
     return (a,)
 
 
@@ -141,7 +147,7 @@ class GaPlanner(BaselinePlanner):
         variable = getattr(encoding, "variable_length", False)
         if variable:
             toolbox.register("mate", _mate_chains, encoding=encoding, rng=rng)
-            toolbox.register("mutate", _mutate_chain, encoding=encoding, rng=rng)
+            toolbox.register("mutate", _mutate_chain, encoding=encoding, rng=rng, stop=search.out_of_time)
         elif encoding.integer:
             indpb = min(1.0, self.gene_rate / encoding.n_genes)
             toolbox.register("mate", tools.cxTwoPoint)
@@ -163,7 +169,7 @@ class GaPlanner(BaselinePlanner):
             return search.evaluations - before
 
         with seeded_global_random(rng):
-            pop = [individual(row.tolist()) for row in encoding.initial(rng, self.population)]
+            pop = [individual(row.tolist()) for row in search.initial(rng, self.population)]
             nevals = assess(pop)
             logbook.record(gen=0, nevals=nevals, min=min(ind.fitness.values[0] for ind in pop))
             search.report()

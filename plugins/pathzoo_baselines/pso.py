@@ -62,7 +62,7 @@ class PsoPlanner(BaselinePlanner):
         vmax = self.v_max * float(np.max(scenario.extent))
         clamp = (-vmax, vmax)
         options = {"w": self.w, "c1": self.c1, "c2": self.c2}
-        init = encoding.initial(rng, self.particles)
+        init = search.initial(rng, self.particles)
         with seeded_global_random(rng):
             swarm = create_swarm(
                 n_particles=self.particles, dimensions=encoding.n_genes, options=options,

@@ -36,6 +36,8 @@ centres of K cells evenly spaced along one such path.
 
 from __future__ import annotations
 
+from typing import Callable
+
 import numpy as np
 
 from pathzoo.core import Scenario
@@ -61,6 +63,7 @@ class RoutedWaypointEncoding:
     """
 
     integer = False
+    costly = True  # graph searches per candidate: the search looks at the clock between candidates
 
     def __init__(self, scenario: Scenario, *, waypoints: int, penalty: float) -> None:
         self.scenario = scenario
@@ -99,12 +102,19 @@ class RoutedWaypointEncoding:
                 out.append(router.route(a, b)[1:])
         return remove_loops(np.concatenate(out), scratch=router.scratch)
 
-    def initial(self, rng: np.random.Generator, n: int) -> np.ndarray:
-        """``n`` candidates whose points are evenly spaced cells of random feasible paths."""
+    def initial(self, rng: np.random.Generator, n: int, stop: Callable[[], bool] | None = None) -> np.ndarray:
+        """``n`` candidates whose points are evenly spaced cells of random feasible paths.
+
+        When ``stop()`` turns true (the time limit), the candidates not yet
+        drawn are copies of those drawn (at least one is).
+        """
         out = np.empty((n, self.n_genes))
         if not self.router.connected:
             return np.tile(np.resize(self.scenario.start, self.n_genes), (n, 1))
         for i in range(n):
+            if i > 0 and stop is not None and stop():
+                out[i:] = out[np.arange(i, n) % i]
+                break
             path = self.router.random_path(rng, vias=1)
             pick = np.rint(np.linspace(0, len(path) - 1, self.k + 2)[1:-1]).astype(np.int64)
             out[i] = self.scenario.point_of(path[pick]).ravel()

@@ -9,7 +9,11 @@ Budgets
   the rest get cost ``inf`` and are not counted, so the limit is never
   exceeded.
 - ``time_s``: checked between generations, so the limit is overshot by at
-  most one generation.
+  most one generation; for the costly encodings (``routed``, ``cells``:
+  graph searches per candidate) also while drawing the initial candidates
+  and every few evaluations, so on very large maps the overshoot is a few
+  candidates, not a generation (the candidates left get ``inf``, uncounted,
+  and missing initial candidates are copies of the ones drawn).
 - No limit at all: :data:`DEFAULT_ITERATIONS` generations.
 
 Result
@@ -47,6 +51,9 @@ __all__ = ["DEFAULT_ITERATIONS", "Search", "seeded_global_random"]
 
 DEFAULT_ITERATIONS = 200
 """Generations run when the budget sets no limit at all."""
+
+_TIMED_CHUNK = 4
+"""Candidates of a costly encoding evaluated between two looks at the clock."""
 
 
 @contextmanager
@@ -99,25 +106,49 @@ class Search:
         """True once any limit is reached."""
         return self.clock.exhausted(iterations=self.iterations, evaluations=self.evaluations)
 
+    def out_of_time(self) -> bool:
+        """True once a time limit is set and spent."""
+        return self.budget.time_s is not None and self.clock.remaining_time <= 0.0
+
+    def initial(self, rng: np.random.Generator, n: int) -> np.ndarray | list[np.ndarray]:
+        """The encoding's ``n`` initial candidates; a costly encoding stops drawing new ones when time is up."""
+        if getattr(self.encoding, "costly", False):
+            return self.encoding.initial(rng, n, stop=self.out_of_time)
+        return self.encoding.initial(rng, n)
+
     def evaluate(self, genes: np.ndarray | list[np.ndarray]) -> np.ndarray:
         """Penalised costs of a batch (an array, or a list for variable-length encodings).
 
-        Candidates beyond the evaluation limit get ``inf``.
+        Candidates beyond the evaluation limit get ``inf``. So do, for a
+        costly encoding (one that runs graph searches per candidate), the
+        candidates left when the time limit runs out during the batch; they
+        are not counted as evaluations.
         """
         genes = genes if isinstance(genes, list) else np.asarray(genes)
         costs = np.full(len(genes), math.inf)
         n = int(min(len(genes), self.remaining_evaluations))
-        if n <= 0:
+        if getattr(self.encoding, "costly", False) and self.budget.time_s is not None:
+            done = 0
+            while done < n and not (self.evaluations > 0 and self.out_of_time()):
+                step = min(n, done + _TIMED_CHUNK)
+                costs[done:step] = self._evaluate(genes[done:step])
+                done = step
             return costs
-        cost, violation = self.encoding.evaluate(genes[:n])
-        costs[:n] = cost
+        if n > 0:
+            costs[:n] = self._evaluate(genes[:n])
+        return costs
+
+    def _evaluate(self, genes: np.ndarray | list[np.ndarray]) -> np.ndarray:
+        """Evaluate a non-empty batch, count it and update the best; returns its costs."""
+        n = len(genes)
+        cost, violation = self.encoding.evaluate(genes)
         self.evaluations += n
         i = int(np.argmin(cost))
         if cost[i] < self.best_cost:
             self.best_cost = float(cost[i])
             self.best_violation = float(violation[i])
             self.best_genes = np.array(genes[i], copy=True)
-        return costs
+        return cost
 
     def report(self) -> None:
         """Tell the harness the best cost so far (called once per generation, and after initialisation)."""
