@@ -82,13 +82,25 @@ class Search:
         The run's limits (see the module docstring).
     progress : callable, optional
         The harness's ``progress(iteration, evaluations, best_cost)``.
+    started : float, optional
+        ``time.perf_counter()`` when the run started (default: now), so that
+        building the encoding counts against a time limit.
     """
 
-    def __init__(self, scenario: Scenario, encoding: Encoding, budget: Budget, progress: ProgressCallback | None):
+    def __init__(
+        self,
+        scenario: Scenario,
+        encoding: Encoding,
+        budget: Budget,
+        progress: ProgressCallback | None,
+        started: float | None = None,
+    ):
         self.scenario = scenario
         self.encoding = encoding
         self.budget = Budget(iterations=DEFAULT_ITERATIONS) if budget.unlimited else budget
         self.clock = self.budget.start()
+        if started is not None:
+            self.clock.started = started
         self._progress = progress
         self.iterations = 0
         self.evaluations = 0
