@@ -14,7 +14,9 @@ as in :mod:`pathzoo_baselines.waypoints`, so any real-valued optimiser
    from every blocked closed square (:func:`~pathzoo_baselines.margin.segment_clear`),
    otherwise, and always on terrain (where a straight segment could break a
    slope limit), by the shortest grid route between them
-   (:meth:`CellRouter.route`: graph edges only).
+   (:meth:`CellRouter.route`: graph edges only). A stop the path so far
+   cannot reach (one-way slopes on terrain) is skipped; every usable cell
+   reaches the goal.
 3. **Cut loops** (:func:`~pathzoo_baselines.routing.remove_loops`).
 
 The path is the decoded cells' centres, from exactly the start to exactly the
@@ -91,7 +93,8 @@ class RoutedWaypointEncoding:
         w = router.width
         blocked = self.scenario.blocked
         out = [stops[:1]]
-        for a, b in zip(stops[:-1], stops[1:]):
+        a = stops[0]
+        for b in stops[1:]:
             if a == b:
                 continue
             if self._straight and segment_clear(
@@ -99,7 +102,11 @@ class RoutedWaypointEncoding:
             ):
                 out.append(np.array([b], dtype=np.int64))
             else:
-                out.append(router.route(a, b)[1:])
+                piece = router.route(a, b)
+                if piece is None:  # one-way slopes on terrain: skip this stop (the goal is reachable from a)
+                    continue
+                out.append(piece[1:])
+            a = b
         return remove_loops(np.concatenate(out), scratch=router.scratch)
 
     def initial(self, rng: np.random.Generator, n: int, stop: Callable[[], bool] | None = None) -> np.ndarray:

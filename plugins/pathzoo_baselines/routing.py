@@ -183,11 +183,19 @@ class CellRouter:
         self._heap_g = np.empty(size)
 
     def chain(self, stops: np.ndarray) -> np.ndarray:
-        """Routes through ``stops`` in order, concatenated, loops removed; every stop must be usable."""
+        """Routes through ``stops`` in order, concatenated, loops removed.
+
+        When a leg has no route (one-way slopes on terrain), the chain is the
+        direct route from the first stop to the last; the last must be
+        reachable from the first.
+        """
         parts = [np.asarray(stops[:1], dtype=np.int64)]
         for a, b in zip(stops[:-1], stops[1:]):
             if a != b:
-                parts.append(self.route(a, b)[1:])
+                piece = self.route(a, b)
+                if piece is None:
+                    return self.route(stops[0], stops[-1])
+                parts.append(piece[1:])
         return remove_loops(np.concatenate(parts), scratch=self.scratch)
 
     def random_path(self, rng: np.random.Generator, vias: int = 1) -> np.ndarray:

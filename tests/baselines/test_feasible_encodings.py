@@ -187,3 +187,27 @@ def test_a_tight_time_limit_is_kept_on_a_512_map(pid):
     result = planner.plan(sc, budget=Budget(time_s=0.3), rng=np.random.default_rng(0))
     assert time.perf_counter() - started < 0.3 + 1.5
     assert result.iterations <= 1
+
+
+def test_one_way_slopes_never_break_the_decoder_or_the_mutation():
+    """On terrain the graph is directed; stops that cannot reach each other are skipped, not a crash."""
+    cols = np.mgrid[0:12, 0:12][1]
+    cliff = np.where(cols >= 6, 3.0, 0.0)  # a step down to the west: too steep to climb, fine to descend
+    sc = pathzoo.Scenario(
+        id="test.one-way", kind="terrain", occupancy=np.zeros((12, 12), dtype=bool), cell_size=1.0,
+        start=np.array([10.5, 5.5]), goal=np.array([1.5, 5.5]), elevation=cliff,
+        vehicle=pathzoo.VehicleModel(max_climb_deg=45.0, max_descent_deg=85.0),
+    )
+    router = CellRouter(sc)
+    rng = np.random.default_rng(6)
+    one_way = 0
+    for _ in range(200):
+        a, b = rng.choice(router.usable_nodes, 2)
+        if router.route(a, b) is None:
+            one_way += 1
+        chain = router.chain(np.array([sc.start_node, a, b, sc.goal_node]))
+        assert is_graph_chain(sc, chain)
+    assert one_way > 0  # the map has pairs of usable cells with no route between them
+    enc = RoutedWaypointEncoding(sc, waypoints=4, penalty=1.0)
+    for x in rng.uniform(0, 1, (30, enc.n_genes)) * enc.high:
+        assert is_graph_chain(sc, enc.decode(x))
