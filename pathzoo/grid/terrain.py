@@ -33,6 +33,7 @@ __all__ = [
     "segment_slope_range",
     "path_slope_ranges",
     "lattice_slope_range",
+    "segments_slope_range",
     "slope_exceeds",
     "MAX_PIECE_CELLS",
 ]
@@ -273,6 +274,15 @@ def _path_slope_ranges(z: np.ndarray, u: np.ndarray) -> tuple[np.ndarray, np.nda
 def path_slope_ranges(elevation: np.ndarray, path_cells: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """:func:`segment_slope_range` for every segment of a polyline in cell units (one compiled pass)."""
     return _path_slope_ranges(np.ascontiguousarray(elevation, dtype=np.float64), np.ascontiguousarray(path_cells[:, :2], dtype=np.float64))
+
+
+def segments_slope_range(elevation: np.ndarray, a_cells: np.ndarray, b_cells: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`segment_slope_range` of many independent segments ``a[k] -> b[k]`` (cell units, one compiled pass)."""
+    return _segment_pairs_slope(
+        np.ascontiguousarray(elevation, dtype=np.float64),
+        np.ascontiguousarray(a_cells[:, :2], dtype=np.float64),
+        np.ascontiguousarray(b_cells[:, :2], dtype=np.float64),
+    )
 
 
 def lattice_slope_range(elevation: np.ndarray, offset: tuple[int, int]) -> tuple[np.ndarray, np.ndarray]:

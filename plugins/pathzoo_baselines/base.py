@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import importlib
+import time
 from typing import Any, ClassVar
 
 from pathzoo.core import Budget, Planner, ProgressCallback, Scenario
@@ -28,7 +29,10 @@ class BaselinePlanner(Planner):
 
     def __init__(self, **params: Any) -> None:
         super().__init__(**params)
-        shared = ("pathzoo_baselines.waypoints", "pathzoo_baselines.gridpath", "pathzoo.rules")
+        shared = (
+            "pathzoo_baselines.waypoints", "pathzoo_baselines.gridpath", "pathzoo_baselines.routed",
+            "pathzoo_baselines.cellpath", "pathzoo.rules",
+        )
         for module in (*shared, *self.preload):
             try:
                 importlib.import_module(module)
@@ -37,6 +41,7 @@ class BaselinePlanner(Planner):
 
     def _start(self, scenario: Scenario, budget: Budget, progress: ProgressCallback | None) -> tuple[Encoding, Search]:
         """Check the scenario kind, build the encoding this planner's parameters ask for and start the search."""
+        started = time.perf_counter()
         self.check_supports(scenario)
-        encoding = make_encoding(scenario, self._values)
-        return encoding, Search(scenario, encoding, budget, progress)
+        encoding = make_encoding(scenario, self._values)  # counts against a time limit: it may search the graph
+        return encoding, Search(scenario, encoding, budget, progress, started=started)

@@ -11,12 +11,14 @@ where ``diagonal`` is the map diagonal in metres and ``violation`` (unitless,
 - **collision**: the number of blocked or out-of-grid cells touched by the
   segments, under the closed-cell rule of :mod:`pathzoo.grid.segments`
   (:func:`~pathzoo.grid.segments.count_blocked_cells_2d`, on the same snapped
-  cell units as the validator), so it is 0 exactly when every segment passes;
-- **slope** (terrain): the horizontal length, in cells, of the segment pieces
-  that climb or descend beyond the vehicle's limits. Pieces are cut exactly as
-  :func:`pathzoo.grid.terrain.segment_profile` cuts them (same piece count,
-  same fractions, same bilinear heights), and the limit is applied without the
-  validator's 1e-7 degree tolerance, so a 0 here is never rejected there;
+  cell units as the validator), plus one for each segment that touches none
+  but passes within :data:`~pathzoo_baselines.margin.MARGIN_CELLS` of one;
+  so it is 0 only when every segment passes with that margin;
+- **slope** (terrain): the horizontal length, in cells, of the segments whose
+  exact gradient range (:func:`pathzoo.grid.terrain.segments_slope_range`, the
+  validator's own slope rule) breaks the vehicle's climb or descent limit
+  (:func:`pathzoo.grid.terrain.slope_exceeds`), so a 0 here is never rejected
+  there;
 - **turns**: the number of heading changes beyond ``vehicle.max_turn_deg``
   (only when that limit is below 180 degrees; zero-length segments are not
   skipped here as the validator skips them, which is why the final path is
@@ -34,22 +36,30 @@ import numpy as np
 
 from pathzoo.core import Scenario
 from pathzoo.grid.segments import count_blocked_cells_2d, to_cell_units
-from pathzoo.grid.terrain import MAX_PIECE_CELLS, bilinear_elevation
+from pathzoo.grid.terrain import MAX_PIECE_CELLS, bilinear_elevation, segments_slope_range, slope_exceeds
+from pathzoo_baselines.margin import MARGIN_CELLS, segment_clear
 
 __all__ = ["PathCost", "collision_counts"]
 
 
 @numba.njit(cache=True)
-def collision_counts(blocked: np.ndarray, cells: np.ndarray) -> np.ndarray:
-    """Blocked cells touched by each polyline; ``cells`` has shape (n, m, 2) in cell units (x, y)."""
+def collision_counts(blocked: np.ndarray, cells: np.ndarray, margin: float) -> np.ndarray:
+    """Collision measure of each polyline; ``cells`` has shape (n, m, 2) in cell units (x, y).
+
+    Per segment: the blocked cells it touches, or 1 when it touches none but
+    comes within ``margin`` of one (:func:`~pathzoo_baselines.margin.segment_clear`),
+    so an optimiser gains nothing by sliding along a wall.
+    """
     n, m = cells.shape[0], cells.shape[1]
     out = np.zeros(n)
     for i in range(n):
         total = 0
         for k in range(m - 1):
-            total += count_blocked_cells_2d(
-                blocked, cells[i, k, 0], cells[i, k, 1], cells[i, k + 1, 0], cells[i, k + 1, 1]
-            )
+            x0, y0, x1, y1 = cells[i, k, 0], cells[i, k, 1], cells[i, k + 1, 0], cells[i, k + 1, 1]
+            touched = count_blocked_cells_2d(blocked, x0, y0, x1, y1)
+            if touched == 0 and not segment_clear(blocked, x0, y0, x1, y1, margin):
+                touched = 1
+            total += touched
         out[i] = total
     return out
 
@@ -58,7 +68,7 @@ def _compile() -> None:
     """Compile :func:`collision_counts` for read-only maps now, at import, not inside a timed ``plan()``."""
     blocked = np.zeros((2, 2), dtype=bool)
     blocked.setflags(write=False)
-    collision_counts(blocked, np.full((1, 2, 2), 0.5))
+    collision_counts(blocked, np.full((1, 2, 2), 0.5), MARGIN_CELLS)
 
 
 _compile()
@@ -85,7 +95,7 @@ class PathCost:
         """Return ``(cost, violation)`` for polylines of shape (n, m, 2) in world coordinates."""
         sc = self.scenario
         n = paths.shape[0]
-        violation = collision_counts(sc.blocked, to_cell_units(paths, sc.cell_size))
+        violation = collision_counts(sc.blocked, to_cell_units(paths, sc.cell_size), MARGIN_CELLS)
         if self._terrain:
             length, slope_excess = self._terrain_terms(paths)
             violation = violation + slope_excess
@@ -100,7 +110,7 @@ class PathCost:
         return length + self.weight * violation, violation.reshape(n)
 
     def _terrain_terms(self, paths: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """3-D length and slope violation (cells), piece by piece as ``segment_profile`` cuts them."""
+        """3-D length (pieces as ``segment_profile`` cuts them) and slope violation (cells of bad segments)."""
         sc = self.scenario
         n, m = paths.shape[0], paths.shape[1]
         cs = sc.cell_size
@@ -123,12 +133,10 @@ class PathCost:
         seg = seg_of_point[idx]
         dz = z[idx + 1] - z[idx]
         dh = horiz[seg] / pieces[seg]
-        with np.errstate(invalid="ignore"):
-            deg = np.degrees(np.arctan2(dz, dh))
-            bad = ~(np.isfinite(deg) & (deg <= sc.vehicle.max_climb_deg) & (-deg <= sc.vehicle.max_descent_deg))
         piece_len = np.where(np.isfinite(dz), np.sqrt(dh * dh + np.nan_to_num(dz) ** 2), dh)
-        cand = seg // (m - 1)
-        length = np.bincount(cand, weights=piece_len, minlength=n)
-        excess = np.bincount(cand, weights=np.where(bad, dh / cs, 0.0), minlength=n)
+        length = np.bincount(seg // (m - 1), weights=piece_len, minlength=n)
+        lo, hi = segments_slope_range(sc.elevation, p0 / cs, (p0 + step) / cs)
+        bad = slope_exceeds(lo, hi, cs, sc.vehicle)
+        excess = np.bincount(np.arange(n_seg) // (m - 1), weights=np.where(bad, horiz / cs, 0.0), minlength=n)
         return length, excess
 

@@ -57,8 +57,8 @@ class CuckooPlanner(BaselinePlanner):
     """
 
     id: ClassVar[str] = "swarm.cuckoo"
-    version: ClassVar[str] = "1"
-    summary: ClassVar[str] = "Cuckoo search with Mantegna Lévy flights over K waypoints, penalised length"
+    version: ClassVar[str] = "2"
+    summary: ClassVar[str] = "Cuckoo search with Mantegna Lévy flights over K waypoints, decoded into a feasible path"
     params: ClassVar[Mapping[str, Param]] = {
         **ENCODING_PARAMS,
         "nests": Param(25, "number of host nests n", low=2, high=100_000),
@@ -78,7 +78,7 @@ class CuckooPlanner(BaselinePlanner):
         """Run cuckoo search until the budget is spent; see the class docstring."""
         encoding, search = self._start(scenario, budget, progress)
         low, high = encoding.low, encoding.high
-        nests = encoding.initial(rng, self.nests)
+        nests = search.initial(rng, self.nests)
         fitness = search.evaluate(nests)
         search.report()
 

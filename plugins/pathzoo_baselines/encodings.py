@@ -8,7 +8,7 @@ import numpy as np
 
 from pathzoo.core import Scenario
 
-__all__ = ["Encoding", "make_encoding"]
+__all__ = ["Encoding", "FEASIBLE_ENCODINGS", "make_encoding"]
 
 
 class Encoding(Protocol):
@@ -21,7 +21,11 @@ class Encoding(Protocol):
     low, high : ndarray of shape (n_genes,)
         Inclusive bounds of each gene.
     integer : bool
-        True when genes are integers (the grid-path encoding).
+        True when genes are integers (the grid-move and cell-chain encodings).
+
+    Encodings with ``variable_length = True`` (the cell chains) take and give
+    candidates as a list of int64 arrays of different lengths instead of an
+    ``(n, n_genes)`` array, and bring their own ``crossover`` and ``mutate``.
     """
 
     n_genes: int
@@ -39,13 +43,39 @@ class Encoding(Protocol):
         """The world path (N, 2) of one candidate, from ``scenario.start`` to ``scenario.goal``."""
 
 
+FEASIBLE_ENCODINGS: tuple[str, ...] = ("cells", "routed")
+"""Encodings whose every candidate decodes to a path that keeps clear of obstacles (see their modules)."""
+
+
 def make_encoding(scenario: Scenario, params: Mapping[str, Any]) -> Encoding:
     """Build the encoding a planner's parameters ask for.
 
     ``params`` holds the entries of
     :data:`~pathzoo_baselines.params.ENCODING_PARAMS` and, for
-    ``encoding='grid'``, ``moves_factor``.
+    ``encoding='grid'``, ``moves_factor``; for ``encoding='cells'``,
+    ``reroute_fraction`` and ``shortcut_rate``.
+
+    - ``cells``: :class:`~pathzoo_baselines.cellpath.CellPathEncoding`
+      (variable-length feasible chains of cells; GA only);
+    - ``routed``: :class:`~pathzoo_baselines.routed.RoutedWaypointEncoding`
+      (K waypoints, repairing decoder);
+    - ``grid``: :class:`~pathzoo_baselines.gridpath.MoveEncoding` (compass moves);
+    - ``waypoints``, ``spline``: :class:`~pathzoo_baselines.waypoints.WaypointEncoding`
+      (penalised straight or spline paths).
     """
+    if params["encoding"] == "cells":
+        from pathzoo_baselines.cellpath import CellPathEncoding
+
+        return CellPathEncoding(
+            scenario,
+            reroute_fraction=params["reroute_fraction"],
+            shortcut_rate=params["shortcut_rate"],
+            penalty=params["penalty"],
+        )
+    if params["encoding"] == "routed":
+        from pathzoo_baselines.routed import RoutedWaypointEncoding
+
+        return RoutedWaypointEncoding(scenario, waypoints=params["waypoints"], penalty=params["penalty"])
     if params["encoding"] == "grid":
         from pathzoo_baselines.gridpath import MoveEncoding
 

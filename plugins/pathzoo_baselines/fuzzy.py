@@ -8,6 +8,9 @@ Inputs, each on ``[0, 1]`` with triangular sets *low* ``(0, 0, .5)``,
   the gene's bounds (``width / sqrt(12)``), so a random population reads
   about 1 and a converged one 0; for move genes (8 categories), the mean
   over genes of ``(1 - share of the commonest move) / (7/8)``. Clipped to 1.
+  Encodings with their own ``diversity(population)`` (the variable-length
+  cell chains: mean Jaccard distance of consecutive individuals' cell sets)
+  use that instead.
 - **progress** ``P``: relative improvement of the best cost over the last
   ``window`` generations, divided by ``progress_scale`` and clipped to 1
   (the first finite best after only infinite ones counts as full progress).
@@ -32,10 +35,11 @@ layer needs networkx and is slower).
 from __future__ import annotations
 
 import math
+from typing import Any, Callable
 
 import numpy as np
 
-__all__ = ["FuzzyRateController", "population_diversity"]
+__all__ = ["FuzzyRateController", "encoding_diversity", "population_diversity"]
 
 _SETS = ((0.0, 0.0, 0.5), (0.0, 0.5, 1.0), (0.5, 1.0, 1.0))  # low, medium, high on [0, 1]
 _MUTATION_RULES = np.array([[2, 2, 1], [1, 1, 0], [0, 0, 0]])  # [diversity, progress] -> set index
@@ -64,10 +68,8 @@ class FuzzyRateController:
 
     Parameters
     ----------
-    low, high : ndarray
-        Gene bounds (for the diversity of real genes).
-    integer : bool
-        Whether genes are move categories.
+    diversity : callable
+        ``diversity(population) -> D`` in ``[0, 1]`` (see :func:`encoding_diversity`).
     cxpb_range, mutpb_range : tuple of float
         Output universes.
     window : int
@@ -78,9 +80,7 @@ class FuzzyRateController:
 
     def __init__(
         self,
-        low: np.ndarray,
-        high: np.ndarray,
-        integer: bool,
+        diversity: Callable[[list], float],
         *,
         cxpb_range: tuple[float, float],
         mutpb_range: tuple[float, float],
@@ -90,7 +90,7 @@ class FuzzyRateController:
         import skfuzzy as fuzz
 
         self._fuzz = fuzz
-        self._low, self._high, self._integer = low, high, integer
+        self._diversity = diversity
         self._window = window
         self._scale = progress_scale
         self._history: list[float] = []
@@ -126,7 +126,14 @@ class FuzzyRateController:
             crisp.append(float(fuzz.defuzz(universe, aggregate, "centroid")))
         return crisp[0], crisp[1]
 
-    def __call__(self, genes: np.ndarray, best_cost: float) -> tuple[float, float]:
-        """The rates for the next generation of the population ``genes``."""
-        d = population_diversity(genes, self._low, self._high, self._integer)
-        return self.infer(d, self.progress(best_cost))
+    def __call__(self, population: list, best_cost: float) -> tuple[float, float]:
+        """The rates for the next generation of ``population``."""
+        return self.infer(self._diversity(population), self.progress(best_cost))
+
+
+def encoding_diversity(encoding: Any) -> Callable[[list], float]:
+    """The diversity measure of an encoding: its own ``diversity`` method, else :func:`population_diversity`."""
+    own = getattr(encoding, "diversity", None)
+    if own is not None:
+        return own
+    return lambda population: population_diversity(np.array(population), encoding.low, encoding.high, encoding.integer)

@@ -26,7 +26,7 @@ class FuzzyGaPlanner(GaPlanner):
     """
 
     id: ClassVar[str] = "evo.fuzzy_ga"
-    version: ClassVar[str] = "1"
+    version: ClassVar[str] = "2"
     summary: ClassVar[str] = "GA whose crossover/mutation rates a fuzzy controller sets (DEAP + scikit-fuzzy)"
     preload: ClassVar[tuple[str, ...]] = (*GaPlanner.preload, "skfuzzy", "pathzoo_baselines.fuzzy")
     params: ClassVar[Mapping[str, Param]] = {
@@ -53,12 +53,10 @@ class FuzzyGaPlanner(GaPlanner):
 
     def _rate_control(self, encoding: Encoding) -> RateControl:
         """A fresh :class:`~pathzoo_baselines.fuzzy.FuzzyRateController` for one run."""
-        from pathzoo_baselines.fuzzy import FuzzyRateController
+        from pathzoo_baselines.fuzzy import FuzzyRateController, encoding_diversity
 
         return FuzzyRateController(
-            encoding.low,
-            encoding.high,
-            encoding.integer,
+            encoding_diversity(encoding),
             cxpb_range=(self.cxpb_min, self.cxpb_max),
             mutpb_range=(self.mutpb_min, self.mutpb_max),
             window=self.window,

@@ -15,16 +15,25 @@ from pathzoo_baselines.search import seeded_global_random
 
 __all__ = ["GaPlanner", "RateControl", "GA_PARAMS"]
 
-RateControl = Callable[[np.ndarray, float], tuple[float, float]]
-"""``rates(genes, best_cost) -> (cxpb, mutpb)``, asked before every generation."""
+RateControl = Callable[[list, float], tuple[float, float]]
+"""``rates(population, best_cost) -> (cxpb, mutpb)``, asked before every generation."""
 
 GA_PARAMS: Mapping[str, Param] = {
     **ENCODING_PARAMS,
     "encoding": Param(
-        "waypoints",
-        "candidate encoding: 'waypoints', 'spline' (see swarm.pso) or 'grid' (a string of compass moves "
-        "walked on the neighbourhood graph, see docs/planners/evo.ga.md)",
-        choices=(*CONTINUOUS_ENCODINGS, "grid"),
+        "cells",
+        "candidate encoding: 'cells' (a variable-length feasible chain of free cells with crossover at a shared "
+        "cell and a reroute mutation, see docs/planners/evo.ga.md), 'routed', 'waypoints', 'spline' (see "
+        "swarm.pso) or 'grid' (a string of compass moves walked on the neighbourhood graph)",
+        choices=("cells", *CONTINUOUS_ENCODINGS, "grid"),
+    ),
+    "reroute_fraction": Param(
+        0.3, "cells encoding: longest piece a mutation reroutes, as a share of the chain", low=0.0, low_open=True,
+        high=1.0,
+    ),
+    "shortcut_rate": Param(
+        0.5, "cells encoding: probability that a mutation replaces the piece by the shortest route between its "
+        "ends (a local step) rather than by a detour through a random nearby cell", low=0.0, high=1.0,
     ),
     "moves_factor": Param(2.0, "grid encoding: moves per chromosome, as a multiple of H + W", low=0.05, high=100.0),
     "population": Param(50, "population size", low=2, high=100_000),
@@ -56,6 +65,25 @@ def _deap_types() -> tuple[type, type]:
     return Fitness, Individual
 
 
+def _mate_chains(a: list, b: list, *, encoding: Any, rng: np.random.Generator) -> tuple[list, list]:
+    """DEAP mate operator for chains: :func:`~pathzoo_baselines.cellpath.crossover_at_shared_node`, in place."""
+    child_a, child_b = encoding.crossover(np.asarray(a), np.asarray(b), rng)
+    a[:], b[:] = child_a.tolist(), child_b.tolist()
+    return a, b
+
+
+def _mutate_chain(a: list, *, encoding: Any, rng: np.random.Generator, stop: Callable[[], bool]) -> tuple[list]:
+    """DEAP mutate operator for chains: :func:`~pathzoo_baselines.cellpath.reroute_mutation`, in place.
+
+    Once ``stop()`` is true (the time limit), the chain is left as it is: a
+    mutation runs graph searches, which on very large maps would overrun the
+    budget by a whole generation.
+    """
+    if not stop():
+        a[:] = encoding.mutate(np.asarray(a), rng).tolist()
+    return (a,)
+
+
 class GaPlanner(BaselinePlanner):
     """Generational GA with tournament selection, crossover, mutation and elitism (DEAP operators).
 
@@ -64,7 +92,10 @@ class GaPlanner(BaselinePlanner):
     mate each pair with probability ``cxpb``; mutate each child with
     probability ``mutpb`` (``deap.algorithms.varAnd``).
 
-    - Real genes (``waypoints``, ``spline``): simulated binary crossover and
+    - Chains of cells (``cells``, the default): crossover at a shared cell
+      and the reroute mutation of :mod:`pathzoo_baselines.cellpath`; every
+      individual stays feasible.
+    - Real genes (``routed``, ``waypoints``, ``spline``): simulated binary crossover and
       polynomial mutation, both bounded to the map (``eta_cx``, ``eta_mut``).
     - Grid genes (``grid``): two-point crossover and uniform integer
       mutation of the moves.
@@ -78,8 +109,8 @@ class GaPlanner(BaselinePlanner):
     """
 
     id: ClassVar[str] = "evo.ga"
-    version: ClassVar[str] = "1"
-    summary: ClassVar[str] = "Genetic algorithm (DEAP) over waypoint or grid-move paths, penalised length"
+    version: ClassVar[str] = "2"
+    summary: ClassVar[str] = "Genetic algorithm (DEAP) over feasible variable-length cell paths (or waypoint/move encodings)"
     preload: ClassVar[tuple[str, ...]] = ("deap.algorithms", "deap.base", "deap.tools")
     params: ClassVar[Mapping[str, Param]] = {
         **GA_PARAMS,
@@ -96,7 +127,7 @@ class GaPlanner(BaselinePlanner):
     def _rate_control(self, encoding: Encoding) -> RateControl:
         """Crossover and mutation probabilities for each generation: here the fixed ``cxpb`` and ``mutpb``."""
         rates = (self.cxpb, self.mutpb)
-        return lambda genes, best_cost: rates
+        return lambda population, best_cost: rates
 
     def plan(
         self,
@@ -112,12 +143,17 @@ class GaPlanner(BaselinePlanner):
 
         rates = self._rate_control(encoding)
         _, individual = _deap_types()
-        indpb = min(1.0, self.gene_rate / encoding.n_genes)
         toolbox = base.Toolbox()
-        if encoding.integer:
+        variable = getattr(encoding, "variable_length", False)
+        if variable:
+            toolbox.register("mate", _mate_chains, encoding=encoding, rng=rng)
+            toolbox.register("mutate", _mutate_chain, encoding=encoding, rng=rng, stop=search.out_of_time)
+        elif encoding.integer:
+            indpb = min(1.0, self.gene_rate / encoding.n_genes)
             toolbox.register("mate", tools.cxTwoPoint)
             toolbox.register("mutate", tools.mutUniformInt, low=0, up=7, indpb=indpb)
         else:
+            indpb = min(1.0, self.gene_rate / encoding.n_genes)
             low, up = encoding.low.tolist(), encoding.high.tolist()
             toolbox.register("mate", tools.cxSimulatedBinaryBounded, eta=self.eta_cx, low=low, up=up)
             toolbox.register("mutate", tools.mutPolynomialBounded, eta=self.eta_mut, low=low, up=up, indpb=indpb)
@@ -126,18 +162,19 @@ class GaPlanner(BaselinePlanner):
 
         def assess(individuals: list) -> int:
             before = search.evaluations
-            costs = search.evaluate(np.array(individuals)) if individuals else []
+            batch = [np.asarray(ind, dtype=np.int64) for ind in individuals] if variable else np.array(individuals)
+            costs = search.evaluate(batch) if individuals else []
             for ind, cost in zip(individuals, costs):
                 ind.fitness.values = (float(cost),)
             return search.evaluations - before
 
         with seeded_global_random(rng):
-            pop = [individual(row) for row in encoding.initial(rng, self.population).tolist()]
+            pop = [individual(row.tolist()) for row in search.initial(rng, self.population)]
             nevals = assess(pop)
             logbook.record(gen=0, nevals=nevals, min=min(ind.fitness.values[0] for ind in pop))
             search.report()
             while not search.exhausted():
-                cxpb, mutpb = rates(np.array(pop), search.best_cost)
+                cxpb, mutpb = rates(pop, search.best_cost)
                 elite = [toolbox.clone(ind) for ind in tools.selBest(pop, self.elites)]
                 offspring = algorithms.varAnd(toolbox.select(pop, len(pop) - self.elites), toolbox, cxpb, mutpb)
                 nevals = assess([ind for ind in offspring if not ind.fitness.valid])

@@ -8,14 +8,15 @@ from pathzoo.core import Param
 
 __all__ = ["ENCODING_PARAMS", "CONTINUOUS_ENCODINGS"]
 
-CONTINUOUS_ENCODINGS: tuple[str, ...] = ("waypoints", "spline")
-"""Encodings whose genes are real coordinates (every baseline supports them)."""
+CONTINUOUS_ENCODINGS: tuple[str, ...] = ("routed", "waypoints", "spline")
+"""Encodings whose genes are real coordinates (every baseline supports them); the first is the default."""
 
 ENCODING_PARAMS: Mapping[str, Param] = {
     "encoding": Param(
-        "waypoints",
-        "candidate encoding: 'waypoints' (K free points joined by straight segments) or "
-        "'spline' (K control points of a clamped cubic B-spline, sampled into a polyline)",
+        "routed",
+        "candidate encoding: 'routed' (K free points, decoded into a feasible path: straight where clear, "
+        "grid routes around obstacles), 'waypoints' (K free points joined by straight segments, penalised) or "
+        "'spline' (K control points of a clamped cubic B-spline, sampled into a polyline, penalised)",
         choices=CONTINUOUS_ENCODINGS,
     ),
     "waypoints": Param(8, "K, the number of intermediate waypoints or spline control points", low=1, high=256),

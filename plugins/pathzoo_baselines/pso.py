@@ -34,8 +34,8 @@ class PsoPlanner(BaselinePlanner):
     """
 
     id: ClassVar[str] = "swarm.pso"
-    version: ClassVar[str] = "1"
-    summary: ClassVar[str] = "Particle swarm optimisation of K waypoints (pyswarms), penalised length"
+    version: ClassVar[str] = "2"
+    summary: ClassVar[str] = "Particle swarm optimisation (pyswarms) of K waypoints, decoded into a feasible path"
     preload: ClassVar[tuple[str, ...]] = ("pathzoo_baselines.pyswarms_backend",)
     params: ClassVar[Mapping[str, Param]] = {
         **ENCODING_PARAMS,
@@ -62,7 +62,7 @@ class PsoPlanner(BaselinePlanner):
         vmax = self.v_max * float(np.max(scenario.extent))
         clamp = (-vmax, vmax)
         options = {"w": self.w, "c1": self.c1, "c2": self.c2}
-        init = encoding.initial(rng, self.particles)
+        init = search.initial(rng, self.particles)
         with seeded_global_random(rng):
             swarm = create_swarm(
                 n_particles=self.particles, dimensions=encoding.n_genes, options=options,

@@ -9,8 +9,19 @@ Budgets
   the rest get cost ``inf`` and are not counted, so the limit is never
   exceeded.
 - ``time_s``: checked between generations, so the limit is overshot by at
-  most one generation.
+  most one generation; for the costly encodings (``routed``, ``cells``:
+  graph searches per candidate) also while drawing the initial candidates
+  and every few evaluations, so on very large maps the overshoot is a few
+  candidates, not a generation (the candidates left get ``inf``, uncounted,
+  and missing initial candidates are copies of the ones drawn).
 - No limit at all: :data:`DEFAULT_ITERATIONS` generations.
+
+Result
+------
+The best candidate is returned as solved only when its violation is 0, the
+harness's validator accepts its path and every segment keeps
+:data:`~pathzoo_baselines.margin.MARGIN_CELLS` from every blocked square
+(issue 15: a baseline never relies on the judge's tolerances).
 
 Determinism
 -----------
@@ -32,12 +43,17 @@ from typing import Any, Iterator
 import numpy as np
 
 from pathzoo.core import Budget, PlanResult, ProgressCallback, Scenario, Status
+from pathzoo.grid.segments import to_cell_units
 from pathzoo_baselines.encodings import Encoding
+from pathzoo_baselines.margin import MARGIN_CELLS, polylines_clear
 
 __all__ = ["DEFAULT_ITERATIONS", "Search", "seeded_global_random"]
 
 DEFAULT_ITERATIONS = 200
 """Generations run when the budget sets no limit at all."""
+
+_TIMED_CHUNK = 4
+"""Candidates of a costly encoding evaluated between two looks at the clock."""
 
 
 @contextmanager
@@ -66,13 +82,25 @@ class Search:
         The run's limits (see the module docstring).
     progress : callable, optional
         The harness's ``progress(iteration, evaluations, best_cost)``.
+    started : float, optional
+        ``time.perf_counter()`` when the run started (default: now), so that
+        building the encoding counts against a time limit.
     """
 
-    def __init__(self, scenario: Scenario, encoding: Encoding, budget: Budget, progress: ProgressCallback | None):
+    def __init__(
+        self,
+        scenario: Scenario,
+        encoding: Encoding,
+        budget: Budget,
+        progress: ProgressCallback | None,
+        started: float | None = None,
+    ):
         self.scenario = scenario
         self.encoding = encoding
         self.budget = Budget(iterations=DEFAULT_ITERATIONS) if budget.unlimited else budget
         self.clock = self.budget.start()
+        if started is not None:
+            self.clock.started = started
         self._progress = progress
         self.iterations = 0
         self.evaluations = 0
@@ -90,22 +118,49 @@ class Search:
         """True once any limit is reached."""
         return self.clock.exhausted(iterations=self.iterations, evaluations=self.evaluations)
 
-    def evaluate(self, genes: np.ndarray) -> np.ndarray:
-        """Penalised costs of a batch; candidates beyond the evaluation limit get ``inf``."""
-        genes = np.asarray(genes)
+    def out_of_time(self) -> bool:
+        """True once a time limit is set and spent."""
+        return self.budget.time_s is not None and self.clock.remaining_time <= 0.0
+
+    def initial(self, rng: np.random.Generator, n: int) -> np.ndarray | list[np.ndarray]:
+        """The encoding's ``n`` initial candidates; a costly encoding stops drawing new ones when time is up."""
+        if getattr(self.encoding, "costly", False):
+            return self.encoding.initial(rng, n, stop=self.out_of_time)
+        return self.encoding.initial(rng, n)
+
+    def evaluate(self, genes: np.ndarray | list[np.ndarray]) -> np.ndarray:
+        """Penalised costs of a batch (an array, or a list for variable-length encodings).
+
+        Candidates beyond the evaluation limit get ``inf``. So do, for a
+        costly encoding (one that runs graph searches per candidate), the
+        candidates left when the time limit runs out during the batch; they
+        are not counted as evaluations.
+        """
+        genes = genes if isinstance(genes, list) else np.asarray(genes)
         costs = np.full(len(genes), math.inf)
         n = int(min(len(genes), self.remaining_evaluations))
-        if n <= 0:
+        if getattr(self.encoding, "costly", False) and self.budget.time_s is not None:
+            done = 0
+            while done < n and not (self.evaluations > 0 and self.out_of_time()):
+                step = min(n, done + _TIMED_CHUNK)
+                costs[done:step] = self._evaluate(genes[done:step])
+                done = step
             return costs
-        cost, violation = self.encoding.evaluate(genes[:n])
-        costs[:n] = cost
+        if n > 0:
+            costs[:n] = self._evaluate(genes[:n])
+        return costs
+
+    def _evaluate(self, genes: np.ndarray | list[np.ndarray]) -> np.ndarray:
+        """Evaluate a non-empty batch, count it and update the best; returns its costs."""
+        n = len(genes)
+        cost, violation = self.encoding.evaluate(genes)
         self.evaluations += n
         i = int(np.argmin(cost))
         if cost[i] < self.best_cost:
             self.best_cost = float(cost[i])
             self.best_violation = float(violation[i])
-            self.best_genes = genes[i].copy()
-        return costs
+            self.best_genes = np.array(genes[i], copy=True)
+        return cost
 
     def report(self) -> None:
         """Tell the harness the best cost so far (called once per generation, and after initialisation)."""
@@ -124,9 +179,11 @@ class Search:
         if self.best_genes is None:
             return PlanResult(Status.FAILED, message="no candidate was evaluated within the budget", **common)
         if self.best_violation > 0:
+            router = getattr(self.encoding, "router", None)
+            why = "" if router is None or router.connected else " (the goal cell is unreachable from the start cell)"
             return PlanResult(
                 Status.FAILED,
-                message=f"the best candidate still violates the constraints (violation {self.best_violation:.3g})",
+                message=f"the best candidate still violates the constraints (violation {self.best_violation:.3g}){why}",
                 **common,
             )
         from pathzoo.rules import validate_path  # imports numba: not at registration time
@@ -136,4 +193,14 @@ class Search:
         if not verdict:
             message = f"the best candidate is not a valid path: {verdict.reason}"
             return PlanResult(Status.FAILED, message=message, **common)
+        near = self._segments_within_margin(path)
+        if near:
+            message = f"the best candidate has {near} segment(s) within {MARGIN_CELLS:g} cells of a blocked cell"
+            return PlanResult(Status.FAILED, message=message, **common)
         return PlanResult(Status.SOLVED, path=path, **common)
+
+    def _segments_within_margin(self, path: np.ndarray) -> int:
+        """Segments of a 2-D path closer than :data:`~pathzoo_baselines.margin.MARGIN_CELLS` to a blocked square."""
+        sc = self.scenario
+        cells = to_cell_units(path, sc.cell_size)[None]
+        return int(polylines_clear(sc.blocked, cells, MARGIN_CELLS)[0])

@@ -40,7 +40,7 @@ def test_diversity_reads_one_for_a_uniform_population_and_zero_for_clones():
 
 
 def _controller():
-    return FuzzyRateController(np.zeros(2), np.ones(2), False, cxpb_range=(0.5, 1.0), mutpb_range=(0.05, 0.5),
+    return FuzzyRateController(lambda population: 0.5, cxpb_range=(0.5, 1.0), mutpb_range=(0.05, 0.5),
                                window=2, progress_scale=0.05)
 
 

@@ -13,7 +13,11 @@ from pathzoo_baselines.search import DEFAULT_ITERATIONS, Search
 BASELINES = ["swarm.pso", "swarm.cuckoo", "evo.ga", "evo.fuzzy_ga"]
 CONFIGS = [(pid, {}) for pid in BASELINES] + [
     ("swarm.pso", {"encoding": "spline"}),
+    ("swarm.pso", {"encoding": "waypoints"}),
+    ("swarm.cuckoo", {"encoding": "waypoints"}),
     ("evo.ga", {"encoding": "grid"}),
+    ("evo.ga", {"encoding": "routed"}),
+    ("evo.ga", {"encoding": "waypoints"}),
     ("evo.fuzzy_ga", {"encoding": "grid"}),
 ]
 
