@@ -53,6 +53,7 @@ __all__ = [
     "centre_heights",
     "soil_map",
     "eq21_weights",
+    "eq21_path_distance",
     "load",
     "entries",
 ]
@@ -156,6 +157,28 @@ def eq21_weights(scenario: Scenario) -> np.ndarray:
     w = scenario.rules.slope_weight(np.degrees(graph.slope))
     with np.errstate(divide="ignore"):
         return np.where(w > 0, graph.length / scenario.cell_size / w, np.inf)
+
+
+def eq21_path_distance(scenario: Scenario, path: np.ndarray) -> float:
+    """Eq. 21 distance of a path through cell centres: the sum of :func:`eq21_weights` over its steps.
+
+    ``path`` holds world points (``x, y``, an optional third column is
+    ignored); each step must join neighbouring cells of the scenario's graph.
+    NaN when a step is not a graph edge (e.g. an any-angle shortcut), ``inf``
+    when it crosses a slope whose slopeW is 0.
+    """
+    graph = scenario.graph
+    weights = eq21_weights(scenario)
+    nodes = scenario.node_of(np.asarray(path, dtype=np.float64)[:, :2])
+    nodes = nodes[np.r_[True, np.diff(nodes) != 0]]
+    total = 0.0
+    for u, v in zip(nodes[:-1], nodes[1:]):
+        lo, hi = graph.indptr[u], graph.indptr[u + 1]
+        hit = np.flatnonzero(graph.indices[lo:hi] == v)
+        if len(hit) == 0:
+            return float("nan")
+        total += float(weights[lo + hit[0]])
+    return total
 
 
 def load(seed: int = SEED) -> Scenario:
