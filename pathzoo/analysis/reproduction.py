@@ -56,7 +56,7 @@ __all__ = [
     "paper_file",
     "load_paper",
     "planner_status",
-    "build_experiment",
+    "build_experiments",
     "run_paper",
     "compare_paper",
     "format_reproduction",
@@ -78,12 +78,18 @@ class PaperDataError(InvalidExperimentError):
 
 @dataclass(frozen=True)
 class PaperPlanner:
-    """One method of the paper's table: its key in the data, its label in the paper, a pathzoo id and parameters."""
+    """One method of the paper's table: its key in the data, its label in the paper, a pathzoo id and parameters.
+
+    A planner that cannot run the paper's scenarios (e.g. no moving
+    obstacles) may run a variant of them, named by ``variant``; its rows say so.
+    """
 
     key: str
     label: str
     id: str
     params: Mapping[str, Any] = field(default_factory=dict)
+    variant: str = ""
+    """Suffix of the scenario ids this planner runs on instead (``"_static"``: without moving obstacles)."""
 
 
 @dataclass(frozen=True)
@@ -182,7 +188,7 @@ def load_paper(name: str, path: str | Path | None = None) -> PaperData:
     for i, p in enumerate(_field(doc, "planner", list, where)):
         w = f"{where} [[planner]] {i}"
         planners.append(PaperPlanner(_field(p, "key", str, w), _field(p, "label", str, w), _field(p, "id", str, w),
-                                     dict(p.get("params", {}))))
+                                     dict(p.get("params", {})), str(p.get("variant", ""))))
     keys = [p.key for p in planners]
     if len(set(keys)) != len(keys):
         raise PaperDataError(f"{where}: planner keys repeat")
@@ -249,43 +255,49 @@ def _selected_scenarios(paper: PaperData, pattern: str | None) -> dict[str, str]
     return chosen
 
 
-def build_experiment(
+def build_experiments(
     paper: PaperData,
     *,
     seeds: int | None = None,
     iterations: int | None = None,
     scenarios: str | None = None,
     db: str | Path | None = None,
-) -> "Any":
-    """The :class:`~pathzoo.harness.experiment.Experiment` that reruns the paper's table.
+) -> list["Any"]:
+    """The :class:`~pathzoo.harness.experiment.Experiment` (s) that rerun the paper's table.
 
-    Only available planners take part. ``seeds`` defaults to the paper's run
-    count; ``iterations`` replaces the budget's iteration limit and caps
-    every planner's ``iterations`` parameter (for quick checks);
-    ``scenarios`` is a glob on scenario ids. The experiment's name records
-    the seed count and any iteration override, so runs with other settings
-    are kept apart in one database.
+    Only available planners take part; planners that run a scenario variant
+    (:attr:`PaperPlanner.variant`) form their own experiment, so nobody runs
+    scenarios it does not need. ``seeds`` defaults to the paper's run count;
+    ``iterations`` replaces the budget's iteration limit and caps every
+    planner's ``iterations`` parameter (for quick checks); ``scenarios`` is a
+    glob on the paper's scenario ids. The experiment names record the seed
+    count and any iteration override, so runs with other settings are kept
+    apart in one database.
     """
     from pathzoo.core.budget import Budget
     from pathzoo.harness.experiment import Experiment
 
-    specs = []
+    groups: dict[str, list[tuple[str, dict[str, Any]]]] = {}
     for p in paper.planners:
         if planner_status(p):
             continue
         params = dict(p.params)
         if iterations is not None and "iterations" in _param_names(p.id):
             params["iterations"] = min(int(params.get("iterations", iterations)), iterations)
-        specs.append((p.id, params))
-    if not specs:
+        groups.setdefault(p.variant, []).append((p.id, params))
+    if not groups:
         raise InvalidExperimentError(f"paper '{paper.name}': none of its planners is available")
     budget = dict(paper.budget)
     if iterations is not None:
         budget["iterations"] = iterations
     n = seeds if seeds is not None else paper.runs
     name = f"reproduce.{paper.name}.s{n}" + (f".i{iterations}" if iterations is not None else "")
-    return Experiment.build(planners=specs, scenarios=list(_selected_scenarios(paper, scenarios).values()),
-                            seeds=n, budget=Budget(**budget), name=name, db=db)
+    ids = list(_selected_scenarios(paper, scenarios).values())
+    return [
+        Experiment.build(planners=specs, scenarios=[sid + variant for sid in ids], seeds=n, budget=Budget(**budget),
+                         name=name + variant.replace("_", "."), db=db)
+        for variant, specs in sorted(groups.items())
+    ]
 
 
 def _param_names(planner_id: str) -> set[str]:
@@ -295,14 +307,17 @@ def _param_names(planner_id: str) -> set[str]:
 
 
 def _label_runs(paper: PaperData, runs: pd.DataFrame, experiment: Any) -> pd.DataFrame:
-    """Runs with ``planner`` replaced by the paper's planner key (one configuration per key)."""
+    """Runs labelled by the paper's planner key (one configuration per key), variants under the paper's scenario id."""
     by_spec = {}
     for spec in experiment.planners:
         for p in paper.planners:
             if p.id == spec.id and not planner_status(p):
-                by_spec[(spec.id, spec.params_hash)] = p.key
+                by_spec[(spec.id, spec.params_hash)] = p
     out = runs.copy()
-    out["planner"] = [by_spec.get((pid, h), pid) for pid, h in zip(runs["planner"], runs["params_hash"])]
+    chosen = [by_spec.get((pid, h)) for pid, h in zip(runs["planner"], runs["params_hash"])]
+    out["planner"] = [p.key if p else pid for p, pid in zip(chosen, runs["planner"])]
+    out["scenario"] = [sid[: len(sid) - len(p.variant)] if p and p.variant and sid.endswith(p.variant) else sid
+                       for p, sid in zip(chosen, runs["scenario"])]
     out["params_hash"] = "paper"
     return out
 
@@ -338,17 +353,19 @@ def run_paper(
     jobs: int | None = None,
     executor: str = "process",
     progress: bool = True,
-) -> tuple[pd.DataFrame, str]:
-    """Run (or resume) the paper's comparison; return the labelled runs and the experiment's name.
+) -> tuple[pd.DataFrame, list[str]]:
+    """Run (or resume) the paper's comparison; return the labelled runs and the experiments' names.
 
-    See :func:`build_experiment` for ``seeds``, ``iterations`` and ``scenarios``.
+    See :func:`build_experiments` for ``seeds``, ``iterations`` and ``scenarios``.
     """
     from pathzoo.harness.runner import run_experiment
 
-    exp = build_experiment(paper, seeds=seeds, iterations=iterations, scenarios=scenarios, db=db)
-    runs = run_experiment(exp, db=db, jobs=jobs, executor=executor, progress=progress)
-    runs = _add_derived(paper, runs, db, exp.name)
-    return _label_runs(paper, runs, exp), exp.name
+    frames, names = [], []
+    for exp in build_experiments(paper, seeds=seeds, iterations=iterations, scenarios=scenarios, db=db):
+        runs = run_experiment(exp, db=db, jobs=jobs, executor=executor, progress=progress)
+        frames.append(_label_runs(paper, _add_derived(paper, runs, db, exp.name), exp))
+        names.append(exp.name)
+    return pd.concat(frames, ignore_index=True), names
 
 
 def _register_derived(paper: PaperData) -> None:
@@ -448,6 +465,8 @@ def compare_paper(paper: PaperData, runs: pd.DataFrame, *, alpha: float = 0.05) 
                                    mean=float(vals.mean()) * m.scale if len(vals) else math.nan,
                                    success_rate=float(o["success_rate"].iloc[0]), n_runs=len(sub),
                                    mark=str(o[f"{m.id}_mark"].iloc[0]))
+                if not status and rec["n_runs"] == 0:
+                    rec["status"] = status = "not run: the planner does not handle this scenario kind"
                 rec["verdict"] = "" if is_ref else _verdict(paper_mark, rec["mark"], status, rec["n_runs"] > 0)
                 rows.append(rec)
     table = pd.DataFrame(rows)
@@ -466,6 +485,11 @@ def compare_paper(paper: PaperData, runs: pd.DataFrame, *, alpha: float = 0.05) 
 
 def _cell(value: float, digits: int = 5) -> str:
     return format_number(value, digits) if np.isfinite(value) else "–"
+
+
+def _planner_cell(p: PaperPlanner) -> str:
+    variant = f", on the {p.variant.strip('_')} variant" if p.variant else ""
+    return f"{p.label} ({p.id}{variant})"
 
 
 def format_reproduction(rep: Reproduction, fmt: str = "text") -> str:
@@ -489,7 +513,7 @@ def format_reproduction(rep: Reproduction, fmt: str = "text") -> str:
             continue
         display = pd.DataFrame({
             "scenario": t["scenario"].astype(str),
-            "planner": [f"{lab} ({pid})" for lab, pid in zip(t["label"], t["planner_id"])],
+            "planner": [_planner_cell(paper.planner(k)) for k in t["planner"]],
             f"paper {stat}": [_cell(v) + (f" {k}" if k else "") for v, k in zip(t["paper_value"], t["paper_mark"])],
             "paper SD": t["paper_sd"].map(_cell),
             f"ours {ours_stat}": [

@@ -47,12 +47,12 @@ def _run(args: argparse.Namespace) -> int:
     paper = load_paper(args.paper)
     db = args.db or DEFAULT_DB
     try:
-        runs, experiment = run_paper(paper, db=db, seeds=args.seeds, iterations=args.iterations,
+        runs, experiments = run_paper(paper, db=db, seeds=args.seeds, iterations=args.iterations,
                                      scenarios=args.scenarios, jobs=args.jobs, executor=args.executor,
                                      progress=not args.no_progress)
     except KeyboardInterrupt:
         raise CommandError(f"interrupted; finished runs are stored in {db}, run the same command again to resume") from None
-    print(f"experiment '{experiment}': {len(runs)} runs stored in {db}", file=sys.stderr)
+    print(f"experiments {', '.join(experiments)}: {len(runs)} runs stored in {db}", file=sys.stderr)
     rep = compare_paper(paper, runs, alpha=args.alpha)
     sys.stdout.write(format_reproduction(rep, "text"))
     if args.markdown:
@@ -65,8 +65,10 @@ def _run(args: argparse.Namespace) -> int:
     if args.output:
         from pathzoo.analysis.report import write_report
 
-        print(write_report(db, args.output, experiment, metric=paper.metrics[0].id if not paper.metrics[0].derived
-                           else "length"), file=sys.stderr)
+        metric = next((m.id for m in paper.metrics if not m.derived), "length")
+        for i, name in enumerate(experiments):  # the main experiment in DIR, scenario variants in DIR/<name>
+            out = Path(args.output) if i == 0 else Path(args.output) / name
+            print(write_report(db, out, name, metric=metric), file=sys.stderr)
     return 0
 
 
