@@ -60,6 +60,7 @@ __all__ = [
     "run_paper",
     "compare_paper",
     "format_reproduction",
+    "replace_section",
 ]
 
 PAPERS: tuple[str, ...] = ("ggaco", "dsaco", "gant", "iaca", "fgdaco")
@@ -544,3 +545,21 @@ def format_reproduction(rep: Reproduction, fmt: str = "text") -> str:
     parts.append(render_table(wtl, fmt, title=f"w/t/l of {ref_label} over the scenarios", notes=legend,
                               left=("metric", "rival")))
     return "\n".join(parts)
+
+
+def replace_section(path: str | Path, name: str, text: str) -> None:
+    """Put ``text`` between the markers ``<!-- reproduce:NAME:begin/end -->`` of the page ``path``.
+
+    The block is replaced where the markers exist and appended otherwise,
+    so a generated section can be rewritten any number of times while the
+    hand-written text around it stays.
+    """
+    page = Path(path)
+    begin, end = f"<!-- reproduce:{name}:begin -->", f"<!-- reproduce:{name}:end -->"
+    old = page.read_text(encoding="utf-8") if page.exists() else ""
+    block = f"{begin}\n{text}{end}"
+    if begin in old and end in old:
+        new = old[: old.index(begin)] + block + old[old.index(end) + len(end):]
+    else:
+        new = old + ("\n" if old and not old.endswith("\n") else "") + block + "\n"
+    page.write_text(new, encoding="utf-8")

@@ -29,20 +29,8 @@ def markdown_section(rep: Any, command: str) -> str:
     return head + format_reproduction(rep, "markdown") + "\n"
 
 
-def _replace_section(path: Path, name: str, text: str) -> None:
-    """Put ``text`` between the markers of paper ``name`` in ``path`` (appended when they are missing)."""
-    begin, end = f"<!-- reproduce:{name}:begin -->", f"<!-- reproduce:{name}:end -->"
-    old = path.read_text(encoding="utf-8") if path.exists() else ""
-    block = f"{begin}\n{text}{end}"
-    if begin in old and end in old:
-        new = old[: old.index(begin)] + block + old[old.index(end) + len(end):]
-    else:
-        new = old + ("\n" if old and not old.endswith("\n") else "") + block + "\n"
-    path.write_text(new, encoding="utf-8")
-
-
 def _run(args: argparse.Namespace) -> int:
-    from pathzoo.analysis.reproduction import compare_paper, format_reproduction, load_paper, run_paper
+    from pathzoo.analysis.reproduction import compare_paper, format_reproduction, load_paper, replace_section, run_paper
 
     paper = load_paper(args.paper)
     db = args.db or DEFAULT_DB
@@ -60,7 +48,7 @@ def _run(args: argparse.Namespace) -> int:
                            + ([f"--seeds {args.seeds}"] if args.seeds else [])
                            + ([f"--iterations {args.iterations}"] if args.iterations else [])
                            + ([f"--scenarios '{args.scenarios}'"] if args.scenarios else []))
-        _replace_section(Path(args.markdown), args.paper, markdown_section(rep, command))
+        replace_section(Path(args.markdown), args.paper, markdown_section(rep, command))
         print(f"section '{args.paper}' written to {args.markdown}", file=sys.stderr)
     if args.output:
         from pathzoo.analysis.report import write_report
