@@ -77,7 +77,7 @@ def test_unknown_paper_is_a_one_line_error():
         (lambda t: t.replace('reference = "iaca"', 'reference = "zzz"'), "reference"),
         (lambda t: t.replace('statistic = "value"', 'statistic = "mode"'), "statistic"),
         (lambda t: t.replace('planner = "iaca"\nvalues', 'planner = "ghost"\nvalues'), "ghost"),
-        (lambda t: t.replace("eq21_distance = [33.5], planning_time = [21.0]", "bogus = [1.0]"), "bogus"),
+        (lambda t: t.replace("eq21_distance = [33.5], cpu_time = [21.0]", "bogus = [1.0]"), "bogus"),
         (lambda t: t.replace("[paper]", "[paper", 1), "toml"),
     ],
 )

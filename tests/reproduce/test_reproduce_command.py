@@ -24,8 +24,9 @@ def test_reproduce_iaca_prints_the_table_beside_the_paper(tmp_path, capsys):
     md = tmp_path / "reproduction.md"
     md.write_text("# page\n\nintro\n", encoding="utf-8")
     args = ["reproduce", "iaca", *TINY, "--db", str(db), "--markdown", str(md)]
-    assert main(args) == 0
+    assert main([*args, "-o", str(tmp_path / "report")]) == 0
     out = capsys.readouterr().out
+    assert (tmp_path / "report" / "index.html").read_text(encoding="utf-8").count("reproduce.iaca.s2.i3") >= 1
     assert "Table 5, Path distance (eq. 21)" in out and "Table 5, Time cost (s)" in out
     assert "Dijkstra (exact.dijkstra)" in out and "IACA (aco.iaca)" in out
     assert "33.500" in out  # the paper's number
@@ -55,7 +56,7 @@ def test_unregistered_planner_is_listed_not_available(tmp_path):
     text = paper_file("iaca").read_text(encoding="utf-8")
     text = text.replace('[[metric]]', '[[planner]]\nkey = "ghost"\nlabel = "Ghost"\nid = "aco.not_reconstructed"\n\n'
                         '[[metric]]', 1)
-    text += '[[row]]\nscenario = "offroad"\nplanner = "ghost"\nvalues = { eq21_distance = [40.0], planning_time = [9.0] }\n'
+    text += '[[row]]\nscenario = "offroad"\nplanner = "ghost"\nvalues = { eq21_distance = [40.0], cpu_time = [9.0] }\n'
     path = tmp_path / "iaca.toml"
     path.write_text(text, encoding="utf-8")
     paper = load_paper("iaca", path)
@@ -82,7 +83,7 @@ def _runs(lengths: dict[str, list[float]]) -> pd.DataFrame:
         for i, v in enumerate(values):
             rows.append(dict(run_key=f"{planner}{i}", planner=planner, params_hash="paper",
                              scenario="fgdaco.scenario1", seed_index=i, status="solved", valid=True, length=v,
-                             planning_time=1.0))
+                             cpu_time=1.0))
     return pd.DataFrame(rows)
 
 
