@@ -70,6 +70,7 @@ NOT_AVAILABLE = "not available (not reconstructed)"
 """What the table shows for a planner id that is not registered."""
 
 _STATISTICS = ("median", "mean", "value")
+_VERDICTS = ("holds", "not shown", "reversed", "differs", "not testable")
 _PAPER_MARKS = ("↑", "↓", "≈")
 
 
@@ -504,34 +505,37 @@ def format_reproduction(rep: Reproduction, fmt: str = "text") -> str:
     if fmt not in ("text", "markdown"):
         raise InvalidParameterError(f"format must be 'text' or 'markdown', got {fmt!r}")
     paper = rep.paper
-    stat = {"median": "median", "mean": "mean", "value": "value"}[paper.statistic]
-    ours_stat = "mean" if paper.statistic == "mean" else "median"
+    stat = paper.statistic
     parts = []
     ref_label = paper.planner(paper.reference).label
     for m in paper.metrics:
         t = rep.table[rep.table["metric"] == m.id]
         if not len(t):
             continue
+        blank = t["status"] != ""
         display = pd.DataFrame({
             "scenario": t["scenario"].astype(str),
             "planner": [_planner_cell(paper.planner(k)) for k in t["planner"]],
             f"paper {stat}": [_cell(v) + (f" {k}" if k else "") for v, k in zip(t["paper_value"], t["paper_mark"])],
             "paper SD": t["paper_sd"].map(_cell),
-            f"ours {ours_stat}": [
-                s if s else _cell(v) + (f" {k}" if k else "")
-                for s, v, k in zip(t["status"], t[ours_stat], t["mark"])
-            ],
-            "ours SD": [("" if s else _cell(v)) for s, v in zip(t["status"], t["sd"])],
-            "success": [("" if s else format_percent(v) if np.isfinite(v) else "–")
-                        for s, v in zip(t["status"], t["success_rate"])],
-            "runs": [("" if s else str(n)) for s, n in zip(t["status"], t["n_runs"])],
-            "verdict": t["verdict"],
+            "ours median": [s if s else _cell(v) + (f" {k}" if k else "")
+                            for s, v, k in zip(t["status"], t["median"], t["mark"])],
+            "ours SD": [("" if b else _cell(v)) for b, v in zip(blank, t["sd"])],
         })
+        if stat == "mean":
+            display["ours mean"] = [("" if b else _cell(v)) for b, v in zip(blank, t["mean"])]
+        display["success"] = [("" if b else format_percent(v) if np.isfinite(v) else "–")
+                              for b, v in zip(blank, t["success_rate"])]
+        display["runs"] = [("" if b else str(n)) for b, n in zip(blank, t["n_runs"])]
+        display["verdict"] = t["verdict"].to_numpy()
         parts.append(render_table(display, fmt, title=f"{paper.table}, {m.label}",
-                                  left=("scenario", "planner", f"ours {ours_stat}", "verdict")))
+                                  left=("scenario", "planner", "ours median", "verdict")))
     wtl = pd.DataFrame({"metric": rep.wtl["metric"], "rival": [paper.planner(k).label for k in rep.wtl["planner"]],
                         "paper w/t/l": rep.wtl["paper"], "ours w/t/l": rep.wtl["ours"]})
+    claims = rep.table.loc[rep.table["verdict"].ne("") & rep.table["verdict"].ne("no claim"), "verdict"]
+    counts = claims.str.split(":").str[0].value_counts()
     legend = [
+        f"Claims: {len(claims)}; " + ", ".join(f"{k} {int(counts.get(k, 0))}" for k in _VERDICTS) + ".",
         f"Source: {paper.title}, {paper.table} ({paper.statistic} of {paper.runs} runs). Ours: {rep.seeds} "
         f"run(s) per planner and scenario{'' if rep.seeds >= paper.runs else ' (fewer than the paper)'}.",
         f"Marks read from {ref_label}'s side: ↑ it is better, ↓ worse, ≈ no significant difference. Paper marks "
