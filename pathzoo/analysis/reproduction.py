@@ -49,6 +49,7 @@ from pathzoo.core.errors import InvalidExperimentError, InvalidParameterError, P
 __all__ = [
     "PAPERS",
     "NOT_AVAILABLE",
+    "PaperDataError",
     "PaperPlanner",
     "PaperMetric",
     "PaperData",
@@ -546,6 +547,8 @@ def format_reproduction(rep: Reproduction, fmt: str = "text") -> str:
         f"Claim: {paper.claim}",
         *paper.notes,
     ]
+    if fmt == "markdown":
+        legend = [f"- {line}" for line in legend]
     parts.append(render_table(wtl, fmt, title=f"w/t/l of {ref_label} over the scenarios", notes=legend,
                               left=("metric", "rival")))
     return "\n".join(parts)
