@@ -482,7 +482,8 @@ def compare_paper(paper: PaperData, runs: pd.DataFrame, *, alpha: float = 0.05) 
                              paper=f"{count['↑']}/{count['≈']}/{count['↓']}",
                              ours=f"{ours_count['↑']}/{ours_count['≈']}/{ours_count['↓']}" if tested else "–"))
     seeds = int(runs.groupby(["planner", "scenario"]).size().max()) if len(runs) else 0
-    return Reproduction(paper=paper, table=table, wtl=pd.DataFrame(wtl_rows, columns=["metric", "planner", "paper", "ours"]),
+    wtl = pd.DataFrame(wtl_rows, columns=["metric", "planner", "paper", "ours"])
+    return Reproduction(paper=paper, table=table, wtl=wtl,
                         seeds=seeds, alpha=alpha)
 
 

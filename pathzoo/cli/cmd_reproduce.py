@@ -39,7 +39,8 @@ def _run(args: argparse.Namespace) -> int:
                                      scenarios=args.scenarios, jobs=args.jobs, executor=args.executor,
                                      progress=not args.no_progress)
     except KeyboardInterrupt:
-        raise CommandError(f"interrupted; finished runs are stored in {db}, run the same command again to resume") from None
+        raise CommandError(
+            f"interrupted; finished runs are stored in {db}, run the same command again to resume") from None
     print(f"experiments {', '.join(experiments)}: {len(runs)} runs stored in {db}", file=sys.stderr)
     rep = compare_paper(paper, runs, alpha=args.alpha)
     sys.stdout.write(format_reproduction(rep, "text"))
@@ -80,7 +81,8 @@ def add_parser(subparsers: Any) -> None:
     parser.add_argument("--scenarios", metavar="GLOB", help="only the paper's scenarios whose id matches GLOB")
     parser.add_argument("--db", metavar="FILE", help=f"SQLite results file (default: {DEFAULT_DB})")
     parser.add_argument("--jobs", type=positive_int, metavar="N", help="worker processes (default: number of CPUs)")
-    parser.add_argument("--executor", choices=EXECUTORS, default="process", help="where runs execute (default: process)")
+    parser.add_argument("--executor", choices=EXECUTORS, default="process",
+                        help="where runs execute (default: process)")
     parser.add_argument("--alpha", type=float, default=0.05, help="significance level of the marks (default: 0.05)")
     parser.add_argument("-o", "--output", metavar="DIR", help="also write the HTML report of the runs to DIR")
     parser.add_argument("--markdown", metavar="FILE", help="write this paper's section of FILE "

@@ -183,7 +183,8 @@ def load(scenario: int | str, dynamic: bool = True) -> Scenario:
     suffix = "" if dynamic else "_static"
     seed = _seed(scenario)
     if scenario == "trap":
-        source = "pathzoo stress test (not from the paper): the goal inside a C-shaped obstacle open away from the start"
+        source = ("pathzoo stress test (not from the paper): the goal inside a C-shaped obstacle "
+                  "open away from the start")
         extra = {"layout": "ours: a C-shaped trap around the goal; FGDACO cannot leave it (docs/reproduction.md)"}
         title = "FGDACO stress test: goal inside a C-shaped trap"
     else:
