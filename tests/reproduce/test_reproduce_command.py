@@ -108,3 +108,14 @@ def test_verdicts_follow_the_marks():
         assert t.loc["flaco", "verdict"] == "not testable: rival not reconstructed"
     assert t.loc["coa", "median"] == pytest.approx(np.median(base + 10.0))
     assert t.loc["fgdaco", "verdict"] == ""  # the reference makes no claim about itself
+
+
+def test_an_available_planner_without_runs_is_reported_not_run():
+    """A rival that is registered but cannot run the scenario kind keeps its row, marked as not run."""
+    paper = load_paper("fgdaco")
+    base = list(np.linspace(126.0, 127.0, 8))
+    rep = compare_paper(paper, _runs({"fgdaco": base, "coa": base}))
+    t = rep.table[rep.table["metric"] == "length"].set_index("planner")
+    assert t.loc["fuzzy_ga", "status"].startswith("not run")
+    assert t.loc["fuzzy_ga", "verdict"] == "not testable: rival not run"
+    assert "not run" in format_reproduction(rep)
