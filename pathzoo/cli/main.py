@@ -14,6 +14,7 @@ import sys
 from typing import Sequence
 
 from pathzoo.cli import cmd_export, cmd_leaderboard, cmd_list, cmd_report, cmd_run, cmd_show
+from pathzoo.cli import cmd_reproduce
 from pathzoo.core.errors import PathzooError
 
 __all__ = ["build_parser", "main", "EXIT_ERROR"]
@@ -36,6 +37,7 @@ def build_parser() -> argparse.ArgumentParser:
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
     for command in (cmd_list, cmd_run, cmd_leaderboard, cmd_report, cmd_export, cmd_show):
         command.add_parser(sub)
+    cmd_reproduce.add_parser(sub)
     return parser
 
 

@@ -1,6 +1,12 @@
-"""aco.dsaco: the dual-strategy ACO of Mai et al. (Intelligence & Robotics, 2023), eqs. 11-23.
+"""aco.dsaco: the dual-strategy ACO of Mai et al. (Intelligence & Robotics, 2023), eqs. 2-3 and 11-23.
 
 Mechanism, with the paper's equations:
+
+- **flight constraints** (eqs. 2-3): a walk longer than ``L_max`` or with a
+  straight segment (a run of steps in one direction, the last one excepted)
+  shorter than ``L_min`` is infeasible: its fitness is infinite, so it never
+  becomes the best walk and never deposits (:meth:`DSACO.infeasible_walks`).
+  The paper gives no values; ``l_max = l_min = 0`` switches them off;
 
 - **search heuristic** ``η = S · M · D`` (eqs. 11-13): ``S`` admits a node
   only at least ``h_c`` above the ground under it, ``M = 1 / (1 + h)``
@@ -48,7 +54,7 @@ from pathzoo_aco.engine import (
     deposit_walks,
 )
 
-__all__ = ["DSACO", "DsacoState", "q0_schedule", "p_schedule"]
+__all__ = ["DSACO", "DsacoState", "q0_schedule", "p_schedule", "segment_lengths"]
 
 
 def q0_schedule(k: int, k_max: int, q0_initial: float) -> float:
@@ -73,6 +79,34 @@ def _per_walk(per_position: np.ndarray, walks: Walks) -> np.ndarray:
     """Sum a value given per position of ``walks.flat`` over each walk (``inf`` for walks that failed)."""
     cum = np.concatenate([[0.0], np.cumsum(per_position)])
     return np.where(walks.reached, cum[walks.offsets[1:]] - cum[walks.offsets[:-1]], np.inf)
+
+
+def segment_lengths(moves: np.ndarray, steps: np.ndarray, offsets: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Straight segments of every walk: runs of consecutive steps with the same move (eq. 3).
+
+    Parameters
+    ----------
+    moves : ndarray of int
+        Move id (direction) of every step, walks concatenated.
+    steps : ndarray of float
+        Length of every step.
+    offsets : ndarray of int
+        Walk ``a`` is ``moves[offsets[a]:offsets[a + 1]]``.
+
+    Returns
+    -------
+    length : ndarray
+        Length of every segment, walks concatenated.
+    walk : ndarray of int
+        The walk each segment belongs to.
+    """
+    n = len(offsets) - 1
+    walk_of_step = np.repeat(np.arange(n), np.diff(offsets))
+    new = np.ones(len(moves), dtype=bool)
+    if len(moves) > 1:
+        new[1:] = (moves[1:] != moves[:-1]) | (walk_of_step[1:] != walk_of_step[:-1])
+    segment = np.cumsum(new) - 1
+    return np.bincount(segment, weights=steps, minlength=int(new.sum())), walk_of_step[new]
 
 
 @numba.njit(cache=True)
@@ -132,6 +166,9 @@ class DSACO(AntColonyPlanner):
         "f1": Param(1.0, "weight of the length D0 (eq. 20; not given)", low=0.0),
         "f2": Param(0.1, "weight of the summed segment heights Dh (eq. 20; not given)", low=0.0),
         "f3": Param(1.0, "weight of the summed turning angles DT in radians (eq. 20; not given)", low=0.0),
+        "l_max": Param(0.0, "maximum path length L_max in cells (eq. 2; not given; 0 = no limit)", low=0.0),
+        "l_min": Param(0.0, "minimum straight-segment length L_min in cells (eq. 3; not given; 0 = no limit)",
+                       low=0.0),
         "step_rule": Param("graph", "moves: the scenario's whole neighbourhood graph, or the paper's longitude "
                            "rule (one cell along x toward the target per step)", choices=("graph", "longitude")),
     }
@@ -249,9 +286,27 @@ class DSACO(AntColonyPlanner):
         """Eq. 20: ``Fitness = f1 D0 + f2 Dh + f3 DT`` (one compiled pass over the walks)."""
         assert isinstance(state, DsacoState) and state.node_height is not None and state.turn_angle is not None
         p = state.problem
-        return _walk_fitness(walks.flat, walks.offsets, walks.reached, p.graph.indices, p.graph.offset_id,
-                             p.graph.length, state.node_height, state.turn_angle, p.start, p.scenario.cell_size,
-                             self.f1, self.f2, self.f3)
+        costs = _walk_fitness(walks.flat, walks.offsets, walks.reached, p.graph.indices, p.graph.offset_id,
+                              p.graph.length, state.node_height, state.turn_angle, p.start, p.scenario.cell_size,
+                              self.f1, self.f2, self.f3)
+        if self.l_max > 0.0 or self.l_min > 0.0:
+            costs[self.infeasible_walks(state, walks)] = np.inf
+        return costs
+
+    def infeasible_walks(self, state: ColonyState, walks: Walks) -> np.ndarray:
+        """Eqs. 2-3 per walk: total length above ``l_max``, or a straight segment other than the last one
+        shorter than ``l_min`` (lengths in horizontal cells, like the fitness; a limit of 0 is off)."""
+        g = state.problem.graph
+        steps = g.length[walks.flat] / state.problem.scenario.cell_size
+        bad = np.zeros(len(walks.offsets) - 1, dtype=bool)
+        if self.l_max > 0.0:
+            bad |= _per_walk(steps, walks) > self.l_max * (1.0 + 1e-12)
+        if self.l_min > 0.0:
+            length, walk = segment_lengths(g.offset_id[walks.flat], steps, walks.offsets)
+            last = np.r_[walk[1:] != walk[:-1], True]  # a walk's final segment ends at the target, not at a turn
+            short = (length < self.l_min * (1.0 - 1e-12)) & ~last
+            bad[walk[short]] = True
+        return bad
 
     def update_trail(self, state: ColonyState, walks: Walks, costs: np.ndarray) -> None:
         """Eqs. 16-19: evaporate everywhere; the iteration-best ant lays ``Q / ((1-p) F_now + p F_global)``."""

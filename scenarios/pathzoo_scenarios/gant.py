@@ -17,7 +17,10 @@ were chosen by the rules below (checked by ``tests/scenarios/test_gant.py``).
   axis-aligned rectangles ("orange cells"), more of them as the space gets
   harder. Seed rule: among seeds 0-499, the one whose three shortest-path
   detour ratios (optimum / straight line) are closest (Euclidean norm) to the
-  ratios of G-Ant's Table 5 lengths to the straight line.
+  ratios of G-Ant's Table 5 lengths to the straight line. These layouts are
+  therefore **fitted to Table 5**; note that G-Ant's 562.58 m on the simple
+  space, pair 1, is below the 8-connected optimum with no obstacles at all
+  (563.61 m), see ``docs/reproduction.md``.
 
 Table 5 gives points as integers, read as cell indices (column, row); the
 scenario points are those cells' centres.

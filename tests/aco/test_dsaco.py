@@ -155,3 +155,45 @@ def test_turn_limited_vehicle_is_respected():
                        elevation=scenario.elevation, vehicle=VehicleModel(max_turn_deg=45.0))
     result = pathzoo.make_planner("aco.dsaco").plan(limited, budget=Budget(iterations=3), rng=np.random.default_rng(1))
     assert result.solved and validate_path(limited, result.path)
+
+
+# ------------------------------------------------------------------ eqs. 2-3
+def test_segment_lengths_split_walks_at_every_change_of_move():
+    from pathzoo_aco.dsaco import segment_lengths
+
+    moves = np.array([0, 0, 1, 1, 1, 2])
+    steps = np.array([1.0, 1.0, 1.5, 1.5, 1.5, 1.0])
+    length, walk = segment_lengths(moves, steps, np.array([0, 3, 3, 6]))  # the middle walk is empty
+    np.testing.assert_allclose(length, [2.0, 1.5, 3.0, 1.0])
+    np.testing.assert_array_equal(walk, [0, 0, 2, 2])
+
+
+@pytest.mark.parametrize(
+    ("params", "feasible"),
+    [
+        ({}, (True, True)),
+        ({"l_max": 3.5}, (True, False)),  # eq. 2: the zigzag is 2 sqrt 2 + 1 = 3.83 cells long
+        ({"l_max": 3.9}, (True, True)),
+        ({"l_min": 1.5}, (True, False)),  # eq. 3: its two diagonal segments are 1.41 cells, before a turn
+        ({"l_min": 1.4}, (True, True)),
+        ({"l_min": 3.5}, (True, False)),  # the straight walk is one segment, which ends at the target
+    ],
+)
+def test_eqs_2_3_make_walks_infeasible(params, feasible):
+    planner = pathzoo.make_planner("aco.dsaco", **params)
+    state = _state(planner, _volume())
+    straight = [(1, 0, 0), (1, 0, 1), (1, 0, 2), (1, 0, 3)]
+    zigzag = [(1, 0, 0), (1, 1, 1), (1, 0, 2), (1, 0, 3)]
+    walks = _walks(state.problem, straight, zigzag)
+    costs = planner.walk_costs(state, walks)
+    assert tuple(np.isfinite(costs)) == feasible
+    base = pathzoo.make_planner("aco.dsaco").walk_costs(_state(pathzoo.make_planner("aco.dsaco"), _volume()), walks)
+    np.testing.assert_array_equal(costs[np.isfinite(costs)], base[np.isfinite(costs)])  # feasible costs unchanged
+
+
+def test_l_max_below_the_optimum_leaves_no_feasible_path():
+    scenario = _volume()
+    budget = Budget(iterations=3)
+    assert pathzoo.make_planner("aco.dsaco").plan(scenario, budget=budget, rng=np.random.default_rng(0)).solved
+    result = pathzoo.make_planner("aco.dsaco", l_max=2.5).plan(scenario, budget=budget, rng=np.random.default_rng(0))
+    assert not result.solved  # the target is 3 cells away

@@ -86,3 +86,27 @@ def test_dynamic_scenario_solvable_by_waiting(k, shortest_points):
         if validate_path(dyn, timed, times):
             return
     pytest.fail("no departure time in [0, 120) s lets the static optimum pass the moving obstacles")
+
+
+def test_trap_is_a_named_stress_test_not_a_paper_scenario(shortest_points):
+    trap = pathzoo.load_scenario("fgdaco.trap")
+    s3 = pathzoo.load_scenario("fgdaco.scenario3")
+    assert trap.kind == "dynamic" and len(trap.moving_obstacles) == 3
+    assert "not from the paper" in trap.metadata["source"]
+    assert "Table 5" in s3.metadata["source"] and "fitted" in s3.metadata
+    np.testing.assert_array_equal(trap.start, [6.5, 50.5])
+    np.testing.assert_array_equal(trap.goal, [55.5, 50.5])
+    assert not np.array_equal(trap.occupancy, s3.occupancy)
+    # the goal sits inside the C: every route leaves it to the west and turns back
+    static = pathzoo.load_scenario("fgdaco.trap_static")
+    path = shortest_points(static)
+    assert validate_path(static, path)
+    assert path[:, 0].max() > 93.0  # around the C's open east side
+
+
+def test_scenario3_needs_no_u_turn(shortest_points):
+    """Along the optimum of scenario 3 the distance to the goal never grows by more than a cell."""
+    s = pathzoo.load_scenario("fgdaco.scenario3_static")
+    path = shortest_points(s)
+    to_goal = np.linalg.norm(path - s.goal, axis=1)
+    assert np.all(np.diff(to_goal) <= 1.0)

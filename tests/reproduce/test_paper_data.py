@@ -1,0 +1,93 @@
+"""The papers' data files: they parse, name registered scenarios and planners, and bad files fail with one line."""
+
+from __future__ import annotations
+
+import pytest
+
+from pathzoo.analysis.reproduction import (
+    NOT_AVAILABLE,
+    PAPERS,
+    PaperDataError,
+    load_paper,
+    paper_file,
+    planner_status,
+)
+from pathzoo.core.errors import InvalidParameterError
+from pathzoo.plugins.manager import get_registry
+
+# every rival each paper compares against, by the id pathzoo gives it (written or still missing)
+EXPECTED_RIVALS = {
+    "fgdaco": {"swarm.cuckoo", "evo.fuzzy_ga", "aco.flaco"},
+    "dsaco": {"aco.as", "aco.mmas", "aco.chen"},
+    "ggaco": {"aco.aco_astar", "exact.zstar", "swarm.mopso", "evo.lro_ga", "swarm.mosfla", "search.movns"},
+    "gant": {"evo.ga", "aco.as"},
+    "iaca": {"exact.dijkstra"},
+}
+
+
+@pytest.mark.parametrize("name", PAPERS)
+def test_paper_file_parses_and_names_registered_scenarios(name):
+    paper = load_paper(name)
+    registry = get_registry()
+    for sid in paper.scenarios.values():
+        assert sid in registry.scenarios, sid
+    ref = paper.planner(paper.reference)
+    assert planner_status(ref) == "", f"{name}: the proposed method {ref.id} must run"
+    assert {p.id for p in paper.planners} - {ref.id} == EXPECTED_RIVALS[name]
+    # the paper's number for every planner in every scenario and metric
+    v = paper.values
+    for key in paper.scenarios:
+        for p in paper.planners:
+            for m in paper.metrics:
+                hit = v[(v.scenario == key) & (v.planner == p.key) & (v.metric == m.id)]
+                assert len(hit) == 1, (name, key, p.key, m.id)
+    assert paper.runs >= 1 and paper.table.startswith("Table")
+
+
+def test_paper_numbers_are_the_papers():
+    """Spot checks against the paper files (one cell per table)."""
+    v = load_paper("fgdaco").values
+    row = v[(v.scenario == "3") & (v.planner == "flaco") & (v.metric == "length")].iloc[0]
+    assert (row.value, row.sd) == (201.43, 4.69)
+    v = load_paper("dsaco").values
+    assert v[(v.planner == "dsaco") & (v.metric == "length")].value.iloc[0] == 74.1204
+    v = load_paper("ggaco").values
+    row = v[(v.scenario == "5") & (v.planner == "mosfla") & (v.metric == "length")].iloc[0]
+    assert (row.value, row.mark) == (642.7, "↓")
+    v = load_paper("gant").values
+    assert v[(v.scenario == "simple.1") & (v.planner == "gant")].value.iloc[0] == 562.58
+
+
+def test_unknown_planner_is_reported_not_available():
+    paper = load_paper("ggaco")
+    missing = [p for p in paper.planners if p.id not in get_registry().planners]
+    for p in missing:
+        assert planner_status(p) == NOT_AVAILABLE
+
+
+def test_unknown_paper_is_a_one_line_error():
+    with pytest.raises(InvalidParameterError, match="unknown paper 'nope'") as info:
+        paper_file("nope")
+    assert "\n" not in str(info.value)
+
+
+@pytest.mark.parametrize(
+    ("edit", "field"),
+    [
+        (lambda t: t.replace('reference = "iaca"', 'reference = "zzz"'), "reference"),
+        (lambda t: t.replace('statistic = "value"', 'statistic = "mode"'), "statistic"),
+        (lambda t: t.replace('planner = "iaca"\nvalues', 'planner = "ghost"\nvalues'), "ghost"),
+        (lambda t: t.replace("eq21_distance = [33.5], cpu_time = [21.0]", "bogus = [1.0]"), "bogus"),
+        (lambda t: t.replace("[paper]", "[paper", 1), "toml"),
+    ],
+)
+def test_bad_paper_file_names_the_file_and_field(tmp_path, edit, field):
+    text = paper_file("iaca").read_text(encoding="utf-8")
+    bad = tmp_path / "iaca.toml"
+    bad.write_text(edit(text), encoding="utf-8")
+    with pytest.raises(PaperDataError) as info:
+        load_paper("iaca", bad)
+    msg = str(info.value)
+    assert str(bad) in msg and "\n" not in msg
+    if field != "toml":
+        assert field in msg
