@@ -44,7 +44,7 @@ from pathzoo.analysis.reproduction import replace_section
 from pathzoo.core import Budget, Scenario
 from pathzoo.harness.experiment import Experiment
 from pathzoo.harness.runner import run_experiment
-from pathzoo.harness.validation import validate_path
+from pathzoo.rules import validate_path
 from pathzoo_scenarios import iaca as iaca_pack
 
 PAPER_GANT_SIMPLE_1 = 562.58
