@@ -6,10 +6,12 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from pathzoo.grid.terrain import path_profile
+
 if TYPE_CHECKING:
     from pathzoo.core.scenario import Scenario
 
-__all__ = ["CENTRE_TOLERANCE_CELLS", "on_centre", "centre_path"]
+__all__ = ["CENTRE_TOLERANCE_CELLS", "on_centre", "centre_path", "path_pieces"]
 
 CENTRE_TOLERANCE_CELLS = 1e-9
 """An endpoint this close (in cells) to its cell centre stands in for that centre."""
@@ -41,3 +43,25 @@ def centre_path(scenario: "Scenario", nodes: np.ndarray) -> np.ndarray:
         pts[-1] = scenario.goal
     parts = [scenario.start[None, :]] * head + [pts] + [scenario.goal[None, :]] * tail
     return np.concatenate(parts)
+
+
+def path_pieces(scenario: "Scenario", path: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """3-D lengths (m) and signed slopes (rad, uphill positive) of the pieces a path is driven in.
+
+    - ``terrain``: each segment is split as in
+      `pathzoo.grid.terrain.path_profile` (bilinear heights, pieces of
+      at most √2 cells), the same profile the validator checks slopes on;
+    - ``air3d``: one piece per segment, its 3-D length and pitch;
+    - ``grid2d`` and ``dynamic``: one flat piece per segment.
+    """
+    pts = np.asarray(path, dtype=np.float64)
+    if len(pts) < 2:
+        return np.zeros(0), np.zeros(0)
+    d = np.diff(pts, axis=0)
+    if scenario.kind == "terrain":
+        lengths, slopes, _ = path_profile(scenario.elevation, pts, scenario.cell_size)
+        return lengths, slopes
+    if scenario.kind == "air3d":
+        horiz = np.hypot(d[:, 0], d[:, 1])
+        return np.linalg.norm(d, axis=1), np.arctan2(d[:, 2], horiz)
+    return np.linalg.norm(d, axis=1), np.zeros(len(d))

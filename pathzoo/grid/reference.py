@@ -96,11 +96,10 @@ def _cached(cache: "weakref.WeakKeyDictionary[Scenario, _T]", scenario: "Scenari
 
 
 def _compute(scenario: "Scenario") -> ReferencePath | None:
-    # imported here: pathzoo.metrics imports this module for length_ratio, and
-    # registering the metrics must not pull in scipy
+    # imported here: registering the metrics (which import this module) must not pull in scipy
     from scipy.sparse.csgraph import dijkstra
 
-    from pathzoo.metrics.geometry import path_pieces
+    from pathzoo.grid.paths import path_pieces
 
     graph = scenario.graph
     source, target = scenario.start_node, scenario.goal_node

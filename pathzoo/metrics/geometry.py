@@ -12,37 +12,15 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from pathzoo.grid.terrain import path_profile
+from pathzoo.grid.paths import path_pieces
 
 if TYPE_CHECKING:
     from pathzoo.core.scenario import Scenario
 
-__all__ = ["TURN_EPS_RAD", "path_pieces", "turn_angles", "clearance_samples", "travel_time_energy"]
+__all__ = ["TURN_EPS_RAD", "turn_angles", "clearance_samples", "travel_time_energy"]
 
 TURN_EPS_RAD = 1e-6
 """Heading changes at or below this many radians are not turns."""
-
-
-def path_pieces(scenario: "Scenario", path: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """3-D lengths (m) and signed slopes (rad, uphill positive) of the pieces a path is driven in.
-
-    - ``terrain``: each segment is split as in
-      `pathzoo.grid.terrain.path_profile` (bilinear heights, pieces of
-      at most √2 cells), the same profile the validator checks slopes on;
-    - ``air3d``: one piece per segment, its 3-D length and pitch;
-    - ``grid2d`` and ``dynamic``: one flat piece per segment.
-    """
-    pts = np.asarray(path, dtype=np.float64)
-    if len(pts) < 2:
-        return np.zeros(0), np.zeros(0)
-    d = np.diff(pts, axis=0)
-    if scenario.kind == "terrain":
-        lengths, slopes, _ = path_profile(scenario.elevation, pts, scenario.cell_size)
-        return lengths, slopes
-    if scenario.kind == "air3d":
-        horiz = np.hypot(d[:, 0], d[:, 1])
-        return np.linalg.norm(d, axis=1), np.arctan2(d[:, 2], horiz)
-    return np.linalg.norm(d, axis=1), np.zeros(len(d))
 
 
 def turn_angles(path: np.ndarray) -> np.ndarray:

@@ -9,7 +9,7 @@ import numpy as np
 
 from pathzoo.grid.reference import anyangle_length, reference_length
 from pathzoo.metrics.base import PathMetric
-from pathzoo.metrics.geometry import path_pieces
+from pathzoo.grid.paths import path_pieces
 
 if TYPE_CHECKING:
     from pathzoo.core.results import RunRecord

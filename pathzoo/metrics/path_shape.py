@@ -7,7 +7,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from pathzoo.metrics.base import PathMetric
-from pathzoo.metrics.geometry import TURN_EPS_RAD, path_pieces, turn_angles
+from pathzoo.grid.paths import path_pieces
+from pathzoo.metrics.geometry import TURN_EPS_RAD, turn_angles
 
 if TYPE_CHECKING:
     from pathzoo.core.results import RunRecord

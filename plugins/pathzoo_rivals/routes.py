@@ -40,7 +40,8 @@ from pathzoo.grid.paths import centre_path
 from pathzoo.grid.segments import first_blocked_cell_2d, to_cell_units
 from pathzoo.grid.terrain import segment_profile
 from pathzoo.rules import segment_problem
-from pathzoo.metrics.geometry import path_pieces, travel_time_energy, turn_angles
+from pathzoo.grid.paths import path_pieces
+from pathzoo.metrics.geometry import travel_time_energy, turn_angles
 from pathzoo_exact.kernel import (
     FOUND,
     H_OCTILE,

@@ -8,7 +8,8 @@ import pytest
 import pathzoo
 from pathzoo.core import Budget, Scenario, Status
 from pathzoo.rules import validate_path
-from pathzoo.metrics.geometry import path_pieces, travel_time_energy
+from pathzoo.grid.paths import path_pieces
+from pathzoo.metrics.geometry import travel_time_energy
 
 IDS = ("swarm.mosfla", "search.movns")
 
