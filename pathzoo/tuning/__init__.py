@@ -8,7 +8,8 @@ the protocol.
 from pathzoo.tuning.objective import WORST_RATIO, trial_score
 from pathzoo.tuning.setup import DEFAULT_TRIALS, TuningSetup, load_tuning
 from pathzoo.tuning.space import SearchRange, default_space, parse_space
-from pathzoo.tuning.tuner import PlannerTuning, TuningResult, optuna_storage_path, study_name, tune
+from pathzoo.analysis.tuning_report import optuna_storage_path, study_name
+from pathzoo.tuning.tuner import PlannerTuning, TuningResult, tune
 
 __all__ = [
     "DEFAULT_TRIALS",

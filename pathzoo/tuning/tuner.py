@@ -10,7 +10,7 @@ The flow of ``pathzoo tune``::
     run every planner's default and best configuration on the test scenarios
 
 Trials are stored in an Optuna SQLite storage beside the results database
-(:func:`optuna_storage_path`); runs are stored in the results database by run
+(:func:`pathzoo.analysis.tuning_report.optuna_storage_path`); runs are stored in the results database by run
 key under the experiments ``<name>.tune`` and ``<name>.test``. Killed at any
 point and started again, a tuning run re-uses finished trials and runs and
 re-asks an interrupted trial with the same seed, so it ends with the same
@@ -29,6 +29,7 @@ from typing import TYPE_CHECKING, Any, Mapping
 
 import pandas as pd
 
+from pathzoo.analysis.tuning_report import optuna_storage_path, study_name
 from pathzoo.core.errors import PathzooError
 from pathzoo.harness.runner import DEFAULT_DB, run_experiment
 from pathzoo.harness.specs import PlannerSpec
@@ -42,7 +43,7 @@ if TYPE_CHECKING:
 
     from pathzoo.harness.executors import RunExecutor
 
-__all__ = ["PlannerTuning", "TuningResult", "optuna_storage_path", "study_name", "tune"]
+__all__ = ["PlannerTuning", "TuningResult", "tune"]
 
 log = logging.getLogger("pathzoo.tuning")
 
@@ -122,17 +123,6 @@ class TuningResult:
 
 def _fmt(value: Any) -> str:
     return f"{value:.4g}" if isinstance(value, float) else str(value)
-
-
-def optuna_storage_path(db: str | Path) -> Path:
-    """The Optuna storage beside a results database: ``results.sqlite`` -> ``results.optuna.sqlite``."""
-    db = Path(db)
-    return db.with_name(f"{db.stem}.optuna.sqlite")
-
-
-def study_name(experiment: str, planner: str) -> str:
-    """The study of one planner of a tuning experiment: ``"<experiment>:<planner name>"``."""
-    return f"{experiment}:{planner}"
 
 
 def _sampler_seed(seed: int, planner: str, completed: int) -> int:
