@@ -88,6 +88,14 @@ def _scenario_list(data: Mapping[str, Any], key: str, src: str) -> list[str]:
     return value
 
 
+def _stage_experiment(data: Mapping[str, Any], key: str, scenarios: list[str], path: Path) -> Experiment:
+    """The experiment with ``scenarios`` as its scenario list; errors about them name ``key``, not 'scenarios'."""
+    try:
+        return Experiment.from_mapping({**data, "scenarios": scenarios}, path)
+    except InvalidExperimentError as exc:
+        raise InvalidExperimentError(str(exc).replace("field 'scenarios", f"field '{key}", 1)) from None
+
+
 def load_tuning(path: str | Path, *, trials: int | None = None) -> TuningSetup:
     """Read a tuning experiment file (format in the module docstring).
 
@@ -124,9 +132,9 @@ def load_tuning(path: str | Path, *, trials: int | None = None) -> TuningSetup:
         searches = [t.pop("search", None) if isinstance(t, dict) else None for t in tables]
         data["planner"] = tables
     del data["train"], data["test"]
-    train_exp = Experiment.from_mapping({**data, "scenarios": train}, path)
+    train_exp = _stage_experiment(data, "train", train, path)
     train_specs = train_exp.scenarios
-    test_specs = Experiment.from_mapping({**data, "scenarios": test}, path).scenarios
+    test_specs = _stage_experiment(data, "test", test, path).scenarios
     overlap = sorted({s.id for s in train_specs} & {s.id for s in test_specs})
     if overlap:
         raise InvalidExperimentError(
