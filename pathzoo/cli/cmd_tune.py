@@ -9,15 +9,14 @@ from pathlib import Path
 from typing import Any
 
 from pathzoo.cli.cmd_leaderboard import add_table_options, render_leaderboard
-from pathzoo.cli.cmd_run import EXECUTORS, positive_int
+from pathzoo.cli.cmd_run import add_execution_options, executor_of, positive_int
 from pathzoo.cli.errors import CommandError
 
 __all__ = ["add_parser"]
 
 
 def _run(args: argparse.Namespace) -> int:
-    if args.dask_address and args.executor != "dask":
-        raise CommandError("--dask-address needs --executor dask")
+    executor = executor_of(args)
     path = Path(args.experiment)
     if not path.is_file():
         raise FileNotFoundError(errno.ENOENT, "no such experiment file", str(path))
@@ -26,7 +25,6 @@ def _run(args: argparse.Namespace) -> int:
     from pathzoo.tuning import load_tuning, tune
 
     setup = load_tuning(path, trials=args.trials)
-    executor = f"dask:{args.dask_address}" if args.dask_address else args.executor
     db = args.db or setup.experiment.db or DEFAULT_DB
     try:
         result = tune(setup, db=db, jobs=args.jobs, executor=executor, progress=not args.no_progress)
@@ -65,9 +63,6 @@ def add_parser(subparsers: Any) -> None:
         "--db", metavar="FILE", help="SQLite results file (default: the experiment's db, else pathzoo-results.sqlite); "
         "the Optuna trials go beside it in FILE-stem.optuna.sqlite"
     )
-    parser.add_argument("--jobs", type=positive_int, metavar="N", help="worker processes (default: number of CPUs)")
-    parser.add_argument("--executor", choices=EXECUTORS, default="process", help="where runs execute (default: process)")
-    parser.add_argument("--dask-address", metavar="ADDR", help="Dask scheduler address, with --executor dask")
-    parser.add_argument("--no-progress", action="store_true", help="do not show progress bars")
+    add_execution_options(parser)
     add_table_options(parser)
     parser.set_defaults(handler=_run)

@@ -170,6 +170,9 @@ def _next_trial(study: "optuna.Study", space: Mapping[str, SearchRange], seed: i
         if set(trial.params) == set(space):
             return trial.number, dict(trial.params)
         study.tell(trial.number, state=TrialState.FAIL)  # killed while drawing: draw again, same seed
+        fixed = trial.system_attrs.get("fixed_params")
+        if fixed:  # it was the enqueued default configuration: enqueue it again
+            study.enqueue_trial(fixed)
     done = len(_completed(study))
     study.sampler = optuna.samplers.TPESampler(
         seed=_sampler_seed(seed, planner, done), n_startup_trials=max(1, min(10, n_trials // 3))
