@@ -118,6 +118,8 @@ def default_vs_tuned(runs: pd.DataFrame, metric: str, alpha: float) -> pd.DataFr
 
 
 def _plot_best(studies: dict[str, "optuna.Study"]) -> Any:
+    from matplotlib.ticker import MaxNLocator
+
     from pathzoo.plotting.figure import legend_below, new_figure, planner_colors
 
     fig = new_figure((6.0, 4.2))
@@ -127,6 +129,7 @@ def _plot_best(studies: dict[str, "optuna.Study"]) -> Any:
         curve = best_so_far(study)
         ax.step(curve["trial"], curve["best"], where="post", color=colors[name], label=name)
         ax.plot(curve["trial"], curve["score"], "o", ms=3, alpha=0.5, color=colors[name])
+    ax.xaxis.set_major_locator(MaxNLocator(integer=True))
     ax.set_xlabel("trial")
     ax.set_ylabel("training score (lower is better)")
     legend_below(ax)
