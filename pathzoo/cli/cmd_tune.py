@@ -24,6 +24,10 @@ def _run(args: argparse.Namespace) -> int:
     from pathzoo.harness.runner import DEFAULT_DB
     from pathzoo.tuning import load_tuning, tune
 
+    try:
+        import optuna  # noqa: F401
+    except ModuleNotFoundError:
+        raise CommandError("pathzoo tune needs Optuna: pip install 'pathzoo[tune]'") from None
     setup = load_tuning(path, trials=args.trials)
     db = args.db or setup.experiment.db or DEFAULT_DB
     try:

@@ -255,3 +255,18 @@ def test_conformance_ids_name_the_configuration():
     ids = mark.kwargs["ids"]
     assert len(ids) == len(set(ids))
     assert "aco.mmas-check_solves[grid2d]" in ids and "aco.mmas(alpha=2)-check_solves[grid2d]" in ids
+
+
+def test_every_declared_tuning_range_is_valid_and_defaults_are_unchanged():
+    from pathzoo.tuning import default_space
+
+    registry = get_registry()
+    declared = 0
+    for pid in registry.planners:
+        cls = registry.get("planners", pid).obj
+        space = default_space(cls)  # raises for a range outside the bounds
+        declared += len(space)
+        for name, r in space.items():
+            assert cls.params[name].tune == (r.low, r.high)
+    assert declared >= 4 * 8  # alpha, beta, rho and n_ants of every colony
+    assert registry.get("planners", "aco.mmas").obj().get_params()["alpha"] == 1.0
