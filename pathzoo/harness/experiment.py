@@ -21,7 +21,9 @@ TOML format (every key but the planners and scenarios is optional)::
     label = "gant-40"           # optional name in tables and plots
 
 Without a ``label`` a configuration is named ``id(param=value, ...)`` for the
-parameters that differ from the defaults. Scenario entries are registered ids, glob patterns of registered ids
+parameters that differ from the defaults (docs/configurations.md).
+
+Scenario entries are registered ids, glob patterns of registered ids
 (``"movingai.arena.*"``) or file paths (anything with a ``/`` or a scenario
 file suffix; relative paths are relative to the TOML file). ``scenarios`` may
 also be written as a top-level key before ``[experiment]``.
@@ -363,8 +365,6 @@ class Experiment:
                 raise bad(f"planner[{i}]", f"unknown key(s) {extra}; allowed: id, params, label")
             pid, params = table.get("id"), table.get("params", {})
             label = table.get("label")
-            if label is not None and (not isinstance(label, str) or not label.strip() or label != label.strip()):
-                raise bad(f"planner[{i}].label", f"must be a non-empty string without outer spaces, got {label!r}")
             if not isinstance(pid, str) or not pid:
                 raise bad(f"planner[{i}].id", "must be a planner id string")
             if not isinstance(params, dict):

@@ -100,13 +100,12 @@ class PlannerSpec:
             planner_id, params = obj.id, obj.get_params()
         elif isinstance(obj, tuple) and len(obj) == 2 and isinstance(obj[0], str) and isinstance(obj[1], Mapping):
             planner_id, params = obj[0], dict(obj[1])
-        elif (
-            isinstance(obj, tuple) and len(obj) == 3 and isinstance(obj[0], str) and isinstance(obj[1], Mapping)
-            and isinstance(obj[2], str)
-        ):
+        elif isinstance(obj, tuple) and len(obj) == 3 and isinstance(obj[0], str) and isinstance(obj[1], Mapping):
             planner_id, params, label = obj[0], dict(obj[1]), obj[2]
-            if not label or label != label.strip():
-                raise InvalidExperimentError(f"a planner label must be a non-empty string without outer spaces, got {label!r}")
+            if not isinstance(label, str) or not label or label != label.strip():
+                raise InvalidExperimentError(
+                    f"a planner label must be a non-empty string without outer spaces, got {label!r}"
+                )
         else:
             raise InvalidExperimentError(
                 "a planner must be an id, an (id, params) pair, an (id, params, label) triple or a Planner "
