@@ -88,17 +88,15 @@ df = with_config(result.test_runs, "length_ratio")
 medians = df[df["success"]].groupby(["config", "scenario"])["length_ratio"].median()
 fig, ax = plt.subplots(figsize=(6, 4))
 for p in result.planners:
-    tuned = f"{p.name} default = tuned" if p.tuned == p.default else f"{p.name} tuned"
-    default = f"{p.name} default = tuned" if p.tuned == p.default else f"{p.name} default"
+    default, tuned = p.test_labels
     for scenario in sorted(df["scenario"].unique()):
         before = medians.get((default, scenario))
         after = medians.get((tuned, scenario))
         if before is not None and after is not None:
             ax.plot([0, 1], [before, after], "o-", label=f"{p.name}, {scenario}")
 ax.set_xticks([0, 1], ["default", "tuned"])
-for kind in ("default", "tuned"):
-    score = {p.name: medians[[c for c in medians.index.get_level_values(0).unique()
-                               if c.startswith(p.name + " ") and kind in c]].mean() for p in result.planners}
+for i, kind in enumerate(("default", "tuned")):
+    score = {p.name: medians[p.test_labels[i]].mean() for p in result.planners}
     print(f"order by mean test median, {kind}:", " < ".join(sorted(score, key=score.get)))
 ax.set_ylabel("median length ratio on the test scenario")
 ax.legend(fontsize="small")

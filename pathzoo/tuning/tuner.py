@@ -79,6 +79,18 @@ class PlannerTuning:
     study: str
 
     @property
+    def kept_default(self) -> bool:
+        """Whether tuning kept the default configuration."""
+        return self.tuned.params_hash == self.default.params_hash
+
+    @property
+    def test_labels(self) -> tuple[str, str]:
+        """Names of the default and tuned configurations on the test scenarios (the same when tuning kept the default)."""
+        if self.kept_default:
+            return (f"{self.name} default = tuned",) * 2  # type: ignore[return-value]
+        return f"{self.name} default", f"{self.name} tuned"
+
+    @property
     def tuned_text(self) -> str:
         """The searched parameters of the tuned configuration, ``alpha=1.23, beta=4``."""
         return ", ".join(f"{k}={_fmt(self.tuned.params[k])}" for k in self.space) or "(nothing to tune)"
@@ -283,11 +295,7 @@ def _test(setup: TuningSetup, tunings: list[PlannerTuning], db: Path, jobs: int 
           executor: "str | RunExecutor", progress: bool) -> pd.DataFrame:
     labels: dict[tuple[str, str], str] = {}
     for t in tunings:
-        if t.tuned.params_hash == t.default.params_hash:
-            labels[(t.default.id, t.default.params_hash)] = f"{t.name} default = tuned"
-        else:
-            labels[(t.default.id, t.default.params_hash)] = f"{t.name} default"
-            labels[(t.tuned.id, t.tuned.params_hash)] = f"{t.name} tuned"
+        labels[(t.default.id, t.default.params_hash)], labels[(t.tuned.id, t.tuned.params_hash)] = t.test_labels
     specs = {(t.default.id, t.default.params_hash): t.default for t in tunings}
     specs.update({(t.tuned.id, t.tuned.params_hash): t.tuned for t in tunings})
     planners = tuple(PlannerSpec(s.id, s.params, labels[key]) for key, s in specs.items())

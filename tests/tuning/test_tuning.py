@@ -92,9 +92,8 @@ def test_every_planner_gets_the_same_trials_and_default_and_tuned_rows(tuning_fi
     assert mmas.tuned_text.startswith("beta=")
     configs = set(config_labels(result.test_runs))
     for p in result.planners:
-        same = p.tuned.params_hash == p.default.params_hash
-        expected = {f"{p.name} default = tuned"} if same else {f"{p.name} default", f"{p.name} tuned"}
-        assert expected <= configs
+        expected = {f"{p.name} default = tuned"} if p.kept_default else {f"{p.name} default", f"{p.name} tuned"}
+        assert expected <= configs and set(p.test_labels) == expected
     assert "exact.astar default = tuned" in configs
     assert set(result.test_runs["scenario"]) == {"tune.random3", "tune.random4"}
     text = format_leaderboard(leaderboard(result.test_runs, "length"))
