@@ -150,7 +150,7 @@ def list_plugins(kind: str = "planners") -> list[PluginEntry]:
 
 
 def run(
-    planners: Sequence[str | Planner | tuple[str, dict[str, Any]]],
+    planners: Sequence[str | Planner | tuple[str, dict[str, Any]] | tuple[str, dict[str, Any], str]],
     scenarios: Sequence[str | Scenario],
     *,
     seeds: int | Iterable[int] = 5,
@@ -168,7 +168,10 @@ def run(
     Parameters
     ----------
     planners : sequence
-        Planner ids, ``(id, params)`` pairs, or planner instances.
+        Planner ids, ``(id, params)`` pairs, ``(id, params, label)`` triples
+        (the label names the configuration in tables and plots; without it
+        the name is ``id(param=value, ...)`` for the non-default parameters),
+        ``pathzoo.harness.PlannerSpec`` objects, or planner instances.
     scenarios : sequence
         Scenario ids, glob patterns of ids, file paths, or Scenario objects.
     seeds : int or iterable of int

@@ -6,9 +6,14 @@ few rules they share:
 
 - a run **succeeded** when ``status == "solved"`` and the harness found the
   path ``valid`` (the same rule as :attr:`pathzoo.core.RunRecord.success`);
-- a **configuration** is a planner id plus a parameter hash; it is labelled by
-  the planner id alone unless the frame holds several parameter sets of the
-  same planner, then ``"<planner>@<first 7 hash characters>"``;
+- a **configuration** is a planner id plus a parameter hash; it is named by
+  its stored ``label`` (the experiment's ``label``, else
+  ``id(param=value, ...)`` for the parameters off their defaults, see
+  :attr:`pathzoo.harness.specs.PlannerSpec.name`). Runs without a label
+  (databases written before labels existed) are named by the planner id
+  alone unless the frame holds several parameter sets of the same planner,
+  then ``"<planner>@<first 7 hash characters>"``; a name that two
+  configurations share gets the ``@hash`` suffix too;
 - a metric's unit and direction come from the metric registry
   (``pathzoo list metrics``); the harness's own numeric columns
   (``wall_time_s``, ``cpu_time_s``, ``iterations``, ``evaluations``) are known
@@ -139,11 +144,18 @@ def success_mask(runs: pd.DataFrame) -> pd.Series:
 
 
 def config_labels(runs: pd.DataFrame) -> pd.Series:
-    """One label per run naming its configuration (planner, parameter hash)."""
+    """One label per run naming its configuration (planner, parameter hash); rules in the module docstring."""
     planner = runs["planner"].astype(str)
     phash = runs["params_hash"].astype(str)
     n_sets = phash.groupby(planner).transform("nunique")
-    return planner.where(n_sets <= 1, planner + "@" + phash.str[:7])
+    fallback = planner.where(n_sets <= 1, planner + "@" + phash.str[:7])
+    if "label" not in runs.columns:
+        return fallback
+    stored = runs["label"].fillna("").astype(str)
+    names = stored.where(stored != "", fallback)
+    config = planner + "|" + phash
+    shared = config.groupby(names).transform("nunique") > 1
+    return names.where(~shared, names + "@" + phash.str[:7])
 
 
 MEASUREMENT_DIGITS = 12

@@ -428,6 +428,7 @@ def write_report(
         ``db`` holds several experiments and none was chosen, or none at all.
     """
     from pathzoo.analysis.database import load_experiment
+    from pathzoo.analysis.tuning_report import add_tuning_section
     from pathzoo.harness.store import read_path
 
     exp = load_experiment(db, experiment)
@@ -441,6 +442,7 @@ def write_report(
         path_of=lambda key: read_path(db, exp.name, key)[0], title=f"pathzoo report: {exp.name}", meta=meta,
         embed=embed, max_scenarios=max_scenarios,
     )
+    add_tuning_section(page, db, exp.name, exp.runs, metric=metric, alpha=alpha)  # only for 'pathzoo tune' results
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     if page.files:

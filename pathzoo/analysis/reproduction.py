@@ -322,6 +322,7 @@ def _label_runs(paper: PaperData, runs: pd.DataFrame, experiment: Any) -> pd.Dat
     out["scenario"] = [sid[: len(sid) - len(p.variant)] if p and p.variant and sid.endswith(p.variant) else sid
                        for p, sid in zip(chosen, runs["scenario"])]
     out["params_hash"] = "paper"
+    out["label"] = out["planner"]  # the configuration name the analysis shows (pathzoo.analysis.frame.config_labels)
     return out
 
 

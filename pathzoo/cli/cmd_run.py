@@ -14,7 +14,7 @@ from typing import Any
 from pathzoo.cli.cmd_leaderboard import add_table_options, render_leaderboard
 from pathzoo.cli.errors import CommandError
 
-__all__ = ["add_parser", "positive_int"]
+__all__ = ["add_parser", "add_execution_options", "executor_of", "positive_int"]
 
 EXECUTORS = ("process", "dask", "inline")
 
@@ -30,9 +30,23 @@ def positive_int(text: str) -> int:
     return value
 
 
-def _run(args: argparse.Namespace) -> int:
+def executor_of(args: argparse.Namespace) -> str:
+    """The executor named by :func:`add_execution_options`' options (``"dask:<address>"`` with an address)."""
     if args.dask_address and args.executor != "dask":
         raise CommandError("--dask-address needs --executor dask")
+    return f"dask:{args.dask_address}" if args.dask_address else args.executor
+
+
+def add_execution_options(parser: argparse.ArgumentParser) -> None:
+    """``--jobs``, ``--executor``, ``--dask-address`` and ``--no-progress`` (shared with ``pathzoo tune``)."""
+    parser.add_argument("--jobs", type=positive_int, metavar="N", help="worker processes (default: number of CPUs)")
+    parser.add_argument("--executor", choices=EXECUTORS, default="process", help="where runs execute (default: process)")
+    parser.add_argument("--dask-address", metavar="ADDR", help="Dask scheduler address, with --executor dask")
+    parser.add_argument("--no-progress", action="store_true", help="do not show a progress bar")
+
+
+def _run(args: argparse.Namespace) -> int:
+    executor = executor_of(args)
     with ExitStack() as stack:
         if args.experiment is None:
             path = stack.enter_context(resources.as_file(resources.files("pathzoo.experiments") / "default.toml"))
@@ -46,7 +60,6 @@ def _run(args: argparse.Namespace) -> int:
         exp = Experiment.from_toml(path)
     if args.seeds is not None:
         exp = dataclasses.replace(exp, seeds=tuple(range(args.seeds)))
-    executor = f"dask:{args.dask_address}" if args.dask_address else args.executor
     db = args.db or exp.db or DEFAULT_DB
     try:
         runs = run_experiment(exp, db=db, jobs=args.jobs, executor=executor, progress=not args.no_progress)
@@ -72,10 +85,7 @@ def add_parser(subparsers: Any) -> None:
     parser.add_argument(
         "--db", metavar="FILE", help="SQLite results file (default: the experiment's db, else pathzoo-results.sqlite)"
     )
-    parser.add_argument("--jobs", type=positive_int, metavar="N", help="worker processes (default: number of CPUs)")
-    parser.add_argument("--executor", choices=EXECUTORS, default="process", help="where runs execute (default: process)")
-    parser.add_argument("--dask-address", metavar="ADDR", help="Dask scheduler address, with --executor dask")
+    add_execution_options(parser)
     parser.add_argument("--seeds", type=positive_int, metavar="N", help="override the experiment's number of seeds")
-    parser.add_argument("--no-progress", action="store_true", help="do not show a progress bar")
     add_table_options(parser)
     parser.set_defaults(handler=_run)

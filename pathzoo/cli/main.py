@@ -13,8 +13,7 @@ import sqlite3
 import sys
 from typing import Sequence
 
-from pathzoo.cli import cmd_export, cmd_leaderboard, cmd_list, cmd_report, cmd_run, cmd_show
-from pathzoo.cli import cmd_reproduce
+from pathzoo.cli import cmd_export, cmd_leaderboard, cmd_list, cmd_report, cmd_reproduce, cmd_run, cmd_show, cmd_tune
 from pathzoo.core.errors import PathzooError
 
 __all__ = ["build_parser", "main", "EXIT_ERROR"]
@@ -35,9 +34,8 @@ def build_parser() -> argparse.ArgumentParser:
     )
     parser.add_argument("--version", action="version", version=f"pathzoo {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
-    for command in (cmd_list, cmd_run, cmd_leaderboard, cmd_report, cmd_export, cmd_show):
+    for command in (cmd_list, cmd_run, cmd_tune, cmd_reproduce, cmd_leaderboard, cmd_report, cmd_export, cmd_show):
         command.add_parser(sub)
-    cmd_reproduce.add_parser(sub)
     return parser
 
 

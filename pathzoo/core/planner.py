@@ -18,7 +18,7 @@ from pathzoo.core.results import PlanResult
 if TYPE_CHECKING:
     from pathzoo.core.scenario import Scenario
 
-__all__ = ["Param", "Planner", "ProgressCallback", "params_hash"]
+__all__ = ["Param", "Planner", "ProgressCallback", "params_hash", "config_name"]
 
 ProgressCallback = Callable[[int, int, float], None]
 """``progress(iteration, evaluations, best_cost)``; the harness adds the time."""
@@ -44,6 +44,13 @@ class Param:
         Allowed values for categorical parameters.
     nullable : bool
         Whether ``None`` is allowed.
+    tune : (low, high), optional
+        The range ``pathzoo tune`` searches by default (inclusive, inside the
+        bounds). Declared only for the parameters that matter; without it a
+        numeric parameter is searched only when both bounds are finite, and a
+        categorical one over its ``choices``.
+    tune_log : bool
+        Search ``tune`` on a log scale (for ranges spanning decades).
     """
 
     default: Any
@@ -54,6 +61,8 @@ class Param:
     high_open: bool = False
     choices: Sequence[Any] | None = None
     nullable: bool = False
+    tune: tuple[float, float] | None = None
+    tune_log: bool = False
 
     @property
     def kind(self) -> type:
@@ -122,6 +131,39 @@ def params_hash(planner_id: str, version: str, params: Mapping[str, Any]) -> str
     return hashlib.sha256(blob.encode()).hexdigest()[:12]
 
 
+def _format_value(value: Any) -> str:
+    if isinstance(value, float):
+        return f"{value:.6g}"
+    return repr(value) if isinstance(value, str) else str(value)
+
+
+def config_name(planner_id: str, params: Mapping[str, Any], declared: Mapping[str, Param]) -> str:
+    """A readable name of a configuration: ``id(param=value, ...)`` for the parameters off their defaults.
+
+    Parameters
+    ----------
+    planner_id : str
+        The planner id.
+    params : mapping
+        The configuration's (validated) parameters.
+    declared : mapping of str to Param
+        The planner's declared parameters, whose defaults are left out.
+
+    Examples
+    --------
+    >>> config_name("mine.wastar", {"weight": 5.0, "tie": "h"}, {"weight": Param(1.0), "tie": Param("h")})
+    'mine.wastar(weight=5)'
+    >>> config_name("mine.wastar", {"weight": 1.0}, {"weight": Param(1.0)})
+    'mine.wastar'
+    """
+    changed = [
+        f"{name}={_format_value(value)}"
+        for name, value in params.items()
+        if name not in declared or value != declared[name].validate(planner_id, name, declared[name].default)
+    ]
+    return f"{planner_id}({', '.join(changed)})" if changed else planner_id
+
+
 class Planner(abc.ABC):
     """Base class of every planner.
 
@@ -184,6 +226,11 @@ class Planner(abc.ABC):
     def params_hash(self) -> str:
         """Hash of id, version and parameters; part of every run key."""
         return params_hash(self.id, self.version, self._values)
+
+    @property
+    def config_name(self) -> str:
+        """``id(param=value, ...)`` listing the parameters that differ from the defaults (:func:`config_name`)."""
+        return config_name(self.id, self._values, self.params)
 
     def check_supports(self, scenario: "Scenario") -> None:
         """Raise :class:`UnsupportedScenarioError` if ``scenario.kind`` is not supported."""

@@ -18,6 +18,10 @@ TOML format (every key but the planners and scenarios is optional)::
     [[planner]]
     id = "aco.gant"
     params = { n_ants = 40 }
+    label = "gant-40"           # optional name in tables and plots
+
+Without a ``label`` a configuration is named ``id(param=value, ...)`` for the
+parameters that differ from the defaults (docs/configurations.md).
 
 Scenario entries are registered ids, glob patterns of registered ids
 (``"movingai.arena.*"``) or file paths (anything with a ``/`` or a scenario
@@ -42,7 +46,7 @@ from pathzoo.harness.specs import PlannerSpec, RunTask, ScenarioSpec, run_key, r
 if TYPE_CHECKING:
     from pathzoo.core.planner import Planner
 
-__all__ = ["Experiment", "DEFAULT_BUDGET", "TIMEOUT_MARGIN_S", "DEFAULT_TIMEOUT_NO_TIME_S"]
+__all__ = ["Experiment", "read_toml", "DEFAULT_BUDGET", "TIMEOUT_MARGIN_S", "DEFAULT_TIMEOUT_NO_TIME_S"]
 
 DEFAULT_BUDGET = Budget(time_s=10.0)
 """Budget when none is given."""
@@ -148,6 +152,23 @@ _FIELD_CHECKS = {
 }
 
 
+def read_toml(path: str | Path) -> dict[str, Any]:
+    """The parsed TOML file ``path``.
+
+    Raises
+    ------
+    InvalidExperimentError
+        Naming the file when it cannot be read or is not valid TOML.
+    """
+    try:
+        with Path(path).open("rb") as fh:
+            return tomllib.load(fh)
+    except OSError as exc:
+        raise InvalidExperimentError(f"{path}: cannot read: {exc.strerror}") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise InvalidExperimentError(f"{path}: not valid TOML: {exc}") from None
+
+
 @dataclass(frozen=True)
 class Experiment:
     """Planners x scenarios x seeds, run under one budget.
@@ -194,7 +215,9 @@ class Experiment:
     def build(
         cls,
         *,
-        planners: Sequence["str | Planner | tuple[str, Mapping[str, Any]] | PlannerSpec"],
+        planners: Sequence[
+            "str | Planner | tuple[str, Mapping[str, Any]] | tuple[str, Mapping[str, Any], str] | PlannerSpec"
+        ],
         scenarios: Sequence["str | Path | Scenario"],
         seeds: int | Iterable[int] = 5,
         budget: Budget | None = None,
@@ -210,8 +233,10 @@ class Experiment:
         Parameters
         ----------
         planners : sequence
-            Planner ids, ``(id, params)`` pairs or planner instances (kept as
-            id + parameters; workers rebuild them).
+            Planner ids, ``(id, params)`` pairs, ``(id, params, label)``
+            triples, :class:`PlannerSpec` objects or planner instances (kept
+            as id + parameters; workers rebuild them). Labels name the
+            configurations in tables and plots and must be distinct.
         scenarios : sequence
             Registered ids, glob patterns of ids, file paths or Scenario objects.
         seeds : int or iterable of int
@@ -230,7 +255,7 @@ class Experiment:
         Raises
         ------
         InvalidExperimentError
-            Bad experiment-level values, duplicate planners or conflicting scenario ids.
+            Bad experiment-level values, duplicate planners or names, or conflicting scenario ids.
         UnknownPluginError, InvalidParameterError, InvalidScenarioError
             From resolving planners and scenarios.
         """
@@ -250,6 +275,14 @@ class Experiment:
                     f"planner {i} ({spec.id}) repeats planner {seen[key]} with the same parameters"
                 )
             seen[key] = i
+        names: dict[str, int] = {}
+        for i, spec in enumerate(specs):
+            if spec.name in names:
+                raise InvalidExperimentError(
+                    f"planner {i} ({spec.id}) has the same name '{spec.name}' as planner {names[spec.name]}; "
+                    "give them distinct labels"
+                )
+            names[spec.name] = i
         budget = DEFAULT_BUDGET if budget is None else budget
         if not isinstance(budget, Budget):
             raise InvalidExperimentError(f"budget must be a pathzoo.Budget, got {budget!r}")
@@ -279,6 +312,16 @@ class Experiment:
             Naming the file and the field for every problem, including unknown
             planners, bad parameters and missing scenarios.
         """
+        return cls.from_mapping(read_toml(path), path)
+
+    @classmethod
+    def from_mapping(cls, data: Mapping[str, Any], path: str | Path) -> "Experiment":
+        """Build an experiment from the parsed contents of the experiment file ``path``.
+
+        :meth:`from_toml` without the reading, for readers of extended files
+        (``pathzoo tune`` takes its own keys out and passes the rest here).
+        Errors name ``path``; relative paths in ``data`` are relative to it.
+        """
         path = Path(path)
         src = str(path)
 
@@ -291,13 +334,6 @@ class Experiment:
             except PathzooError as exc:
                 raise bad(fld, str(exc)) from None
 
-        try:
-            with path.open("rb") as fh:
-                data = tomllib.load(fh)
-        except OSError as exc:
-            raise InvalidExperimentError(f"{src}: cannot read: {exc.strerror}") from None
-        except tomllib.TOMLDecodeError as exc:
-            raise InvalidExperimentError(f"{src}: not valid TOML: {exc}") from None
         unknown = sorted(set(data) - {"experiment", "planner", "scenarios"})
         if unknown:
             raise InvalidExperimentError(
@@ -324,15 +360,18 @@ class Experiment:
             raise bad("planner", "must be [[planner]] tables")
         planners: list[PlannerSpec] = []
         for i, table in enumerate(planner_tables):
-            extra = sorted(set(table) - {"id", "params"})
+            extra = sorted(set(table) - {"id", "params", "label"})
             if extra:
-                raise bad(f"planner[{i}]", f"unknown key(s) {extra}; allowed: id, params")
+                raise bad(f"planner[{i}]", f"unknown key(s) {extra}; allowed: id, params, label")
             pid, params = table.get("id"), table.get("params", {})
+            label = table.get("label")
             if not isinstance(pid, str) or not pid:
                 raise bad(f"planner[{i}].id", "must be a planner id string")
             if not isinstance(params, dict):
                 raise bad(f"planner[{i}].params", "must be a table")
-            planners.append(checked(f"planner[{i}]", lambda: PlannerSpec.of((pid, params))))
+            planners.append(
+                checked(f"planner[{i}]", lambda: PlannerSpec.of((pid, params) if label is None else (pid, params, label)))
+            )
         budget = DEFAULT_BUDGET
         if "budget" in exp:
             if not isinstance(exp["budget"], dict):
@@ -406,7 +445,9 @@ class Experiment:
             "seeds": list(self.seeds),
             "budget": self.budget.to_dict(),
             "timeout_s": self.timeout_s,
-            "planners": [{"id": p.id, "params": dict(p.params)} for p in self.planners],
+            "planners": [
+                {"id": p.id, "params": dict(p.params), **({"label": p.label} if p.label else {})} for p in self.planners
+            ],
             "scenarios": [s.describe() for s in self.scenarios],
             "source": self.source,
         }

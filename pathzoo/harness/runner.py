@@ -105,7 +105,7 @@ def _execute(
         for future in done:
             task = in_flight.pop(future)
             record = judge(task, future.result(), load_cached(task.scenario, cache_size), metrics)
-            store.insert(record)
+            store.insert(record, label=task.planner.name)
             _call_hook(registry, "pathzoo_run_finished", record=record)
             if record.status is not RunStatus.SOLVED:
                 failures += 1

@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING, Any, Literal, Mapping
 
 from pathzoo.core.budget import Budget
 from pathzoo.core.errors import InvalidExperimentError
-from pathzoo.core.planner import Planner, params_hash
+from pathzoo.core.planner import Planner, config_name, params_hash
 
 if TYPE_CHECKING:
     from pathzoo.core.scenario import Scenario
@@ -55,14 +55,22 @@ class PlannerSpec:
 
     Build it with :meth:`of`, which validates the parameters and fills in the
     defaults, so equal configurations get equal specs and equal hashes.
+
+    ``label`` names the configuration wherever it appears (leaderboard, CSV,
+    report, plots); it is not part of the run key, so relabelling a
+    configuration re-uses its stored runs. Without a label, :attr:`name` is
+    ``id(param=value, ...)`` for the parameters that differ from the defaults.
     """
 
     id: str
     params: Mapping[str, Any] = field(default_factory=dict)
+    label: str = ""
 
     @classmethod
-    def of(cls, obj: "str | Planner | tuple[str, Mapping[str, Any]] | PlannerSpec") -> "PlannerSpec":
-        """Normalise a planner id, ``(id, params)`` pair, planner instance or spec.
+    def of(
+        cls, obj: "str | Planner | tuple[str, Mapping[str, Any]] | tuple[str, Mapping[str, Any], str] | PlannerSpec"
+    ) -> "PlannerSpec":
+        """Normalise a planner id, ``(id, params)`` pair, ``(id, params, label)`` triple, planner instance or spec.
 
         Raises
         ------
@@ -77,8 +85,9 @@ class PlannerSpec:
         from pathzoo import make_planner
         from pathzoo.plugins.manager import get_registry
 
+        label = ""
         if isinstance(obj, PlannerSpec):
-            planner_id, params = obj.id, dict(obj.params)
+            planner_id, params, label = obj.id, dict(obj.params), obj.label
         elif isinstance(obj, str):
             planner_id, params = obj, {}
         elif isinstance(obj, Planner):
@@ -91,11 +100,23 @@ class PlannerSpec:
             planner_id, params = obj.id, obj.get_params()
         elif isinstance(obj, tuple) and len(obj) == 2 and isinstance(obj[0], str) and isinstance(obj[1], Mapping):
             planner_id, params = obj[0], dict(obj[1])
+        elif isinstance(obj, tuple) and len(obj) == 3 and isinstance(obj[0], str) and isinstance(obj[1], Mapping):
+            planner_id, params, label = obj[0], dict(obj[1]), obj[2]
+            if not isinstance(label, str) or not label or label != label.strip():
+                raise InvalidExperimentError(
+                    f"a planner label must be a non-empty string without outer spaces, got {label!r}"
+                )
         else:
             raise InvalidExperimentError(
-                f"a planner must be an id, an (id, params) pair or a Planner instance, got {obj!r}"
+                "a planner must be an id, an (id, params) pair, an (id, params, label) triple or a Planner "
+                f"instance, got {obj!r}"
             )
-        return cls(planner_id, make_planner(planner_id, **params).get_params())
+        return cls(planner_id, make_planner(planner_id, **params).get_params(), label)
+
+    @property
+    def name(self) -> str:
+        """The label, else ``id(param=value, ...)`` for the parameters off their defaults."""
+        return self.label or config_name(self.id, self.params, self.planner_class.params)
 
     @property
     def planner_class(self) -> type[Planner]:

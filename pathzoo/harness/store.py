@@ -10,7 +10,10 @@ Layout (schema version 1; ``sqlite3 results.sqlite .schema`` shows it):
   :class:`~pathzoo.core.results.RunRecord` field, parameters and versions as
   JSON, path and times as float64 bytes (C order) with the path's shape as
   JSON, the metrics as JSON *and* as one ``REAL`` column per metric, named
-  ``"metric:<id>"`` (added with ``ALTER TABLE`` when a new metric appears);
+  ``"metric:<id>"`` (added with ``ALTER TABLE`` when a new metric appears),
+  and ``label``, the configuration's name in tables and plots (added with
+  ``ALTER TABLE`` to databases written before it existed; their runs read
+  with an empty label, so analysis falls back to ``id`` / ``id@hash``);
 - ``history``: the convergence points of every run (experiment, run_key,
   iteration, evaluations, best_cost, time_s).
 
@@ -61,6 +64,7 @@ SCHEMA_VERSION = 1
 RUN_COLUMNS: tuple[str, ...] = (
     "run_key", "experiment", "planner", "planner_version", "params_hash", "params", "scenario", "seed_index",
     "seed", "status", "valid", "invalid_reason", "message", "wall_time_s", "cpu_time_s", "iterations", "evaluations",
+    "label",
 )
 """The leading columns of :func:`read_runs`; one column per metric id follows."""
 
@@ -102,6 +106,7 @@ CREATE TABLE runs (
     started_at TEXT NOT NULL,
     finished_at TEXT NOT NULL,
     metrics TEXT NOT NULL,
+    label TEXT NOT NULL DEFAULT '',
     UNIQUE (experiment, run_key)
 );
 CREATE TABLE history (
@@ -189,9 +194,10 @@ class ResultStore:
     def __init__(self, path: str | Path) -> None:
         self.path = Path(path)
         self.conn = _connect(self.path, create=True)
-        self._metric_columns = {
-            r[1] for r in self.conn.execute("PRAGMA table_info(runs)") if str(r[1]).startswith("metric:")
-        }
+        columns = {str(r[1]) for r in self.conn.execute("PRAGMA table_info(runs)")}
+        self._metric_columns = {c for c in columns if c.startswith("metric:")}
+        if "label" not in columns:  # a database written before labels: add the column, keep every row
+            self.conn.execute("ALTER TABLE runs ADD COLUMN label TEXT NOT NULL DEFAULT ''")
 
     def __enter__(self) -> "ResultStore":
         return self
@@ -251,8 +257,11 @@ class ResultStore:
                 self.conn.execute(f"ALTER TABLE runs ADD COLUMN {_metric_column(mid)} REAL")
                 self._metric_columns.add(col)
 
-    def insert(self, record: RunRecord) -> bool:
-        """Store one run and its history in one transaction; False if the key was already stored."""
+    def insert(self, record: RunRecord, label: str = "") -> bool:
+        """Store one run and its history in one transaction; False if the key was already stored.
+
+        ``label`` is the configuration's name (:attr:`PlannerSpec.name`).
+        """
         metric_ids = [m for m in record.metrics if _METRIC_ID.match(m)]
         self._ensure_metric_columns(metric_ids)
         returned = record.status in RETURNED
@@ -281,6 +290,7 @@ class ResultStore:
             "started_at": record.started_at,
             "finished_at": utc_now(),
             "metrics": json.dumps({k: float(v) for k, v in record.metrics.items()}),
+            "label": label,
         }
         for mid in metric_ids:
             values[f"metric:{mid}"] = _real(record.metrics[mid])
@@ -329,7 +339,8 @@ def read_runs(db: str | Path, experiment: str | None = None) -> "pd.DataFrame":
     conn = _connect(path, create=False)
     try:
         where, args = _experiment_filter(conn, path, experiment)
-        base = ", ".join(f'"{c}"' for c in RUN_COLUMNS)
+        present = {str(r[1]) for r in conn.execute("PRAGMA table_info(runs)")}
+        base = ", ".join(f'"{c}"' if c in present else f"'' AS \"{c}\"" for c in RUN_COLUMNS)
         rows = conn.execute(f"SELECT {base}, metrics FROM runs{where} ORDER BY id", args).fetchall()
     finally:
         conn.close()

@@ -118,7 +118,10 @@ def parametrize_with_checks(
     """A ``pytest.mark.parametrize`` over every (planner, check) pair.
 
     The decorated test takes the arguments ``planner`` and ``check`` and
-    should call ``check(planner)``. Test ids read ``<planner id>-<check id>``.
+    should call ``check(planner)``. Test ids read ``<configuration>-<check id>``,
+    where the configuration is ``id(param=value, ...)`` listing the parameters
+    that differ from the defaults (:attr:`Planner.config_name`), so two
+    configurations of one planner get distinct ids.
 
     Parameters
     ----------
@@ -135,5 +138,5 @@ def parametrize_with_checks(
         planner = as_planner(obj)
         for check in planner_checks(planner, budget=budget):
             pairs.append((planner, check))
-            ids.append(f"{planner.id}-{check_id(check)}")
+            ids.append(f"{planner.config_name}-{check_id(check)}")
     return pytest.mark.parametrize(("planner", "check"), pairs, ids=ids)

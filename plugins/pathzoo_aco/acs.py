@@ -39,7 +39,7 @@ class AntColonySystem(AntColonyPlanner):
     summary = "Ant Colony System (Dorigo & Gambardella 1997): q0 exploitation, local and global-best updates"
     params = {
         **colony_params(n_ants=10, iterations=1000, alpha=1.0, beta=2.0, rho=0.1),
-        "q0": Param(0.9, "probability of taking the best edge outright", low=0.0, high=1.0),
+        "q0": Param(0.9, "probability of taking the best edge outright", low=0.0, high=1.0, tune=(0.0, 0.99)),
         "xi": Param(0.1, "local evaporation ξ: τ <- (1-ξ) τ + ξ τ0 on each crossed edge", low=0.0, high=1.0),
     }
 

@@ -61,11 +61,11 @@ def colony_params(*, n_ants: int, iterations: int, alpha: float, beta: float, rh
         Default dead-end handling.
     """
     return {
-        "n_ants": Param(n_ants, "ants per iteration (m)", low=1),
+        "n_ants": Param(n_ants, "ants per iteration (m)", low=1, tune=(5, 100), tune_log=True),
         "iterations": Param(iterations, "iterations run when the budget sets no limit", low=1),
-        "alpha": Param(alpha, "weight of the pheromone trail (α)", low=0.0),
-        "beta": Param(beta, "weight of the heuristic (β)", low=0.0),
-        "rho": Param(rho, "evaporation rate (ρ)", low=0.0, high=1.0, high_open=True),
+        "alpha": Param(alpha, "weight of the pheromone trail (α)", low=0.0, tune=(0.0, 5.0)),
+        "beta": Param(beta, "weight of the heuristic (β)", low=0.0, tune=(0.0, 10.0)),
+        "rho": Param(rho, "evaporation rate (ρ)", low=0.0, high=1.0, high_open=True, tune=(0.01, 0.9)),
         "dead_end": Param(dead_end, "at a dead end: step back along the walk, or drop the ant",
                           choices=("backtrack", "die")),
         "max_steps": Param(0, "steps after which an ant is dropped; 0 = twice the free cells (never binds "
