@@ -94,7 +94,13 @@ class FGDACO(AntColonyPlanner):
 
     # ------------------------------------------------------------- inputs
     def fuzzy_inputs(self, problem: ColonyProblem) -> FuzzyInputs:
-        """Normalised target distance (per node), angle to be turned (per edge), static obstacle distance (per node)."""
+        """Normalised target distance (per node), angle to be turned (per edge), static obstacle distance (per node).
+
+        Computed once per scenario and configuration (:meth:`ColonyProblem.memo`).
+        """
+        return problem.memo(self.table_key("fuzzy_inputs"), lambda: self._fuzzy_inputs(problem))
+
+    def _fuzzy_inputs(self, problem: ColonyProblem) -> FuzzyInputs:
         s = problem.scenario
         g = problem.graph
         xy = problem.node_xyz[:, :2]
@@ -165,8 +171,9 @@ class FGDACO(AntColonyPlanner):
         """Floor the trail and compute eq. 15's ``1 / d_ij + d_io`` and eq. 14's signed gain per edge."""
         trail.set_bounds(self.tau_floor)
         inputs = self.fuzzy_inputs(problem)
-        deposit = 1.0 / problem.graph.length + inputs.obstacle[problem.sources]
-        return FgdacoState(problem, rules, trail, rng, deposit=deposit, gain=self.signed_gain(problem, inputs))
+        deposit, gain = problem.memo(self.table_key("deposit_gain"), lambda: (
+            1.0 / problem.graph.length + inputs.obstacle[problem.sources], self.signed_gain(problem, inputs)))
+        return FgdacoState(problem, rules, trail, rng, deposit=deposit, gain=gain)
 
     def update_trail(self, state: ColonyState, walks: Walks, costs: np.ndarray) -> None:
         """Eq. 9: evaporate, add eq. 15's deposits along every successful walk, then the signed gains of its nodes."""

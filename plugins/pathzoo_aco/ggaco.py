@@ -108,10 +108,15 @@ class GGACO(AntColonyPlanner):
 
     def init_state(self, problem: ColonyProblem, rules: WalkRules, trail: Pheromone, engine: WalkEngine,
                    rng: np.random.Generator) -> GgacoState:
-        """Floor the trail at ``tau_floor`` and compute eq. 18's per-edge deposit ``1 / d_ij + 1 / E_ij``."""
+        """Floor the trail at ``tau_floor``; eq. 18's per-edge deposit is computed once per scenario."""
         trail.set_bounds(self.tau_floor)
+        return GgacoState(problem, rules, trail, rng,
+                          edge_deposit=problem.memo(self.table_key("edge_deposit"), lambda: self.edge_deposit(problem)))
+
+    def edge_deposit(self, problem: ColonyProblem) -> np.ndarray:
+        """Eq. 18 per edge: ``1 / d_ij + 1 / E_ij`` (kept per scenario and configuration by :meth:`init_state`)."""
         energy = np.maximum(problem.graph.energy, self.energy_floor_j)
-        return GgacoState(problem, rules, trail, rng, edge_deposit=1.0 / self.slope_distance(problem) + 1.0 / energy)
+        return 1.0 / self.slope_distance(problem) + 1.0 / energy
 
     def walk_costs(self, state: ColonyState, walks: Walks) -> np.ndarray:
         """Energy (J, eq. 6) or length (m, eq. 5) of each walk."""

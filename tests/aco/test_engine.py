@@ -276,3 +276,20 @@ def test_reached_flag_matches_totals(walls):
     problem = ColonyProblem(walled_grid() if walls else open_grid(6))
     walks = WalkEngine(problem).walk(_rules(problem), Pheromone(problem.graph.n_edges, 1.0), 5, seed=0)
     assert np.all((walks.flags == REACHED) == np.isfinite(walks.totals(problem.graph.length)))
+
+
+def test_tables_are_built_once_per_scenario_and_configuration():
+    scenario = hill()
+    problem = ColonyProblem.of(scenario)
+    assert ColonyProblem.of(scenario) is problem
+    planner = pathzoo.make_planner("aco.ggaco", n_ants=4)
+    runs = [planner.plan(scenario, budget=Budget(iterations=3), rng=np.random.default_rng(5)) for _ in range(2)]
+    rules = problem.memo(planner.table_key("walk_rules"), lambda: pytest.fail("rules were not kept"))
+    assert np.array_equal(runs[0].path, runs[1].path) and runs[0].extras == {**runs[1].extras,
+                                                                            "walk_time_s": runs[0].extras["walk_time_s"]}
+    other = pathzoo.make_planner("aco.ggaco", n_ants=4, beta=1.5)
+    assert other.table_key("walk_rules") != planner.table_key("walk_rules")
+    other.plan(scenario, budget=Budget(iterations=1), rng=np.random.default_rng(5))
+    assert problem.memo(other.table_key("walk_rules"), lambda: None) is not rules
+    fresh = ColonyProblem(scenario)  # an unshared problem computes the same rules from scratch
+    assert np.array_equal(planner.walk_rules(fresh).weight_mul, rules.weight_mul)

@@ -158,6 +158,17 @@ class AntColonyPlanner(Planner):
         return {}
 
     # ------------------------------------------------------------- helpers
+    def table_key(self, name: str) -> tuple:
+        """Key of a per-scenario table that depends on this planner's class and parameters only.
+
+        :meth:`plan` keeps :meth:`walk_rules` under ``table_key("walk_rules")``
+        in :meth:`ColonyProblem.memo`, so a variant's heuristic, gains and
+        turn tables are computed once per scenario and configuration; hooks
+        may keep their own tables the same way. A variant whose rules depend
+        on anything else must not be cached this way.
+        """
+        return (type(self), self.version, tuple(sorted(self.get_params().items())), name)
+
     def walk_options(self, problem: ColonyProblem) -> dict[str, Any]:
         """Keyword arguments for :class:`WalkRules` from the common parameters and the vehicle's turn limit."""
         cap = self.max_steps or 2 * problem.n_free + 2
@@ -176,11 +187,11 @@ class AntColonyPlanner(Planner):
         """Run the colony; see the module docstring."""
         self.check_supports(scenario)
         clock = budget.start()
-        problem = ColonyProblem(scenario)
+        problem = ColonyProblem.of(scenario)
         if problem.start == problem.goal:
             return PlanResult(Status.SOLVED, problem.walk_points(np.zeros(0, dtype=np.int64)),
                               message="start and goal share a cell")
-        rules = self.walk_rules(problem)
+        rules = problem.memo(self.table_key("walk_rules"), lambda: self.walk_rules(problem))
         trail = Pheromone(problem.graph.n_nodes if self.pheromone_on == "nodes" else problem.graph.n_edges,
                           self.initial_trail(problem), on_nodes=self.pheromone_on == "nodes")
         engine = self.walk_engine(problem)

@@ -3,8 +3,11 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+import weakref
+from collections import OrderedDict
+from dataclasses import dataclass, field
 from functools import cached_property
+from typing import Any, Callable, Hashable, TypeVar
 
 import numpy as np
 
@@ -13,6 +16,14 @@ from pathzoo.grid.graph import GridGraph
 from pathzoo.grid.paths import centre_path
 
 __all__ = ["ColonyProblem"]
+
+T = TypeVar("T")
+
+_PROBLEMS: "weakref.WeakKeyDictionary[Scenario, ColonyProblem]" = weakref.WeakKeyDictionary()
+"""One :class:`ColonyProblem` per live scenario object, so its tables outlive a ``plan()`` call."""
+
+MEMO_ENTRIES = 8
+"""Per-configuration tables kept per scenario (least recently used dropped first)."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -37,6 +48,46 @@ class ColonyProblem:
     """
 
     scenario: Scenario
+    _memo: "OrderedDict[Hashable, Any]" = field(default_factory=OrderedDict, init=False, repr=False)
+
+    @classmethod
+    def of(cls, scenario: Scenario) -> "ColonyProblem":
+        """The scenario's shared problem: built on first use, then reused by every ``plan()`` on that scenario.
+
+        Its lazily computed arrays (and :meth:`memo` tables) live as long as
+        the scenario object does, like ``scenario.graph``.
+        """
+        problem = _PROBLEMS.get(scenario)
+        if problem is None:
+            problem = _PROBLEMS[scenario] = cls(scenario)
+        return problem
+
+    def memo(self, key: Hashable, build: Callable[[], T]) -> T:
+        """``build()``, computed once per ``key`` and kept for later calls (the :data:`MEMO_ENTRIES` latest keys).
+
+        For tables that depend on the scenario and a planner's configuration
+        only (heuristics, gains, walk rules). Callers must treat the result
+        as read-only.
+        """
+        if key in self._memo:
+            self._memo.move_to_end(key)
+            return self._memo[key]
+        value = build()
+        self._memo[key] = value
+        while len(self._memo) > MEMO_ENTRIES:
+            self._memo.popitem(last=False)
+        return value
+
+    @cached_property
+    def indices32(self) -> np.ndarray:
+        """``graph.indices`` as int32 (half the memory traffic of the int64 CSR array in the walks)."""
+        return self.graph.indices.astype(np.int32)
+
+    @cached_property
+    def offset_id_small(self) -> np.ndarray:
+        """``graph.offset_id`` as int8 (int32 for neighbourhoods of more than 127 moves)."""
+        g = self.graph
+        return g.offset_id.astype(np.int8 if len(g.offsets) <= 127 else np.int32)
 
     @cached_property
     def graph(self) -> GridGraph:

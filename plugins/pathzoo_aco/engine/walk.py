@@ -337,11 +337,9 @@ class WalkEngine:
         self.cand_e = np.zeros(max(kmax, 1), dtype=np.int64)
         self.cand_w = np.zeros(max(kmax, 1))
         self.flat = np.zeros(1024, dtype=np.int64)
-        self.offset_id = g.offset_id.astype(np.int8 if len(g.offsets) <= 127 else np.int32)  # moves: compact
-        self.indices = g.indices.astype(np.int32)  # half the memory traffic of the int64 CSR arrays
+        self.offset_id = problem.offset_id_small  # moves: compact
+        self.indices = problem.indices32  # half the memory traffic of the int64 CSR arrays
         self.total_steps = 0
-        self._adjacency_of: tuple[np.ndarray, ...] = ()
-        self._adjacency: tuple[np.ndarray | None, ...] = ()
 
     def adjacency(self, rules: WalkRules) -> tuple[np.ndarray | None, ...]:
         """The edges an ant may take under ``rules``, per node, as the kernel reads them.
@@ -356,12 +354,17 @@ class WalkEngine:
         edges, or with ``pre_add`` (which writes every edge's trail), the
         list is the whole graph, ``adj_edge`` is None and the arrays are the
         graph's and the rules' own. Computed once per
-        set of weight arrays (O(edges)); :func:`dataclasses.replace` on the
-        rules keeps the arrays, so schedules of ``q0`` cost nothing here.
+        set of weight arrays (O(edges)) and kept as long as those arrays
+        live (rules cached on the problem share it across ``plan()`` calls);
+        :func:`dataclasses.replace` on the rules keeps the arrays, so
+        schedules of ``q0`` cost nothing here.
         """
-        key = (rules.weight_mul, rules.weight_add, rules.pre_add)
-        if len(self._adjacency_of) == len(key) and all(a is b for a, b in zip(key, self._adjacency_of)):
-            return self._adjacency
+        key = ("adjacency", id(rules.weight_mul), id(rules.weight_add), id(rules.pre_add))
+        # the memo holds the arrays themselves, so their ids cannot be reused while the entry lives
+        return self.problem.memo(key, lambda: (rules.weight_mul, rules.weight_add, rules.pre_add,
+                                               self._adjacency(rules)))[3]
+
+    def _adjacency(self, rules: WalkRules) -> tuple[np.ndarray | None, ...]:
         g = self.problem.graph
         adjacency = (g.indptr, self.indices, None, self.offset_id, rules.weight_mul, rules.weight_add)
         if rules.pre_add.size == 0:
@@ -374,7 +377,6 @@ class WalkEngine:
                 add = rules.weight_add[adj_edge] if rules.weight_add.size else rules.weight_add
                 adjacency = (adj_ptr, self.indices[adj_edge], adj_edge, self.offset_id[adj_edge],
                              rules.weight_mul[adj_edge], add)
-        self._adjacency_of, self._adjacency = key, adjacency
         return adjacency
 
     def walk(self, rules: WalkRules, trail: Pheromone, n_ants: int, seed: int,
