@@ -29,6 +29,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import numba
 import numpy as np
 
 from pathzoo.core.planner import Param
@@ -75,6 +76,24 @@ class FgdacoState(ColonyState):
 
     deposit: np.ndarray | None = None
     gain: np.ndarray | None = None
+
+
+@numba.njit(cache=True)
+def _add_gains(x, scale, lo, hi, indptr, indices, flat, offsets, ants, start, gain):
+    """Add ``gain[e]`` to every edge ``e`` leaving each node the walks ``ants`` left, walk by walk, node by node.
+
+    The same clamped read-modify-write as :func:`~pathzoo_aco.engine.deposit_walks`, in the same order.
+    """
+    for i in range(ants.size):
+        a = ants[i]
+        node = start
+        for p in range(offsets[a], offsets[a + 1]):
+            for e in range(indptr[node], indptr[node + 1]):
+                t = min(max(scale * x[e], lo), hi)
+                t = 1.0 * t + 0.0
+                t += gain[e]
+                x[e] = min(max(t, lo), hi) / scale
+            node = indices[flat[p]]
 
 
 class FGDACO(AntColonyPlanner):
@@ -184,9 +203,6 @@ class FGDACO(AntColonyPlanner):
         if ok.size == 0:
             return
         deposit_walks(state.trail, g.indices, walks.flat, walks.offsets, ok, 0.0, per_edge=state.deposit)
-        left = np.concatenate([np.concatenate([[state.problem.start], g.indices[walks.edges(a)[:-1]]]) for a in ok])
-        counts = g.degree[left]
-        first = np.repeat(g.indptr[left] - np.cumsum(counts) + counts, counts)
-        out_edges = first + np.arange(counts.sum())
-        deposit_walks(state.trail, g.indices, out_edges, np.array([0, out_edges.size]), np.array([0]), 0.0,
-                      per_edge=state.gain)
+        t = state.trail
+        _add_gains(t.x, t.scale, t.lo, t.hi, g.indptr, g.indices, walks.flat, walks.offsets, ok,
+                   state.problem.start, state.gain)
