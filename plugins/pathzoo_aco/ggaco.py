@@ -85,7 +85,7 @@ class GGACO(AntColonyPlanner):
         g = problem.graph
         dist = problem.goal_distance
         to = dist[g.indices]
-        here = dist[problem.sources]
+        here = np.repeat(dist, g.degree)  # per edge, its source's distance (no per-edge source array kept)
         # edges leaving the destination are never chosen (a walk ends there): any finite progress will do
         progress = to / np.where(here > 0.0, here, 1.0)
         gain = 1.0 / (1.0 + np.exp(-self.lam * progress))
@@ -93,7 +93,7 @@ class GGACO(AntColonyPlanner):
         nearest = np.full(g.n_nodes, np.inf)
         if to.size:
             nearest[nonempty] = np.minimum.reduceat(to, g.indptr[:-1][nonempty])
-        best = to <= nearest[problem.sources] * (1.0 + 1e-12)
+        best = to <= np.repeat(nearest, g.degree) * (1.0 + 1e-12)
         return np.where(best, gain, -gain)
 
     def walk_rules(self, problem: ColonyProblem) -> WalkRules:

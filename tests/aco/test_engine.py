@@ -139,6 +139,19 @@ def test_race_grows_its_stacks_and_honours_the_allowance():
     assert np.all(cut.flags == ABORTED) and cut.steps.sum() == 30
 
 
+def test_race_stamps_stay_exact_across_their_byte_wrap():
+    problem = ColonyProblem(walled_grid())
+    rules = replace(_rules(problem), race=True)
+    engine, fresh = WalkEngine(problem), WalkEngine(problem)
+    for colony in range(300):  # the byte stamps are cleared after 255 colonies
+        walks = engine.walk(rules, Pheromone(problem.graph.n_edges, 1.0), 5, seed=colony)
+        winner = int(np.argmax(walks.reached))
+        _check_walk(problem, walks.edges(winner))
+        if colony in (0, 254, 255, 299):  # a used engine walks exactly as a new one
+            again = fresh.walk(rules, Pheromone(problem.graph.n_edges, 1.0), 5, seed=colony)
+            assert np.array_equal(again.flat, walks.flat) and np.array_equal(again.steps, walks.steps)
+
+
 def test_step_cap_drops_the_ant():
     problem = ColonyProblem(open_grid(8))
     walks = WalkEngine(problem).walk(_rules(problem, max_steps=3), Pheromone(problem.graph.n_edges, 1.0), 4, seed=0)

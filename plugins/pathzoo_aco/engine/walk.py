@@ -57,7 +57,8 @@ def _colony(indices, offset_id, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, 
     One after another (``race`` False: an ant walks until it stops, then the
     next starts; one stamp row and one stack row serve them all), or in lock
     step (``race`` True: one step per ant per round, a stamp and stack row
-    per ant, until the first reaches the goal). All state lives in the
+    per ant, until the first reaches the goal; every ant stamps its own row
+    with ``walk_base``, which may then be a byte). All state lives in the
     arrays; ``counters`` holds (next ant, ants started, steps taken, a
     finished walk waiting for room in ``flat``), so a call resumes where the
     previous one stopped.
@@ -104,7 +105,7 @@ def _colony(indices, offset_id, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, 
         stamp = stamps[row]
         stack_e = stacks[row]
         stack_prev = prevs[row]
-        wid = walk_base + a
+        wid = walk_base if race else walk_base + a  # racing ants have a stamp row each
         if flags[a] == _FRESH:
             flags[a] = _RUNNING
             counters[1] += 1
@@ -329,8 +330,10 @@ class WalkEngine:
     def __init__(self, problem: ColonyProblem) -> None:
         g = problem.graph
         self.problem = problem
-        self.stamps = np.full((1, g.n_nodes), -1, dtype=np.int32)  # tabu stamps: one row, or one per racing ant
+        self.stamps = np.full((1, g.n_nodes), -1, dtype=np.int32)  # tabu stamps of ants walking one by one
         self.walk_base = 0
+        self.race_stamps = np.zeros((0, g.n_nodes), dtype=np.uint8)  # one row per racing ant, stamped 1..255
+        self.race_colony = 1
         self.stack_e = np.zeros((1, problem.n_free + 1), dtype=np.int64)
         self.stack_prev = np.zeros((1, problem.n_free + 1), dtype=np.int64)
         kmax = int(g.degree.max()) if g.n_nodes else 0
@@ -401,8 +404,9 @@ class WalkEngine:
         if self.walk_base + n_ants >= 2**31 - 1:  # the int32 walk stamps would overflow: start afresh
             self.stamps[:] = -1
             self.walk_base = 0
-        if rules.race and len(self.stamps) < n_ants:
-            self.stamps = np.full((n_ants, p.n_nodes), -1, dtype=np.int32)
+        if rules.race and len(self.race_stamps) < n_ants:
+            self.race_stamps = np.zeros((n_ants, p.n_nodes), dtype=np.uint8)
+            self.race_colony = 1
         if rules.race:
             stacks = np.zeros((n_ants, 256), dtype=np.int64)
             prevs = np.zeros_like(stacks)
@@ -423,7 +427,8 @@ class WalkEngine:
                 trail.x, trail.scale, trail.lo, trail.hi, trail.on_nodes,
                 rules.tau_exp, rules.q0, rules.local_keep, rules.local_add,
                 rules.pre_add, p.start, p.goal, rules.backtrack, rules.max_steps, allowance, rules.race,
-                self.walk_base, self.stamps, stacks, prevs, self.cand_e, self.cand_w,
+                self.race_colony if rules.race else self.walk_base, self.race_stamps if rules.race else self.stamps,
+                stacks, prevs, self.cand_e, self.cand_w,
                 cur, depth, prev, steps, flags, counters, self.flat, offsets,
             )
             if status == _DONE:
@@ -434,7 +439,13 @@ class WalkEngine:
             else:  # a race walk outgrew the stacks
                 stacks = np.hstack([stacks, np.zeros_like(stacks)])
                 prevs = np.hstack([prevs, np.zeros_like(prevs)])
-        self.walk_base += n_ants
+        if rules.race:  # a byte per node and ant: the stamps are cleared once every 255 colonies
+            self.race_colony += 1
+            if self.race_colony > 255:
+                self.race_stamps[:] = 0
+                self.race_colony = 1
+        else:
+            self.walk_base += n_ants
         self.total_steps += int(counters[2])
         if rules.race:
             lengths = np.where(flags == REACHED, depth, 0)
