@@ -175,10 +175,10 @@ class AntColonyPlanner(Planner):
         return {"backtrack": self.dead_end == "backtrack", "max_steps": int(cap), "turn": problem.turn_table}
 
     @staticmethod
-    def neighbour_factor(problem: ColonyProblem) -> np.ndarray:
-        """Per edge ``i -> j``: ``n_j / (n_j + 1)`` with ``n_j`` the number of neighbours of ``j`` (its degree)."""
+    def neighbour_factor(problem: ColonyProblem, edges: slice = slice(None)) -> np.ndarray:
+        """Per edge ``i -> j`` (of ``edges``): ``n_j / (n_j + 1)`` with ``n_j`` the number of neighbours of ``j``."""
         g = problem.graph
-        n = g.degree[g.indices].astype(np.float64)
+        n = g.degree[g.indices[edges]].astype(np.float64)
         return n / (n + 1.0)
 
     # ---------------------------------------------------------------- plan

@@ -7,7 +7,7 @@ import weakref
 from collections import OrderedDict
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import Any, Callable, Hashable, TypeVar
+from typing import Any, Callable, Hashable, Iterator, TypeVar
 
 import numpy as np
 
@@ -142,9 +142,29 @@ class ColonyProblem:
         Computed on every access, not kept: callers keep what they derive
         from it (a 39-million-edge terrain would hold 312 MB for it).
         """
+        return self.tangent_of(slice(None))
+
+    def tangent_of(self, edges: slice) -> np.ndarray:
+        """:attr:`tangent` of a range of edges."""
+        slope = self.graph.slope[edges]
         if self.scenario.kind != "terrain":
-            return np.zeros(self.graph.n_edges)
-        return np.abs(np.tan(self.graph.slope))
+            return np.zeros(len(slope))
+        return np.abs(np.tan(slope))
+
+    def node_blocks(self, max_edges: int = 1 << 21) -> Iterator[slice]:
+        """Consecutive ranges of nodes with about ``max_edges`` edges each (at least one node), covering all nodes.
+
+        Per-edge tables built block by block need temporaries of one block,
+        not of the whole graph; elementwise results are the same.
+        """
+        indptr = self.graph.indptr
+        n = self.n_nodes
+        lo = 0
+        while lo < n:
+            hi = int(np.searchsorted(indptr, indptr[lo] + max_edges, side="right")) - 1
+            hi = min(max(hi, lo + 1), n)
+            yield slice(lo, hi)
+            lo = hi
 
     @cached_property
     def horizontal_offsets(self) -> np.ndarray:

@@ -313,7 +313,11 @@ class Walks:
 
     def totals(self, per_edge: np.ndarray) -> np.ndarray:
         """Sum of a per-edge quantity over each walk; ``inf`` for walks that did not reach the goal."""
-        cum = np.concatenate([[0.0], np.cumsum(per_edge[self.flat])])
+        return self.sums(per_edge[self.flat])
+
+    def sums(self, per_step: np.ndarray) -> np.ndarray:
+        """As :meth:`totals`, from values given per entry of :attr:`flat` (computed for the walked edges only)."""
+        cum = np.concatenate([[0.0], np.cumsum(per_step)])
         out = cum[self.offsets[1:]] - cum[self.offsets[:-1]]
         return np.where(self.reached, out, np.inf)
 
