@@ -48,7 +48,7 @@ __all__ = ["TimedWalkEngine"]
 def _timed_walk(indptr, indices, offset_id, horizontal, turn, length,
                 x, scale, lo, hi, tau_exp, w_mul, beta,
                 start, goal, backtrack, max_steps, allowance, n_ants, walk_base,
-                stamp, stack_e, stack_prev, stack_t, stack_gap, cand_e, cand_w, gap, near_ids, mu, strength,
+                stamp, stack_e, stack_prev, stack_t, stack_gap, cand_e, cand_w, gap, near_ids, ahead, mu, strength,
                 flat, offsets, flags, steps_out,
                 width, cell, speed, t_head, tail,
                 ob_points, ob_cum, ob_count, ob_speed, ob_phase, ob_radius,
@@ -98,6 +98,8 @@ def _timed_walk(indptr, indices, offset_id, horizontal, turn, length,
                     gap[k] = stack_gap[depth, k]
                     if gap[k] < reach[k]:
                         near_ids[n_near] = k
+                        ahead[n_near, 0, 0] = -1.0  # no arrival position of this obstacle computed yet
+                        ahead[n_near, 1, 0] = -1.0
                         n_near += 1
             nc = 0
             total_w = 0.0
@@ -129,8 +131,15 @@ def _timed_walk(indptr, indices, offset_id, horizontal, turn, length,
                                                               cx, cy, jx, jy, t_cur, t_next) < ob_radius[k]:
                         free = False
                         break
-                    if bound < near * sensing:
-                        ox, oy = obstacle_position(ob_points, ob_cum, ob_count, ob_speed, ob_phase, k, t_next)
+                    if bound < near * sensing:  # moves of one length arrive together: reuse the position
+                        slot = 0 if ahead[q, 0, 0] == dt or ahead[q, 0, 0] < 0.0 else 1
+                        if ahead[q, slot, 0] != dt:
+                            ox, oy = obstacle_position(ob_points, ob_cum, ob_count, ob_speed, ob_phase, k, t_next)
+                            ahead[q, slot, 0] = dt
+                            ahead[q, slot, 1] = ox
+                            ahead[q, slot, 2] = oy
+                        ox = ahead[q, slot, 1]
+                        oy = ahead[q, slot, 2]
                         near = min(near, max(math.hypot(jx - ox, jy - oy) - ob_radius[k], 0.0) / sensing)
                 if free and j == goal and tail[4] > 0.0:
                     for k in range(n_obs):
@@ -230,6 +239,7 @@ class _TimedBuffers:
     cand_w: np.ndarray
     gap: np.ndarray
     near_ids: np.ndarray
+    ahead: np.ndarray
     mu: np.ndarray
     strength: np.ndarray
     flat: np.ndarray
@@ -244,7 +254,7 @@ class _TimedBuffers:
                    stack_prev=np.zeros(depth, dtype=np.int64), stack_t=np.zeros(depth),
                    stack_gap=np.zeros((depth + 1, max(n_obstacles, 1))),
                    cand_e=np.zeros(degree, dtype=np.int64), cand_w=np.zeros(degree), gap=np.zeros(n_obstacles),
-                   near_ids=np.zeros(n_obstacles, dtype=np.int64), mu=np.zeros((3, 3)), strength=np.zeros(3),
+                   near_ids=np.zeros(n_obstacles, dtype=np.int64), ahead=np.zeros((max(n_obstacles, 1), 2, 3)), mu=np.zeros((3, 3)), strength=np.zeros(3),
                    flat=np.zeros(0, dtype=np.int64))
 
 
@@ -315,7 +325,8 @@ class TimedWalkEngine(WalkEngine):
             *self.graph_arrays, rules.turn, self.length,
             trail.x, trail.scale, trail.lo, trail.hi, rules.tau_exp, rules.weight_mul, self.beta,
             p.start, p.goal, rules.backtrack, rules.max_steps, allowance, n_ants, b.walk_base,
-            b.stamp, b.stack_e, b.stack_prev, b.stack_t, b.stack_gap, b.cand_e, b.cand_w, b.gap, b.near_ids, b.mu, b.strength,
+            b.stamp, b.stack_e, b.stack_prev, b.stack_t, b.stack_gap, b.cand_e, b.cand_w, b.gap, b.near_ids, b.ahead,
+            b.mu, b.strength,
             b.flat, offsets, flags, steps,
             g.shape[1], p.scenario.cell_size, p.scenario.vehicle.cruise_speed, self.t_head, self.tail,
             ob.points, ob.cum, ob.count, ob.speed, ob.phase, ob.radius,
