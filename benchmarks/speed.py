@@ -143,12 +143,14 @@ import pathzoo
 from pathzoo import Budget
 c0 = time.process_time()
 s = pathzoo.load_scenario("ggaco.case1")
+s.blocked
+load_s = time.process_time() - c0
 s.graph
-graph_s = time.process_time() - c0
+graph_s = time.process_time() - c0 - load_s
 c1 = time.process_time()
 r = pathzoo.make_planner("aco.ggaco").plan(s, budget=Budget(), rng=np.random.default_rng(0))
 plan_s = time.process_time() - c1
-print(json.dumps({"graph_s": graph_s, "plan_s": plan_s, "total_s": time.process_time() - c0,
+print(json.dumps({"load_s": load_s, "graph_s": graph_s, "plan_s": plan_s, "total_s": time.process_time() - c0,
                   "iterations": r.iterations, "peak_gb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1e6}))
 """
 
@@ -159,7 +161,8 @@ def ggaco_case1() -> None:
         for label in ("graph built (empty cache)", "graph memory-mapped from the cache"):
             out = subprocess.run([sys.executable, "-c", CHILD], env=env, capture_output=True, text=True, check=True)
             m = json.loads(out.stdout.strip().splitlines()[-1])
-            print(f"| ggaco.case1, 1000 x 20, {label}: graph {m['graph_s']:.1f} s + plan() {m['plan_s']:.1f} s "
+            print(f"| ggaco.case1, 1000 x 20, {label}: DEM load {m['load_s']:.1f} s + graph {m['graph_s']:.1f} s + "
+                  f"plan() {m['plan_s']:.1f} s "
                   f"| {m['total_s']:.1f} s | 29.5 s | {'yes' if m['total_s'] <= 29.5 else 'no'} |")
             print(f"| ggaco.case1 peak RSS, {label} | {m['peak_gb']:.2f} GB | 1.5 GB | "
                   f"{'yes' if m['peak_gb'] <= 1.5 else 'no'} |", flush=True)

@@ -2,8 +2,10 @@
 
 from __future__ import annotations
 
+import gc
 import math
 import time
+import weakref
 from dataclasses import replace
 
 import numpy as np
@@ -306,3 +308,7 @@ def test_tables_are_built_once_per_scenario_and_configuration():
     assert problem.memo(other.table_key("walk_rules"), lambda: None) is not rules
     fresh = ColonyProblem(scenario)  # an unshared problem computes the same rules from scratch
     assert np.array_equal(planner.walk_rules(fresh).weight_mul, rules.weight_mul)
+    gone = weakref.ref(problem), weakref.ref(scenario)  # the tables live exactly as long as the scenario
+    del problem, scenario, fresh, rules
+    gc.collect()
+    assert gone[0]() is None and gone[1]() is None

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import math
-import weakref
 from collections import OrderedDict
 from dataclasses import dataclass, field
 from functools import cached_property
@@ -18,9 +17,6 @@ from pathzoo.grid.paths import centre_path
 __all__ = ["ColonyProblem"]
 
 T = TypeVar("T")
-
-_PROBLEMS: "weakref.WeakKeyDictionary[Scenario, ColonyProblem]" = weakref.WeakKeyDictionary()
-"""One :class:`ColonyProblem` per live scenario object, so its tables outlive a ``plan()`` call."""
 
 MEMO_ENTRIES = 8
 """Per-configuration tables kept per scenario (least recently used dropped first)."""
@@ -54,12 +50,13 @@ class ColonyProblem:
     def of(cls, scenario: Scenario) -> "ColonyProblem":
         """The scenario's shared problem: built on first use, then reused by every ``plan()`` on that scenario.
 
-        Its lazily computed arrays (and :meth:`memo` tables) live as long as
-        the scenario object does, like ``scenario.graph``.
+        It is kept in :attr:`Scenario.derived`, so its lazily computed arrays
+        (and :meth:`memo` tables) live exactly as long as the scenario object
+        does, like ``scenario.graph``.
         """
-        problem = _PROBLEMS.get(scenario)
+        problem = scenario.derived.get(__name__)
         if problem is None:
-            problem = _PROBLEMS[scenario] = cls(scenario)
+            problem = scenario.derived[__name__] = cls(scenario)
         return problem
 
     def memo(self, key: Hashable, build: Callable[[], T]) -> T:
