@@ -25,6 +25,7 @@ from pathzoo_aco.engine import (
     Pheromone,
     WalkEngine,
     WalkRules,
+    Walks,
     deposit_walks,
 )
 
@@ -312,3 +313,16 @@ def test_tables_are_built_once_per_scenario_and_configuration():
     del problem, scenario, fresh, rules
     gc.collect()
     assert gone[0]() is None and gone[1]() is None
+
+
+def test_walk_totals_equal_differences_of_one_running_sum():
+    rng = np.random.default_rng(0)
+    for _ in range(50):
+        lengths = rng.integers(0, 40, rng.integers(1, 8))
+        offsets = np.concatenate([[0], np.cumsum(lengths)])
+        flat = rng.integers(0, 100, offsets[-1])
+        per_edge = rng.random(100) * rng.choice([1.0, 1e-9, 1e9])
+        walks = Walks(flat, offsets, np.where(lengths > 0, REACHED, STUCK).astype(np.int8), lengths, len(lengths))
+        cum = np.concatenate([[0.0], np.cumsum(per_edge[flat])])  # the plain numpy definition, bit for bit
+        want = np.where(lengths > 0, cum[offsets[1:]] - cum[offsets[:-1]], np.inf)
+        assert np.array_equal(walks.totals(per_edge), want) and np.array_equal(walks.sums(per_edge[flat]), want)

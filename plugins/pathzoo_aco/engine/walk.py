@@ -313,13 +313,38 @@ class Walks:
 
     def totals(self, per_edge: np.ndarray) -> np.ndarray:
         """Sum of a per-edge quantity over each walk; ``inf`` for walks that did not reach the goal."""
-        return self.sums(per_edge[self.flat])
+        out = _walk_sums(np.asarray(per_edge, dtype=np.float64), self.flat, self.offsets, True)
+        return np.where(self.reached, out, np.inf)
 
     def sums(self, per_step: np.ndarray) -> np.ndarray:
         """As :meth:`totals`, from values given per entry of :attr:`flat` (computed for the walked edges only)."""
-        cum = np.concatenate([[0.0], np.cumsum(per_step)])
-        out = cum[self.offsets[1:]] - cum[self.offsets[:-1]]
+        out = _walk_sums(np.asarray(per_step, dtype=np.float64), self.flat, self.offsets, False)
         return np.where(self.reached, out, np.inf)
+
+
+@numba.njit(cache=True)
+def _walk_sums(values, flat, offsets, by_edge):
+    """Per walk, the difference of one running sum over all walks at its two ends.
+
+    The running sum is taken entry by entry in ``flat`` order (of
+    ``values[flat[p]]`` when ``by_edge``, else of ``values[p]``), exactly as
+    ``np.cumsum`` does, so the results equal ``cum[end] - cum[start]`` of it.
+    """
+    n = offsets.size - 1
+    out = np.empty(n)
+    acc = 0.0
+    p = 0
+    start = 0.0
+    for a in range(n):
+        while p < offsets[a]:
+            acc += values[flat[p]] if by_edge else values[p]
+            p += 1
+        start = acc
+        while p < offsets[a + 1]:
+            acc += values[flat[p]] if by_edge else values[p]
+            p += 1
+        out[a] = acc - start
+    return out
 
 
 class WalkEngine:
