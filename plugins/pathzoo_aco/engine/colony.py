@@ -167,7 +167,7 @@ class AntColonyPlanner(Planner):
         may keep their own tables the same way. A variant whose rules depend
         on anything else must not be cached this way.
         """
-        return (type(self), self.version, tuple(sorted(self.get_params().items())), name)
+        return (type(self), self.version, repr(sorted(self.get_params().items())), name)  # repr: any value type
 
     def walk_options(self, problem: ColonyProblem) -> dict[str, Any]:
         """Keyword arguments for :class:`WalkRules` from the common parameters and the vehicle's turn limit."""
