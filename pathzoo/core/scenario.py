@@ -229,15 +229,6 @@ class Scenario:
         return cached_graph(self)
 
     @cached_property
-    def derived(self) -> dict[str, Any]:
-        """Tables other layers derive from this scenario and keep as long as it lives (never pickled).
-
-        Keyed by the owner's module name; e.g. the ant-colony engine keeps its
-        per-scenario problem and tables here (``pathzoo_aco.engine.problem``).
-        """
-        return {}
-
-    @cached_property
     def clearance(self) -> np.ndarray:
         """Distance in metres from each cell centre to the nearest blocked cell centre.
 

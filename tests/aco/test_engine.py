@@ -297,7 +297,7 @@ def test_reached_flag_matches_totals(walls):
 def test_tables_are_built_once_per_scenario_and_configuration():
     scenario = hill()
     problem = ColonyProblem.of(scenario)
-    assert ColonyProblem.of(scenario) is problem
+    assert ColonyProblem.of(scenario).goal_distance is problem.goal_distance  # one set of tables per scenario
     planner = pathzoo.make_planner("aco.ggaco", n_ants=4)
     runs = [planner.plan(scenario, budget=Budget(iterations=3), rng=np.random.default_rng(5)) for _ in range(2)]
     rules = problem.memo(planner.table_key("walk_rules"), lambda: pytest.fail("rules were not kept"))
@@ -309,7 +309,8 @@ def test_tables_are_built_once_per_scenario_and_configuration():
     assert problem.memo(other.table_key("walk_rules"), lambda: None) is not rules
     fresh = ColonyProblem(scenario)  # an unshared problem computes the same rules from scratch
     assert np.array_equal(planner.walk_rules(fresh).weight_mul, rules.weight_mul)
-    gone = weakref.ref(problem), weakref.ref(scenario)  # the tables live exactly as long as the scenario
+    gone = weakref.ref(scenario), weakref.ref(rules.weight_mul)  # the tables live exactly as long as the scenario
+    assert set(vars(scenario)) <= {*scenario.__dataclass_fields__, "blocked", "graph", "clearance"}
     del problem, scenario, fresh, rules
     gc.collect()
     assert gone[0]() is None and gone[1]() is None
