@@ -219,10 +219,14 @@ class Scenario:
     # ------------------------------------------------------------ geometry
     @cached_property
     def graph(self) -> "GridGraph":
-        """Neighbourhood graph of the free cells, built once and shared (see :mod:`pathzoo.grid.graph`)."""
-        from pathzoo.grid.graph import build_graph
+        """Neighbourhood graph of the free cells, built once and shared (see :mod:`pathzoo.grid.graph`).
 
-        return build_graph(self)
+        Large graphs are kept on disk and memory-mapped by every process that
+        needs them (:mod:`pathzoo.grid.graph_cache`).
+        """
+        from pathzoo.grid.graph_cache import cached_graph
+
+        return cached_graph(self)
 
     @cached_property
     def clearance(self) -> np.ndarray:

@@ -137,10 +137,52 @@ def _touched(offset: np.ndarray) -> np.ndarray:
     return touched_cells_3d(np.array([0.5, 0.5, 0.5]), np.array([0.5 + dx, 0.5 + dy, 0.5 + dz]))
 
 
-def build_graph(scenario: "Scenario") -> GridGraph:
-    """Build the neighbourhood graph of a scenario (vectorised over cells).
+def _move_edges(scenario: "Scenario", off: np.ndarray, free_padded: np.ndarray, pad: int
+                ) -> tuple[np.ndarray, np.ndarray | float, np.ndarray | float]:
+    """For one move: which cells may make it (flat bool), and the 3-D length and slope of each such edge.
 
-    Runs once per scenario; :attr:`Scenario.graph` caches it.
+    Length and slope are flat arrays over all cells on terrain, else one number for every cell.
+    """
+    shape = scenario.blocked.shape
+    ndim = len(shape)
+    vehicle = scenario.vehicle
+    ok = np.ones(shape, dtype=bool)
+    for rel in _touched(off):
+        ok &= free_padded[tuple(slice(pad + r, pad + r + s) for r, s in zip(rel, shape))]
+    step = off * scenario.cell_sizes[::-1]  # array-axis order
+    horiz = float(np.hypot(step[-1], step[-2]))
+    if ndim == 3:
+        vert = float(step[0])
+        pitch = math.degrees(math.atan2(abs(vert), horiz))
+        if pitch > vehicle.max_pitch_deg:
+            ok[:] = False
+        return ok.ravel(), math.sqrt(horiz**2 + vert**2), math.atan2(vert, horiz)
+    if scenario.elevation is not None and scenario.kind == "terrain":
+        elev = scenario.elevation
+        target = np.full(shape, np.nan)
+        dr, dc = off
+        src = (slice(max(0, -dr), shape[0] - max(0, dr)), slice(max(0, -dc), shape[1] - max(0, dc)))
+        dst = (slice(max(0, dr), shape[0] - max(0, -dr)), slice(max(0, dc), shape[1] - max(0, -dc)))
+        target[src] = elev[dst]
+        dz = target - elev
+        theta = np.arctan2(dz, horiz)
+        # validity: the exact ground-slope range along the move, the validator's own rule
+        grad_lo, grad_hi = lattice_slope_range(elev, (int(dr), int(dc)))
+        with np.errstate(invalid="ignore"):
+            ok &= ~slope_exceeds(grad_lo, grad_hi, float(scenario.cell_sizes[0]), vehicle)
+        ok &= np.isfinite(dz)
+        return ok.ravel(), np.sqrt(horiz**2 + np.nan_to_num(dz) ** 2).ravel(), np.nan_to_num(theta).ravel()
+    return ok.ravel(), horiz, 0.0
+
+
+def build_graph(scenario: "Scenario") -> GridGraph:
+    """Build the neighbourhood graph of a scenario (vectorised over cells, one move at a time).
+
+    Runs once per scenario; :attr:`Scenario.graph` caches it (large graphs
+    on disk, :mod:`pathzoo.grid.graph_cache`). A first pass over the moves
+    finds the edges, a second fills the CSR arrays in place, so the only
+    graph-sized arrays are the results (a 2569 x 1919 terrain peaks at about
+    half the memory of building an (cells x moves) table of every value).
     """
     blocked = scenario.blocked
     shape = blocked.shape
@@ -148,64 +190,41 @@ def build_graph(scenario: "Scenario") -> GridGraph:
     offsets = neighbour_offsets(ndim, scenario.max_step)
     pad = int(np.abs(offsets).max())
     free_padded = np.pad(~blocked, pad, constant_values=False)
-    core = tuple(slice(pad, pad + n) for n in shape)
-    sizes = scenario.cell_sizes[::-1]  # array-axis order
     n = blocked.size
     k = len(offsets)
     valid = np.zeros((n, k), dtype=bool)
-    length = np.zeros((n, k))
-    slope = np.zeros((n, k))
-    flat_ids = np.arange(n, dtype=np.int64)
-    vehicle = scenario.vehicle
     for j, off in enumerate(offsets):
-        ok = np.ones(shape, dtype=bool)
-        for rel in _touched(off):
-            ok &= free_padded[tuple(slice(pad + r, pad + r + s) for r, s in zip(rel, shape))]
-        step = off * sizes
-        horiz = float(np.hypot(step[-1], step[-2]))
-        if ndim == 3:
-            vert = float(step[0])
-            pitch = math.degrees(math.atan2(abs(vert), horiz))
-            if pitch > vehicle.max_pitch_deg:
-                ok[:] = False
-            length[:, j] = math.sqrt(horiz**2 + vert**2)
-            slope[:, j] = math.atan2(vert, horiz)
-        elif scenario.elevation is not None and scenario.kind == "terrain":
-            elev = scenario.elevation
-            target = np.full(shape, np.nan)
-            dr, dc = off
-            src = (slice(max(0, -dr), shape[0] - max(0, dr)), slice(max(0, -dc), shape[1] - max(0, dc)))
-            dst = (slice(max(0, dr), shape[0] - max(0, -dr)), slice(max(0, dc), shape[1] - max(0, -dc)))
-            target[src] = elev[dst]
-            dz = target - elev
-            theta = np.arctan2(dz, horiz)
-            # validity: the exact ground-slope range along the move, the validator's own rule
-            grad_lo, grad_hi = lattice_slope_range(elev, (int(dr), int(dc)))
-            with np.errstate(invalid="ignore"):
-                ok &= ~slope_exceeds(grad_lo, grad_hi, float(sizes[-1]), vehicle)
-            ok &= np.isfinite(dz)
-            length[:, j] = np.sqrt(horiz**2 + np.nan_to_num(dz) ** 2).ravel()
-            slope[:, j] = np.nan_to_num(theta).ravel()
-        else:
-            length[:, j] = horiz
-        valid[:, j] = ok.ravel()
-    # the target cell is always among the touched cells, so ``valid`` already
-    # excludes moves that leave the grid and a flat shift gives the target id
-    strides = np.array([int(np.prod(shape[i + 1 :])) for i in range(ndim)], dtype=np.int64)
-    tgt = flat_ids.reshape(n, 1) + (offsets @ strides)[None, :]
+        valid[:, j] = _move_edges(scenario, off, free_padded, pad)[0]
     degree = valid.sum(axis=1)
     indptr = np.zeros(n + 1, dtype=np.int64)
     np.cumsum(degree, out=indptr[1:])
-    offset_id = np.broadcast_to(np.arange(k, dtype=np.int16), (n, k))[valid]
+    n_edges = int(indptr[-1])
+    indices = np.empty(n_edges, dtype=np.int64)
+    length = np.empty(n_edges)
+    slope = np.empty(n_edges)
+    offset_id = np.empty(n_edges, dtype=np.int16)
+    # the target cell is always among the touched cells, so ``valid`` already
+    # excludes moves that leave the grid and a flat shift gives the target id
+    strides = np.array([int(np.prod(shape[i + 1 :])) for i in range(ndim)], dtype=np.int64)
+    filled = indptr[:-1].copy()  # next free edge slot of every node: edges are in move order within a node
+    for j, off in enumerate(offsets):
+        ok, move_length, move_slope = _move_edges(scenario, off, free_padded, pad)
+        cells = np.flatnonzero(ok)
+        slots = filled[cells]
+        filled[cells] += 1
+        indices[slots] = cells + int(off @ strides)
+        length[slots] = move_length[cells] if isinstance(move_length, np.ndarray) else move_length
+        slope[slots] = move_slope[cells] if isinstance(move_slope, np.ndarray) else move_slope
+        offset_id[slots] = j
     graph = GridGraph(
         shape=tuple(shape),
         indptr=indptr,
-        indices=tgt[valid],
-        length=length[valid],
-        slope=slope[valid],
+        indices=indices,
+        length=length,
+        slope=slope,
         offset_id=offset_id,
         offsets=offsets,
-        vehicle=vehicle,
+        vehicle=scenario.vehicle,
     )
     for arr in (graph.indptr, graph.indices, graph.length, graph.slope, graph.offset_id):
         arr.setflags(write=False)

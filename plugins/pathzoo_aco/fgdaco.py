@@ -29,6 +29,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import numba
 import numpy as np
 
 from pathzoo.core.planner import Param
@@ -77,6 +78,24 @@ class FgdacoState(ColonyState):
     gain: np.ndarray | None = None
 
 
+@numba.njit(cache=True)
+def _add_gains(x, scale, lo, hi, indptr, indices, flat, offsets, ants, start, gain):
+    """Add ``gain[e]`` to every edge ``e`` leaving each node the walks ``ants`` left, walk by walk, node by node.
+
+    The same clamped read-modify-write as :func:`~pathzoo_aco.engine.deposit_walks`, in the same order.
+    """
+    for i in range(ants.size):
+        a = ants[i]
+        node = start
+        for p in range(offsets[a], offsets[a + 1]):
+            for e in range(indptr[node], indptr[node + 1]):
+                t = min(max(scale * x[e], lo), hi)
+                t = 1.0 * t + 0.0
+                t += gain[e]
+                x[e] = min(max(t, lo), hi) / scale
+            node = indices[flat[p]]
+
+
 class FGDACO(AntColonyPlanner):
     """FGDACO (Sangeetha et al. 2021) with the parameters of its Table 6."""
 
@@ -94,7 +113,13 @@ class FGDACO(AntColonyPlanner):
 
     # ------------------------------------------------------------- inputs
     def fuzzy_inputs(self, problem: ColonyProblem) -> FuzzyInputs:
-        """Normalised target distance (per node), angle to be turned (per edge), static obstacle distance (per node)."""
+        """Normalised target distance (per node), angle to be turned (per edge), static obstacle distance (per node).
+
+        Computed once per scenario and configuration (:meth:`ColonyProblem.memo`).
+        """
+        return problem.memo(self.table_key("fuzzy_inputs"), lambda: self._fuzzy_inputs(problem))
+
+    def _fuzzy_inputs(self, problem: ColonyProblem) -> FuzzyInputs:
         s = problem.scenario
         g = problem.graph
         xy = problem.node_xyz[:, :2]
@@ -165,8 +190,9 @@ class FGDACO(AntColonyPlanner):
         """Floor the trail and compute eq. 15's ``1 / d_ij + d_io`` and eq. 14's signed gain per edge."""
         trail.set_bounds(self.tau_floor)
         inputs = self.fuzzy_inputs(problem)
-        deposit = 1.0 / problem.graph.length + inputs.obstacle[problem.sources]
-        return FgdacoState(problem, rules, trail, rng, deposit=deposit, gain=self.signed_gain(problem, inputs))
+        deposit, gain = problem.memo(self.table_key("deposit_gain"), lambda: (
+            1.0 / problem.graph.length + inputs.obstacle[problem.sources], self.signed_gain(problem, inputs)))
+        return FgdacoState(problem, rules, trail, rng, deposit=deposit, gain=gain)
 
     def update_trail(self, state: ColonyState, walks: Walks, costs: np.ndarray) -> None:
         """Eq. 9: evaporate, add eq. 15's deposits along every successful walk, then the signed gains of its nodes."""
@@ -177,9 +203,6 @@ class FGDACO(AntColonyPlanner):
         if ok.size == 0:
             return
         deposit_walks(state.trail, g.indices, walks.flat, walks.offsets, ok, 0.0, per_edge=state.deposit)
-        left = np.concatenate([np.concatenate([[state.problem.start], g.indices[walks.edges(a)[:-1]]]) for a in ok])
-        counts = g.degree[left]
-        first = np.repeat(g.indptr[left] - np.cumsum(counts) + counts, counts)
-        out_edges = first + np.arange(counts.sum())
-        deposit_walks(state.trail, g.indices, out_edges, np.array([0, out_edges.size]), np.array([0]), 0.0,
-                      per_edge=state.gain)
+        t = state.trail
+        _add_gains(t.x, t.scale, t.lo, t.hi, g.indptr, g.indices, walks.flat, walks.offsets, ok,
+                   state.problem.start, state.gain)

@@ -48,7 +48,7 @@ __all__ = ["TimedWalkEngine"]
 def _timed_walk(indptr, indices, offset_id, horizontal, turn, length,
                 x, scale, lo, hi, tau_exp, w_mul, beta,
                 start, goal, backtrack, max_steps, allowance, n_ants, walk_base,
-                stamp, stack_e, stack_prev, stack_t, cand_e, cand_w, gap, near_ids, mu, strength,
+                stamp, stack_e, stack_prev, stack_t, stack_gap, cand_e, cand_w, gap, near_ids, ahead, mu, strength,
                 flat, offsets, flags, steps_out,
                 width, cell, speed, t_head, tail,
                 ob_points, ob_cum, ob_count, ob_speed, ob_phase, ob_radius,
@@ -57,9 +57,15 @@ def _timed_walk(indptr, indices, offset_id, horizontal, turn, length,
     use_turn = turn.shape[0] > 0
     no_prev = turn.shape[0] - 1
     n_obs = ob_count.size
+    lo_pow = lo**tau_exp
     max_len = 0.0
     for e in range(length.size):
         max_len = max(max_len, length[e])
+    shrink = np.empty(n_obs)  # per metre the ant drives, a gap shrinks by at most this much
+    reach = np.empty(n_obs)  # a gap beyond this cannot matter for any move from here
+    for k in range(n_obs):
+        shrink[k] = 1.0 + ob_speed[k] / speed
+        reach[k] = max_len * shrink[k] + sensing
     total = 0
     a = 0
     while a < n_ants:
@@ -73,6 +79,7 @@ def _timed_walk(indptr, indices, offset_id, horizontal, turn, length,
         timed_out = False  # some edge was refused because of a moving obstacle
         stamp[start] = wid
         gap[:] = -np.inf  # lower bounds on each obstacle's distance (edge to centre of node) now: unknown
+        stack_gap[0, :] = np.nan  # exact distances measured at each depth (NaN: not measured there)
         while cur != goal:
             if steps >= max_steps:
                 flag = STEP_CAP
@@ -84,12 +91,15 @@ def _timed_walk(indptr, indices, offset_id, horizontal, turn, length,
             cy = (cur // width + 0.5) * cell
             n_near = 0  # obstacles that may touch a move from here or come within sensing range of its end
             for k in range(n_obs):
-                reach = max_len * (1.0 + ob_speed[k] / speed) + sensing
-                if gap[k] < reach:  # the bound says nothing: measure
-                    ox, oy = obstacle_position(ob_points, ob_cum, ob_count, ob_speed, ob_phase, k, t_cur)
-                    gap[k] = math.hypot(cx - ox, cy - oy) - ob_radius[k]
-                    if gap[k] < reach:
+                if gap[k] < reach[k]:  # the bound says nothing: measure (or reuse this node's measurement)
+                    if math.isnan(stack_gap[depth, k]):
+                        ox, oy = obstacle_position(ob_points, ob_cum, ob_count, ob_speed, ob_phase, k, t_cur)
+                        stack_gap[depth, k] = math.hypot(cx - ox, cy - oy) - ob_radius[k]
+                    gap[k] = stack_gap[depth, k]
+                    if gap[k] < reach[k]:
                         near_ids[n_near] = k
+                        ahead[n_near, 0, 0] = -1.0  # no arrival position of this obstacle computed yet
+                        ahead[n_near, 1, 0] = -1.0
                         n_near += 1
             nc = 0
             total_w = 0.0
@@ -102,12 +112,18 @@ def _timed_walk(indptr, indices, offset_id, horizontal, turn, length,
                     f = turn[prev, offset_id[e]]
                     if f <= 0.0:
                         continue
-                dt = length[e] / speed
-                t_next = t_cur + dt
-                jx = (j % width + 0.5) * cell
-                jy = (j // width + 0.5) * cell
                 near = clear_in[j]
                 free = True
+                dt = 0.0
+                t_next = t_cur
+                if n_near > 0 or j == goal:  # the move's timing and end point matter only near obstacles
+                    dt = length[e] / speed
+                    t_next = t_cur + dt
+                jx = 0.0
+                jy = 0.0
+                if n_near > 0:
+                    jx = (j % width + 0.5) * cell
+                    jy = (j // width + 0.5) * cell
                 for q in range(n_near):
                     k = near_ids[q]
                     bound = gap[k] - length[e] - ob_speed[k] * dt  # least possible gap during the move
@@ -115,8 +131,15 @@ def _timed_walk(indptr, indices, offset_id, horizontal, turn, length,
                                                               cx, cy, jx, jy, t_cur, t_next) < ob_radius[k]:
                         free = False
                         break
-                    if bound < near * sensing:
-                        ox, oy = obstacle_position(ob_points, ob_cum, ob_count, ob_speed, ob_phase, k, t_next)
+                    if bound < near * sensing:  # moves of one length arrive together: reuse the position
+                        slot = 0 if ahead[q, 0, 0] == dt or ahead[q, 0, 0] < 0.0 else 1
+                        if ahead[q, slot, 0] != dt:
+                            ox, oy = obstacle_position(ob_points, ob_cum, ob_count, ob_speed, ob_phase, k, t_next)
+                            ahead[q, slot, 0] = dt
+                            ahead[q, slot, 1] = ox
+                            ahead[q, slot, 2] = oy
+                        ox = ahead[q, slot, 1]
+                        oy = ahead[q, slot, 2]
                         near = min(near, max(math.hypot(jx - ox, jy - oy) - ob_radius[k], 0.0) / sensing)
                 if free and j == goal and tail[4] > 0.0:
                     for k in range(n_obs):
@@ -134,7 +157,12 @@ def _timed_walk(indptr, indices, offset_id, horizontal, turn, length,
                 else:
                     h = w_mul[e]
                 t = min(max(scale * x[e], lo), hi)
-                w = (t if tau_exp == 1.0 else t**tau_exp) * h * f
+                if tau_exp == 1.0:
+                    w = t * h * f
+                elif t <= lo:  # trails resting on the floor share one power
+                    w = lo_pow * h * f
+                else:
+                    w = t**tau_exp * h * f
                 if w > 0.0:
                     cand_e[nc] = e
                     cand_w[nc] = w
@@ -166,11 +194,12 @@ def _timed_walk(indptr, indices, offset_id, horizontal, turn, length,
                     break
             t_cur += length[sel] / speed
             for k in range(n_obs):  # the gap shrinks by at most the distance both have moved
-                gap[k] -= length[sel] * (1.0 + ob_speed[k] / speed)
+                gap[k] -= length[sel] * shrink[k]
             cur = indices[sel]
             stamp[cur] = wid
             stack_e[depth] = sel
             stack_t[depth] = t_cur
+            stack_gap[depth + 1, :] = np.nan
             if use_turn:
                 o = offset_id[sel]
                 if horizontal[o]:
@@ -205,10 +234,12 @@ class _TimedBuffers:
     stack_e: np.ndarray
     stack_prev: np.ndarray
     stack_t: np.ndarray
+    stack_gap: np.ndarray
     cand_e: np.ndarray
     cand_w: np.ndarray
     gap: np.ndarray
     near_ids: np.ndarray
+    ahead: np.ndarray
     mu: np.ndarray
     strength: np.ndarray
     flat: np.ndarray
@@ -221,8 +252,9 @@ class _TimedBuffers:
         degree = max(int(g.degree.max()) if g.n_nodes else 0, 1)
         return cls(stamp=np.full(g.n_nodes, -1, dtype=np.int32), stack_e=np.zeros(depth, dtype=np.int64),
                    stack_prev=np.zeros(depth, dtype=np.int64), stack_t=np.zeros(depth),
+                   stack_gap=np.zeros((depth + 1, max(n_obstacles, 1))),
                    cand_e=np.zeros(degree, dtype=np.int64), cand_w=np.zeros(degree), gap=np.zeros(n_obstacles),
-                   near_ids=np.zeros(n_obstacles, dtype=np.int64), mu=np.zeros((3, 3)), strength=np.zeros(3),
+                   near_ids=np.zeros(n_obstacles, dtype=np.int64), ahead=np.zeros((max(n_obstacles, 1), 2, 3)), mu=np.zeros((3, 3)), strength=np.zeros(3),
                    flat=np.zeros(0, dtype=np.int64))
 
 
@@ -293,7 +325,8 @@ class TimedWalkEngine(WalkEngine):
             *self.graph_arrays, rules.turn, self.length,
             trail.x, trail.scale, trail.lo, trail.hi, rules.tau_exp, rules.weight_mul, self.beta,
             p.start, p.goal, rules.backtrack, rules.max_steps, allowance, n_ants, b.walk_base,
-            b.stamp, b.stack_e, b.stack_prev, b.stack_t, b.cand_e, b.cand_w, b.gap, b.near_ids, b.mu, b.strength,
+            b.stamp, b.stack_e, b.stack_prev, b.stack_t, b.stack_gap, b.cand_e, b.cand_w, b.gap, b.near_ids, b.ahead,
+            b.mu, b.strength,
             b.flat, offsets, flags, steps,
             g.shape[1], p.scenario.cell_size, p.scenario.vehicle.cruise_speed, self.t_head, self.tail,
             ob.points, ob.cum, ob.count, ob.speed, ob.phase, ob.radius,

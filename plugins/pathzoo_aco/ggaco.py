@@ -19,8 +19,6 @@ See ``docs/planners/aco.ggaco.md`` for every interpretation.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 
 from pathzoo.core.planner import Param
@@ -37,14 +35,7 @@ from pathzoo_aco.engine import (
 )
 from pathzoo_aco.gant import ENERGY_FLOOR, PHI, green_heuristic
 
-__all__ = ["GGACO", "GgacoState"]
-
-
-@dataclass
-class GgacoState(ColonyState):
-    """Colony state plus the per-edge deposit ``1 / d_ij + 1 / E_ij`` of eq. 18 (computed once)."""
-
-    edge_deposit: np.ndarray | None = None
+__all__ = ["GGACO"]
 
 
 class GGACO(AntColonyPlanner):
@@ -68,60 +59,90 @@ class GGACO(AntColonyPlanner):
     }
 
     @staticmethod
-    def slope_distance(problem: ColonyProblem) -> np.ndarray:
+    def slope_distance(problem: ColonyProblem, edges: slice = slice(None)) -> np.ndarray:
         """Eq. 17: ``d_ij = |V_i V_j| · (1 + |θ_ij|)``, the 3-D edge length scaled by the rise over run."""
-        return problem.graph.length * (1.0 + problem.tangent)
+        return problem.graph.length[edges] * (1.0 + problem.tangent_of(edges))
 
-    def heuristic(self, problem: ColonyProblem) -> np.ndarray:
+    def heuristic(self, problem: ColonyProblem, edges: slice = slice(None)) -> np.ndarray:
         """Eq. 16: ``η_ij = 1 / d_ij + v_ij / φ`` with ``v`` the vehicle's cruise speed."""
-        return green_heuristic(self.slope_distance(problem), problem.scenario.vehicle.cruise_speed, self.phi)
+        return green_heuristic(self.slope_distance(problem, edges), problem.scenario.vehicle.cruise_speed, self.phi)
 
-    def gain(self, problem: ColonyProblem) -> np.ndarray:
+    def gain(self, problem: ColonyProblem, nodes: slice = slice(None)) -> np.ndarray:
         """Signed gain per edge (eqs. 11-14): ``+Gain_ij`` toward the neighbour(s) nearest ``D``, else ``-Gain_ij``.
 
         Distances to ``D`` are 3-D between cell centres; the neighbours are
-        the node's graph neighbours (traversable ones).
+        the node's graph neighbours (traversable ones). Returns the edges
+        leaving ``nodes`` (a range of node ids), in graph order.
         """
         g = problem.graph
+        lo, hi, _ = nodes.indices(g.n_nodes)
+        first = g.indptr[lo]
+        degree = g.degree[lo:hi]
         dist = problem.goal_distance
-        to = dist[g.indices]
-        here = dist[problem.sources]
+        to = dist[g.indices[first : g.indptr[hi]]]
+        here = np.repeat(dist[lo:hi], degree)  # per edge, its source's distance (no per-edge source array kept)
         # edges leaving the destination are never chosen (a walk ends there): any finite progress will do
         progress = to / np.where(here > 0.0, here, 1.0)
         gain = 1.0 / (1.0 + np.exp(-self.lam * progress))
-        nonempty = g.degree > 0
-        nearest = np.full(g.n_nodes, np.inf)
+        nonempty = degree > 0
+        nearest = np.full(hi - lo, np.inf)
         if to.size:
-            nearest[nonempty] = np.minimum.reduceat(to, g.indptr[:-1][nonempty])
-        best = to <= nearest[problem.sources] * (1.0 + 1e-12)
+            nearest[nonempty] = np.minimum.reduceat(to, g.indptr[lo:hi][nonempty] - first)
+        best = to <= np.repeat(nearest, degree) * (1.0 + 1e-12)
         return np.where(best, gain, -gain)
 
     def walk_rules(self, problem: ColonyProblem) -> WalkRules:
-        """Eq. 15 with the pre-choice gain of eq. 13; ants race until the first reaches ``D`` (Algorithm 1)."""
-        return WalkRules.product(self.alpha, self.heuristic(problem), self.beta, self.neighbour_factor(problem),
-                                 pre_add=self.gain(problem), race=self.colony == "race",
-                                 **self.walk_options(problem))
+        """Eq. 15 with the pre-choice gain of eq. 13; ants race until the first reaches ``D`` (Algorithm 1).
+
+        The product ``η^β · n_j / (n_j + 1)`` and the gains are built block by
+        block of nodes (:meth:`ColonyProblem.node_blocks`) straight into the
+        single-precision arrays the walks read, as :meth:`WalkRules.product`
+        would build them whole, so no graph-sized double-precision temporary
+        is needed.
+        """
+        g = problem.graph
+        mul = np.empty(g.n_edges, dtype=np.float32)
+        gain = np.empty(g.n_edges, dtype=np.float32)
+        for nodes in problem.node_blocks():
+            edges = slice(int(g.indptr[nodes.start]), int(g.indptr[nodes.stop]))
+            mul[edges] = np.power(self.heuristic(problem, edges), self.beta) * self.neighbour_factor(problem, edges)
+            gain[edges] = self.gain(problem, nodes)
+        return WalkRules(tau_exp=float(self.alpha), weight_mul=mul, pre_add=gain, race=self.colony == "race",
+                         **self.walk_options(problem))
 
     def initial_trail(self, problem: ColonyProblem) -> float:
         """``τ0 = 0`` (section 3.2.2.2); reads are floored at ``tau_floor``."""
         return 0.0
 
     def init_state(self, problem: ColonyProblem, rules: WalkRules, trail: Pheromone, engine: WalkEngine,
-                   rng: np.random.Generator) -> GgacoState:
-        """Floor the trail at ``tau_floor`` and compute eq. 18's per-edge deposit ``1 / d_ij + 1 / E_ij``."""
+                   rng: np.random.Generator) -> ColonyState:
+        """Floor the trail at ``tau_floor``."""
         trail.set_bounds(self.tau_floor)
-        energy = np.maximum(problem.graph.energy, self.energy_floor_j)
-        return GgacoState(problem, rules, trail, rng, edge_deposit=1.0 / self.slope_distance(problem) + 1.0 / energy)
+        return ColonyState(problem, rules, trail, rng)
+
+    @staticmethod
+    def edge_energy(problem: ColonyProblem, edges: np.ndarray | slice) -> np.ndarray:
+        """Eq. 6's energy (J) of the given edges: ``graph.energy[edges]`` without the graph-sized array."""
+        g = problem.graph
+        return problem.scenario.vehicle.segment_energy(g.length[edges], g.slope[edges])
+
+    def edge_deposit(self, problem: ColonyProblem, edges: np.ndarray | slice = slice(None)) -> np.ndarray:
+        """Eq. 18 per edge: ``1 / d_ij + 1 / E_ij``, for the given edges (all by default)."""
+        energy = np.maximum(self.edge_energy(problem, edges), self.energy_floor_j)
+        return 1.0 / self.slope_distance(problem, edges) + 1.0 / energy
 
     def walk_costs(self, state: ColonyState, walks: Walks) -> np.ndarray:
-        """Energy (J, eq. 6) or length (m, eq. 5) of each walk."""
-        g = state.problem.graph
-        return walks.totals(g.energy if self.objective == "energy" else g.length)
+        """Energy (J, eq. 6) or length (m, eq. 5) of each walk (computed for the walked edges only)."""
+        if self.objective == "energy":
+            return walks.sums(self.edge_energy(state.problem, walks.flat))
+        return walks.totals(state.problem.graph.length)
 
     def update_trail(self, state: ColonyState, walks: Walks, costs: np.ndarray) -> None:
-        """Eqs. 13 and 18: ``τ <- (1 - ρ) τ + Σ_k (1 / d_ij + 1 / E_ij)`` over the edges each successful ant crossed."""
-        assert isinstance(state, GgacoState)
+        """Eqs. 13 and 18: ``τ <- (1 - ρ) τ + Σ_k (1 / d_ij + 1 / E_ij)`` over the edges each successful ant crossed.
+
+        The deposit is computed for the crossed edges only (no per-edge table is kept).
+        """
         state.trail.evaporate(self.rho)
         ok = np.flatnonzero(walks.reached)
         deposit_walks(state.trail, state.problem.graph.indices, walks.flat, walks.offsets, ok, 0.0,
-                      per_edge=state.edge_deposit)
+                      per_step=self.edge_deposit(state.problem, walks.flat))

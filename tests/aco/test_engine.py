@@ -2,8 +2,10 @@
 
 from __future__ import annotations
 
+import gc
 import math
 import time
+import weakref
 from dataclasses import replace
 
 import numpy as np
@@ -23,6 +25,7 @@ from pathzoo_aco.engine import (
     Pheromone,
     WalkEngine,
     WalkRules,
+    Walks,
     deposit_walks,
 )
 
@@ -137,6 +140,19 @@ def test_race_grows_its_stacks_and_honours_the_allowance():
     assert walks.reached.sum() == 1 and len(walks.edges(int(np.argmax(walks.reached)))) > 256
     cut = WalkEngine(problem).walk(blind, Pheromone(g.n_edges, 1.0), 3, seed=1, allowance=30)
     assert np.all(cut.flags == ABORTED) and cut.steps.sum() == 30
+
+
+def test_race_stamps_stay_exact_across_their_byte_wrap():
+    problem = ColonyProblem(walled_grid())
+    rules = replace(_rules(problem), race=True)
+    engine, fresh = WalkEngine(problem), WalkEngine(problem)
+    for colony in range(300):  # the byte stamps are cleared after 255 colonies
+        walks = engine.walk(rules, Pheromone(problem.graph.n_edges, 1.0), 5, seed=colony)
+        winner = int(np.argmax(walks.reached))
+        _check_walk(problem, walks.edges(winner))
+        if colony in (0, 254, 255, 299):  # a used engine walks exactly as a new one
+            again = fresh.walk(rules, Pheromone(problem.graph.n_edges, 1.0), 5, seed=colony)
+            assert np.array_equal(again.flat, walks.flat) and np.array_equal(again.steps, walks.steps)
 
 
 def test_step_cap_drops_the_ant():
@@ -276,3 +292,38 @@ def test_reached_flag_matches_totals(walls):
     problem = ColonyProblem(walled_grid() if walls else open_grid(6))
     walks = WalkEngine(problem).walk(_rules(problem), Pheromone(problem.graph.n_edges, 1.0), 5, seed=0)
     assert np.all((walks.flags == REACHED) == np.isfinite(walks.totals(problem.graph.length)))
+
+
+def test_tables_are_built_once_per_scenario_and_configuration():
+    scenario = hill()
+    problem = ColonyProblem.of(scenario)
+    assert ColonyProblem.of(scenario).goal_distance is problem.goal_distance  # one set of tables per scenario
+    planner = pathzoo.make_planner("aco.ggaco", n_ants=4)
+    runs = [planner.plan(scenario, budget=Budget(iterations=3), rng=np.random.default_rng(5)) for _ in range(2)]
+    rules = problem.memo(planner.table_key("walk_rules"), lambda: pytest.fail("rules were not kept"))
+    assert np.array_equal(runs[0].path, runs[1].path) and runs[0].extras == {**runs[1].extras,
+                                                                            "walk_time_s": runs[0].extras["walk_time_s"]}
+    other = pathzoo.make_planner("aco.ggaco", n_ants=4, beta=1.5)
+    assert other.table_key("walk_rules") != planner.table_key("walk_rules")
+    other.plan(scenario, budget=Budget(iterations=1), rng=np.random.default_rng(5))
+    assert problem.memo(other.table_key("walk_rules"), lambda: None) is not rules
+    fresh = ColonyProblem(scenario)  # an unshared problem computes the same rules from scratch
+    assert np.array_equal(planner.walk_rules(fresh).weight_mul, rules.weight_mul)
+    gone = weakref.ref(scenario), weakref.ref(rules.weight_mul)  # the tables live exactly as long as the scenario
+    assert set(vars(scenario)) <= {*scenario.__dataclass_fields__, "blocked", "graph", "clearance"}
+    del problem, scenario, fresh, rules
+    gc.collect()
+    assert gone[0]() is None and gone[1]() is None
+
+
+def test_walk_totals_equal_differences_of_one_running_sum():
+    rng = np.random.default_rng(0)
+    for _ in range(50):
+        lengths = rng.integers(0, 40, rng.integers(1, 8))
+        offsets = np.concatenate([[0], np.cumsum(lengths)])
+        flat = rng.integers(0, 100, offsets[-1])
+        per_edge = rng.random(100) * rng.choice([1.0, 1e-9, 1e9])
+        walks = Walks(flat, offsets, np.where(lengths > 0, REACHED, STUCK).astype(np.int8), lengths, len(lengths))
+        cum = np.concatenate([[0.0], np.cumsum(per_edge[flat])])  # the plain numpy definition, bit for bit
+        want = np.where(lengths > 0, cum[offsets[1:]] - cum[offsets[:-1]], np.inf)
+        assert np.array_equal(walks.totals(per_edge), want) and np.array_equal(walks.sums(per_edge[flat]), want)

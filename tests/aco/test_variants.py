@@ -9,7 +9,7 @@ import pytest
 
 import pathzoo
 from pathzoo import Scenario
-from pathzoo_aco.engine import ColonyProblem, Pheromone, WalkEngine
+from pathzoo_aco.engine import ColonyProblem, Pheromone, WalkEngine, WalkRules
 from pathzoo_aco.mmas import global_best_due
 
 from aco_maps import hill, open_grid, walled_grid
@@ -201,3 +201,19 @@ def test_gant_backward_ants_lay_inverse_time_plus_inverse_predicted_energy():
     extras = planner.result_extras(state)
     assert math.isclose(extras["predicted_energy_j"], state.link_energy[state.best_edges].sum())
     assert extras["predicted_energy_sd_j"] > 0
+
+
+def test_ggaco_tables_built_block_by_block_equal_the_whole_graph_build(monkeypatch):
+    scenario = hill()
+    planner = pathzoo.make_planner("aco.ggaco")
+    problem = ColonyProblem(scenario)
+    whole = WalkRules.product(planner.alpha, planner.heuristic(problem), planner.beta,
+                              planner.neighbour_factor(problem), pre_add=planner.gain(problem))
+    blocks = list(problem.node_blocks(max_edges=50))
+    assert len(blocks) > 10 and blocks[0].start == 0 and blocks[-1].stop == problem.n_nodes
+    assert all(a.stop == b.start for a, b in zip(blocks, blocks[1:]))
+    monkeypatch.setattr(ColonyProblem, "node_blocks", lambda self, max_edges=0: iter(blocks))
+    rules = planner.walk_rules(problem)
+    assert np.array_equal(rules.weight_mul, whole.weight_mul) and np.array_equal(rules.pre_add, whole.pre_add)
+    some = np.array([0, 5, 17, problem.graph.n_edges - 1])
+    assert np.array_equal(planner.edge_deposit(problem, some), planner.edge_deposit(problem)[some])

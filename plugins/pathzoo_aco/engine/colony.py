@@ -158,16 +158,27 @@ class AntColonyPlanner(Planner):
         return {}
 
     # ------------------------------------------------------------- helpers
+    def table_key(self, name: str) -> tuple:
+        """Key of a per-scenario table that depends on this planner's class and parameters only.
+
+        :meth:`plan` keeps :meth:`walk_rules` under ``table_key("walk_rules")``
+        in :meth:`ColonyProblem.memo`, so a variant's heuristic, gains and
+        turn tables are computed once per scenario and configuration; hooks
+        may keep their own tables the same way. A variant whose rules depend
+        on anything else must not be cached this way.
+        """
+        return (type(self), self.version, repr(sorted(self.get_params().items())), name)  # repr: any value type
+
     def walk_options(self, problem: ColonyProblem) -> dict[str, Any]:
         """Keyword arguments for :class:`WalkRules` from the common parameters and the vehicle's turn limit."""
         cap = self.max_steps or 2 * problem.n_free + 2
         return {"backtrack": self.dead_end == "backtrack", "max_steps": int(cap), "turn": problem.turn_table}
 
     @staticmethod
-    def neighbour_factor(problem: ColonyProblem) -> np.ndarray:
-        """Per edge ``i -> j``: ``n_j / (n_j + 1)`` with ``n_j`` the number of neighbours of ``j`` (its degree)."""
+    def neighbour_factor(problem: ColonyProblem, edges: slice = slice(None)) -> np.ndarray:
+        """Per edge ``i -> j`` (of ``edges``): ``n_j / (n_j + 1)`` with ``n_j`` the number of neighbours of ``j``."""
         g = problem.graph
-        n = g.degree[g.indices].astype(np.float64)
+        n = g.degree[g.indices[edges]].astype(np.float64)
         return n / (n + 1.0)
 
     # ---------------------------------------------------------------- plan
@@ -176,11 +187,11 @@ class AntColonyPlanner(Planner):
         """Run the colony; see the module docstring."""
         self.check_supports(scenario)
         clock = budget.start()
-        problem = ColonyProblem(scenario)
+        problem = ColonyProblem.of(scenario)
         if problem.start == problem.goal:
             return PlanResult(Status.SOLVED, problem.walk_points(np.zeros(0, dtype=np.int64)),
                               message="start and goal share a cell")
-        rules = self.walk_rules(problem)
+        rules = problem.memo(self.table_key("walk_rules"), lambda: self.walk_rules(problem))
         trail = Pheromone(problem.graph.n_nodes if self.pheromone_on == "nodes" else problem.graph.n_edges,
                           self.initial_trail(problem), on_nodes=self.pheromone_on == "nodes")
         engine = self.walk_engine(problem)

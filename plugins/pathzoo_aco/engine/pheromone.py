@@ -71,8 +71,9 @@ class Pheromone:
 
 
 @numba.njit(cache=True)
-def _deposit(x, scale, lo, hi, on_nodes, indices, flat, offsets, ants, keep, per_walk, per_edge):
+def _deposit(x, scale, lo, hi, on_nodes, indices, flat, offsets, ants, keep, per_walk, per_edge, per_step):
     use_edge = per_edge.size > 0
+    use_step = per_step.size > 0
     for i in range(ants.size):
         a = ants[i]
         for p in range(offsets[a], offsets[a + 1]):
@@ -82,12 +83,14 @@ def _deposit(x, scale, lo, hi, on_nodes, indices, flat, offsets, ants, keep, per
             t = keep * t + per_walk[i]
             if use_edge:
                 t += per_edge[e]
+            if use_step:
+                t += per_step[p]
             x[k] = min(max(t, lo), hi) / scale
 
 
 def deposit_walks(trail: Pheromone, indices: np.ndarray, flat: np.ndarray, offsets: np.ndarray,
                   ants: np.ndarray, per_walk: np.ndarray | float, *, keep: float = 1.0,
-                  per_edge: np.ndarray | None = None) -> None:
+                  per_edge: np.ndarray | None = None, per_step: np.ndarray | None = None) -> None:
     """Update the trail along the walks of the chosen ants: ``τ <- clip(keep τ + Δ)``.
 
     ``Δ`` on an edge ``e`` of ant ``ants[i]`` is ``per_walk[i] + per_edge[e]``.
@@ -111,10 +114,14 @@ def deposit_walks(trail: Pheromone, indices: np.ndarray, flat: np.ndarray, offse
         Factor on the old value.
     per_edge : ndarray, optional
         Extra amount per edge id.
+    per_step : ndarray, optional
+        Extra amount per entry of ``flat`` (the same as ``per_edge[flat]``
+        without a graph-sized array; use one or the other).
     """
     ants = np.asarray(ants, dtype=np.int64)
     amounts = np.empty(ants.shape)
     amounts[:] = per_walk  # broadcast (np.broadcast_to costs more than the deposit of one short walk)
     extra = np.zeros(0) if per_edge is None else np.asarray(per_edge, dtype=np.float64)
+    steps = np.zeros(0) if per_step is None else np.asarray(per_step, dtype=np.float64)
     _deposit(trail.x, trail.scale, trail.lo, trail.hi, trail.on_nodes, indices, flat, offsets, ants,
-             float(keep), amounts, extra)
+             float(keep), amounts, extra, steps)

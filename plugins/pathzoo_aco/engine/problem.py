@@ -3,8 +3,11 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+import weakref
+from collections import OrderedDict
+from dataclasses import dataclass, field
 from functools import cached_property
+from typing import Any, Callable, Hashable, Iterator, TypeVar
 
 import numpy as np
 
@@ -13,6 +16,27 @@ from pathzoo.grid.graph import GridGraph
 from pathzoo.grid.paths import centre_path
 
 __all__ = ["ColonyProblem"]
+
+T = TypeVar("T")
+
+_TABLES: "weakref.WeakKeyDictionary[Scenario, dict[str, Any]]" = weakref.WeakKeyDictionary()
+"""Per live scenario object: its problem's computed arrays and memo. The values never refer to the
+scenario, so an entry goes with its scenario."""
+
+
+class _kept(cached_property):
+    """A :func:`functools.cached_property` kept in the problem's shared tables rather than on the instance."""
+
+    def __get__(self, instance, owner=None):  # noqa: ANN001, ANN204
+        if instance is None:
+            return self
+        tables = instance._tables
+        if self.attrname not in tables:
+            tables[self.attrname] = self.func(instance)
+        return tables[self.attrname]
+
+MEMO_ENTRIES = 8
+"""Per-configuration tables kept per scenario (least recently used dropped first)."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -37,18 +61,62 @@ class ColonyProblem:
     """
 
     scenario: Scenario
+    _tables: dict[str, Any] = field(default_factory=dict, init=False, repr=False)
 
-    @cached_property
+    @classmethod
+    def of(cls, scenario: Scenario) -> "ColonyProblem":
+        """A problem that shares its computed arrays and :meth:`memo` tables with every other of this scenario.
+
+        The tables are kept in a weak-keyed map beside the scenario (nothing is
+        added to the scenario object), and live exactly as long as it does,
+        like ``scenario.graph``.
+        """
+        problem = cls(scenario)
+        tables = _TABLES.get(scenario)
+        if tables is None:
+            tables = _TABLES[scenario] = {}
+        object.__setattr__(problem, "_tables", tables)
+        return problem
+
+    def memo(self, key: Hashable, build: Callable[[], T]) -> T:
+        """``build()``, computed once per ``key`` and kept for later calls (the :data:`MEMO_ENTRIES` latest keys).
+
+        For tables that depend on the scenario and a planner's configuration
+        only (heuristics, gains, walk rules). Callers must treat the result
+        as read-only.
+        """
+        memo = self._tables.setdefault("_memo", OrderedDict())
+        if key in memo:
+            memo.move_to_end(key)
+            return memo[key]
+        value = build()
+        memo[key] = value
+        while len(memo) > MEMO_ENTRIES:
+            memo.popitem(last=False)
+        return value
+
+    @_kept
+    def indices32(self) -> np.ndarray:
+        """``graph.indices`` as int32 (half the memory traffic of the int64 CSR array in the walks)."""
+        return self.graph.indices.astype(np.int32)
+
+    @_kept
+    def offset_id_small(self) -> np.ndarray:
+        """``graph.offset_id`` as int8 (int32 for neighbourhoods of more than 127 moves)."""
+        g = self.graph
+        return g.offset_id.astype(np.int8 if len(g.offsets) <= 127 else np.int32)
+
+    @_kept
     def graph(self) -> GridGraph:
         """The scenario's shared neighbourhood graph."""
         return self.scenario.graph
 
-    @cached_property
+    @_kept
     def start(self) -> int:
         """Node id of the start cell."""
         return self.scenario.start_node
 
-    @cached_property
+    @_kept
     def goal(self) -> int:
         """Node id of the goal cell."""
         return self.scenario.goal_node
@@ -58,17 +126,17 @@ class ColonyProblem:
         """Number of nodes (all cells)."""
         return self.graph.n_nodes
 
-    @cached_property
+    @_kept
     def n_free(self) -> int:
         """Number of nodes with at least one edge: the longest simple walk has fewer edges."""
         return int(np.count_nonzero(self.graph.degree)) + 1
 
-    @cached_property
+    @_kept
     def sources(self) -> np.ndarray:
         """Source node of each edge."""
         return self.graph.sources
 
-    @cached_property
+    @_kept
     def node_xyz(self) -> np.ndarray:
         """World coordinates of every node centre, shape (N, 3); on terrain ``z`` is the cell's elevation."""
         s = self.scenario
@@ -78,26 +146,50 @@ class ColonyProblem:
         z = np.zeros((len(pts), 1)) if s.elevation is None else np.nan_to_num(s.elevation).reshape(-1, 1)
         return np.hstack([pts, z])
 
-    @cached_property
+    @_kept
     def goal_distance(self) -> np.ndarray:
         """Straight-line (3-D on terrain) distance in metres from every node centre to the goal's centre."""
         xyz = self.node_xyz
         return np.sqrt(((xyz - xyz[self.goal]) ** 2).sum(axis=1))
 
-    @cached_property
+    @property
     def tangent(self) -> np.ndarray:
-        """Per edge ``|tan θ|``: the rise over run of eq. 3 of GGACO (0 on flat maps and in the air)."""
-        if self.scenario.kind != "terrain":
-            return np.zeros(self.graph.n_edges)
-        return np.abs(np.tan(self.graph.slope))
+        """Per edge ``|tan θ|``: the rise over run of eq. 3 of GGACO (0 on flat maps and in the air).
 
-    @cached_property
+        Computed on every access, not kept: callers keep what they derive
+        from it (a 39-million-edge terrain would hold 312 MB for it).
+        """
+        return self.tangent_of(slice(None))
+
+    def tangent_of(self, edges: slice) -> np.ndarray:
+        """:attr:`tangent` of a range of edges."""
+        slope = self.graph.slope[edges]
+        if self.scenario.kind != "terrain":
+            return np.zeros(len(slope))
+        return np.abs(np.tan(slope))
+
+    def node_blocks(self, max_edges: int = 1 << 21) -> Iterator[slice]:
+        """Consecutive ranges of nodes with about ``max_edges`` edges each (at least one node), covering all nodes.
+
+        Per-edge tables built block by block need temporaries of one block,
+        not of the whole graph; elementwise results are the same.
+        """
+        indptr = self.graph.indptr
+        n = self.n_nodes
+        lo = 0
+        while lo < n:
+            hi = int(np.searchsorted(indptr, indptr[lo] + max_edges, side="right")) - 1
+            hi = min(max(hi, lo + 1), n)
+            yield slice(lo, hi)
+            lo = hi
+
+    @_kept
     def horizontal_offsets(self) -> np.ndarray:
         """Per neighbourhood move: True when it changes the horizontal position (heading matters)."""
         off = self.graph.offsets
         return np.any(off[:, -2:] != 0, axis=1)
 
-    @cached_property
+    @_kept
     def turn_table(self) -> np.ndarray:
         """Allowed heading changes: ``table[prev, next]`` is 1.0 or 0.0, shape (K + 1, K).
 

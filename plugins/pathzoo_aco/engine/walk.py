@@ -57,7 +57,8 @@ def _colony(indices, offset_id, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, 
     One after another (``race`` False: an ant walks until it stops, then the
     next starts; one stamp row and one stack row serve them all), or in lock
     step (``race`` True: one step per ant per round, a stamp and stack row
-    per ant, until the first reaches the goal). All state lives in the
+    per ant, until the first reaches the goal; every ant stamps its own row
+    with ``walk_base``, which may then be a byte). All state lives in the
     arrays; ``counters`` holds (next ant, ants started, steps taken, a
     finished walk waiting for room in ``flat``), so a call resumes where the
     previous one stopped.
@@ -104,7 +105,7 @@ def _colony(indices, offset_id, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, 
         stamp = stamps[row]
         stack_e = stacks[row]
         stack_prev = prevs[row]
-        wid = walk_base + a
+        wid = walk_base if race else walk_base + a  # racing ants have a stamp row each
         if flags[a] == _FRESH:
             flags[a] = _RUNNING
             counters[1] += 1
@@ -312,9 +313,38 @@ class Walks:
 
     def totals(self, per_edge: np.ndarray) -> np.ndarray:
         """Sum of a per-edge quantity over each walk; ``inf`` for walks that did not reach the goal."""
-        cum = np.concatenate([[0.0], np.cumsum(per_edge[self.flat])])
-        out = cum[self.offsets[1:]] - cum[self.offsets[:-1]]
+        out = _walk_sums(np.asarray(per_edge, dtype=np.float64), self.flat, self.offsets, True)
         return np.where(self.reached, out, np.inf)
+
+    def sums(self, per_step: np.ndarray) -> np.ndarray:
+        """As :meth:`totals`, from values given per entry of :attr:`flat` (computed for the walked edges only)."""
+        out = _walk_sums(np.asarray(per_step, dtype=np.float64), self.flat, self.offsets, False)
+        return np.where(self.reached, out, np.inf)
+
+
+@numba.njit(cache=True)
+def _walk_sums(values, flat, offsets, by_edge):
+    """Per walk, the difference of one running sum over all walks at its two ends.
+
+    The running sum is taken entry by entry in ``flat`` order (of
+    ``values[flat[p]]`` when ``by_edge``, else of ``values[p]``), exactly as
+    ``np.cumsum`` does, so the results equal ``cum[end] - cum[start]`` of it.
+    """
+    n = offsets.size - 1
+    out = np.empty(n)
+    acc = 0.0
+    p = 0
+    start = 0.0
+    for a in range(n):
+        while p < offsets[a]:
+            acc += values[flat[p]] if by_edge else values[p]
+            p += 1
+        start = acc
+        while p < offsets[a + 1]:
+            acc += values[flat[p]] if by_edge else values[p]
+            p += 1
+        out[a] = acc - start
+    return out
 
 
 class WalkEngine:
@@ -329,19 +359,19 @@ class WalkEngine:
     def __init__(self, problem: ColonyProblem) -> None:
         g = problem.graph
         self.problem = problem
-        self.stamps = np.full((1, g.n_nodes), -1, dtype=np.int32)  # tabu stamps: one row, or one per racing ant
+        self.stamps = np.full((1, g.n_nodes), -1, dtype=np.int32)  # tabu stamps of ants walking one by one
         self.walk_base = 0
+        self.race_stamps = np.zeros((0, g.n_nodes), dtype=np.uint8)  # one row per racing ant, stamped 1..255
+        self.race_colony = 1
         self.stack_e = np.zeros((1, problem.n_free + 1), dtype=np.int64)
         self.stack_prev = np.zeros((1, problem.n_free + 1), dtype=np.int64)
         kmax = int(g.degree.max()) if g.n_nodes else 0
         self.cand_e = np.zeros(max(kmax, 1), dtype=np.int64)
         self.cand_w = np.zeros(max(kmax, 1))
         self.flat = np.zeros(1024, dtype=np.int64)
-        self.offset_id = g.offset_id.astype(np.int8 if len(g.offsets) <= 127 else np.int32)  # moves: compact
-        self.indices = g.indices.astype(np.int32)  # half the memory traffic of the int64 CSR arrays
+        self.offset_id = problem.offset_id_small  # moves: compact
+        self.indices = problem.indices32  # half the memory traffic of the int64 CSR arrays
         self.total_steps = 0
-        self._adjacency_of: tuple[np.ndarray, ...] = ()
-        self._adjacency: tuple[np.ndarray | None, ...] = ()
 
     def adjacency(self, rules: WalkRules) -> tuple[np.ndarray | None, ...]:
         """The edges an ant may take under ``rules``, per node, as the kernel reads them.
@@ -356,12 +386,17 @@ class WalkEngine:
         edges, or with ``pre_add`` (which writes every edge's trail), the
         list is the whole graph, ``adj_edge`` is None and the arrays are the
         graph's and the rules' own. Computed once per
-        set of weight arrays (O(edges)); :func:`dataclasses.replace` on the
-        rules keeps the arrays, so schedules of ``q0`` cost nothing here.
+        set of weight arrays (O(edges)) and kept as long as those arrays
+        live (rules cached on the problem share it across ``plan()`` calls);
+        :func:`dataclasses.replace` on the rules keeps the arrays, so
+        schedules of ``q0`` cost nothing here.
         """
-        key = (rules.weight_mul, rules.weight_add, rules.pre_add)
-        if len(self._adjacency_of) == len(key) and all(a is b for a, b in zip(key, self._adjacency_of)):
-            return self._adjacency
+        key = ("adjacency", id(rules.weight_mul), id(rules.weight_add), id(rules.pre_add))
+        # the memo holds the arrays themselves, so their ids cannot be reused while the entry lives
+        return self.problem.memo(key, lambda: (rules.weight_mul, rules.weight_add, rules.pre_add,
+                                               self._adjacency(rules)))[3]
+
+    def _adjacency(self, rules: WalkRules) -> tuple[np.ndarray | None, ...]:
         g = self.problem.graph
         adjacency = (g.indptr, self.indices, None, self.offset_id, rules.weight_mul, rules.weight_add)
         if rules.pre_add.size == 0:
@@ -374,7 +409,6 @@ class WalkEngine:
                 add = rules.weight_add[adj_edge] if rules.weight_add.size else rules.weight_add
                 adjacency = (adj_ptr, self.indices[adj_edge], adj_edge, self.offset_id[adj_edge],
                              rules.weight_mul[adj_edge], add)
-        self._adjacency_of, self._adjacency = key, adjacency
         return adjacency
 
     def walk(self, rules: WalkRules, trail: Pheromone, n_ants: int, seed: int,
@@ -399,8 +433,9 @@ class WalkEngine:
         if self.walk_base + n_ants >= 2**31 - 1:  # the int32 walk stamps would overflow: start afresh
             self.stamps[:] = -1
             self.walk_base = 0
-        if rules.race and len(self.stamps) < n_ants:
-            self.stamps = np.full((n_ants, p.n_nodes), -1, dtype=np.int32)
+        if rules.race and len(self.race_stamps) < n_ants:
+            self.race_stamps = np.zeros((n_ants, p.n_nodes), dtype=np.uint8)
+            self.race_colony = 1
         if rules.race:
             stacks = np.zeros((n_ants, 256), dtype=np.int64)
             prevs = np.zeros_like(stacks)
@@ -421,7 +456,8 @@ class WalkEngine:
                 trail.x, trail.scale, trail.lo, trail.hi, trail.on_nodes,
                 rules.tau_exp, rules.q0, rules.local_keep, rules.local_add,
                 rules.pre_add, p.start, p.goal, rules.backtrack, rules.max_steps, allowance, rules.race,
-                self.walk_base, self.stamps, stacks, prevs, self.cand_e, self.cand_w,
+                self.race_colony if rules.race else self.walk_base, self.race_stamps if rules.race else self.stamps,
+                stacks, prevs, self.cand_e, self.cand_w,
                 cur, depth, prev, steps, flags, counters, self.flat, offsets,
             )
             if status == _DONE:
@@ -432,7 +468,13 @@ class WalkEngine:
             else:  # a race walk outgrew the stacks
                 stacks = np.hstack([stacks, np.zeros_like(stacks)])
                 prevs = np.hstack([prevs, np.zeros_like(prevs)])
-        self.walk_base += n_ants
+        if rules.race:  # a byte per node and ant: the stamps are cleared once every 255 colonies
+            self.race_colony += 1
+            if self.race_colony > 255:
+                self.race_stamps[:] = 0
+                self.race_colony = 1
+        else:
+            self.walk_base += n_ants
         self.total_steps += int(counters[2])
         if rules.race:
             lengths = np.where(flags == REACHED, depth, 0)

@@ -1,0 +1,111 @@
+"""Bit-identity check of the ant-colony and exact planners: record fingerprints once, compare after a change.
+
+Run from the repository root (``../shared`` must sit beside it)::
+
+    python benchmarks/identity.py --record fingerprints.json   # on the untouched code
+    python benchmarks/identity.py --check fingerprints.json    # after each change (exit 1 on a difference)
+    python benchmarks/identity.py --check f.json --only aco.fgdaco,exact.astar
+
+Every case is one ``plan()`` of a planner on a scenario with a seed and an
+iteration budget. Its fingerprint is the status, iterations, evaluations,
+ant-steps, the path's points (SHA-256 of their float64 bytes), the path length
+and the planner's best cost, all exact (``repr`` of the floats). A speed-up
+must leave every fingerprint unchanged. Timings are not fingerprinted.
+"""
+
+from __future__ import annotations
+
+import argparse
+import hashlib
+import json
+import sys
+from pathlib import Path
+
+import numpy as np
+
+import pathzoo
+from pathzoo import Budget, Scenario
+from pathzoo.generators import random_obstacles
+
+ACO = ("aco.as", "aco.mmas", "aco.acs", "aco.ggaco", "aco.gant", "aco.iaca", "aco.fgdaco", "aco.dsaco")
+EXACT = ("exact.astar", "exact.dijkstra")
+SCENARIOS = (  # scenario id, iterations per ACO run
+    ("random60", 6), ("gant.fig7", 10), ("gant.acopso", 10), ("gant.simple.1", 2), ("iaca.offroad", 8),
+    ("ggaco.hugo", 6), ("ggaco.frontrange", 3), ("fgdaco.scenario1", 6), ("fgdaco.scenario2", 4),
+    ("fgdaco.scenario3", 3), ("fgdaco.scenario1_static", 4), ("dsaco.complex", 6), ("dsaco.simple", 6),
+    ("movingai.8room_000.b60.593", 2),
+)
+SEEDS = (0, 1, 7)
+EXTRA = (  # planner, scenario id, parameters: non-default settings that take other kernel paths
+    ("aco.ggaco", "ggaco.hugo", {"colony": "complete"}),
+    ("aco.as", "random60", {"dead_end": "die"}),
+    ("aco.mmas", "gant.fig7", {"n_ants": 3}),
+    ("aco.dsaco", "dsaco.complex", {"step_rule": "longitude"}),
+)
+
+
+def scenario(sid: str) -> Scenario:
+    """A registered scenario, or the generated 60 x 60 random grid ``random60``."""
+    if sid == "random60":
+        occ = random_obstacles((60, 60), seed=3, density=0.25)
+        occ[0, 0] = occ[-1, -1] = False
+        return Scenario(id="random60", kind="grid2d", occupancy=occ, cell_size=1.0, start=(0.5, 0.5),
+                        goal=(59.5, 59.5))
+    return pathzoo.load_scenario(sid)
+
+
+def fingerprint(planner_id: str, s: Scenario, seed: int, iterations: int | None, params: dict) -> dict:
+    """The exact outcome of one ``plan()`` call."""
+    planner = pathzoo.make_planner(planner_id, **params)
+    budget = Budget() if iterations is None else Budget(iterations=iterations)
+    r = planner.plan(s, budget=budget, rng=np.random.default_rng(seed))
+    path = np.ascontiguousarray(r.path, dtype=np.float64) if r.solved else np.zeros((0, 2))
+    length = float(np.linalg.norm(np.diff(path, axis=0), axis=1).sum()) if len(path) > 1 else 0.0
+    return {"status": str(r.status), "iterations": r.iterations, "evaluations": r.evaluations,
+            "ant_steps": r.extras.get("ant_steps"), "points": len(path),
+            "path_sha": hashlib.sha256(path.tobytes()).hexdigest(), "length": repr(length),
+            "best_cost": repr(r.extras.get("best_cost"))}
+
+
+def cases(only: set[str] | None):
+    """(key, planner id, scenario id, seed, iterations, params) of every case."""
+    for sid, iters in SCENARIOS:
+        s = scenario(sid)
+        for pid in ACO + EXACT:
+            if only and pid not in only:
+                continue
+            if s.kind not in pathzoo.make_planner(pid).kinds:
+                continue
+            for seed in SEEDS if pid in ACO else (0,):
+                yield f"{pid}|{sid}|{seed}|{iters}", pid, s, seed, iters if pid in ACO else None, {}
+    for pid, sid, params in EXTRA:
+        if only and pid not in only:
+            continue
+        s = scenario(sid)
+        for seed in SEEDS:
+            yield f"{pid}|{sid}|{seed}|{json.dumps(params, sort_keys=True)}", pid, s, seed, 4, params
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    mode = parser.add_mutually_exclusive_group(required=True)
+    mode.add_argument("--record", type=Path, help="write the fingerprints to this JSON file")
+    mode.add_argument("--check", type=Path, help="compare with the fingerprints in this JSON file")
+    parser.add_argument("--only", help="comma-separated planner ids")
+    args = parser.parse_args(argv)
+    only = set(args.only.split(",")) if args.only else None
+    got = {key: fingerprint(pid, s, seed, iters, params) for key, pid, s, seed, iters, params in cases(only)}
+    if args.record:
+        args.record.write_text(json.dumps(got, indent=1, sort_keys=True))
+        print(f"recorded {len(got)} cases in {args.record}")
+        return 0
+    want = json.loads(args.check.read_text())
+    bad = [key for key in got if want.get(key) != got[key]]
+    for key in bad:
+        print(f"DIFFERS {key}\n  was {want.get(key)}\n  now {got[key]}")
+    print(f"{len(got) - len(bad)} of {len(got)} cases identical")
+    return 1 if bad else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,187 @@
+"""Issue 12's speed and memory table: each figure measured and printed beside its target, in one run.
+
+Run from the repository root (``../shared`` must sit beside it)::
+
+    python benchmarks/speed.py            # every row (ggaco.case1 runs 1000 iterations: a few minutes)
+    python benchmarks/speed.py --quick    # without ggaco.case1 and gant.simple.1
+
+Times are CPU seconds (``time.process_time``) of one ``plan()`` call, the
+median of ``--repeats`` calls, so other processes on a shared machine
+inflate them little; the load average is printed first. ``cold`` is the first
+``plan()`` on a scenario object (per-scenario tables built), ``warm`` the
+median of the following calls (tables reused, as the harness does for every
+seed of a scenario in one worker). Numba is compiled beforehand.
+
+``ggaco.case1`` runs in a child process (so its peak RSS is its own), twice:
+once with an empty graph cache (the graph is built and stored) and once with
+the cache filled (the graph is memory-mapped), each time ``plan()`` once with
+the paper's 1000 iterations x 20 ants.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+import pathzoo
+from pathzoo import Budget
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from aco import room512  # noqa: E402  (the benchmark scripts share their scenario builders)
+
+ROWS = (  # label, planner, scenario, iterations, ants, extra parameters, paper seconds, target seconds
+    ("fgdaco.scenario1", "aco.fgdaco", "fgdaco.scenario1", 100, 20, {}, 28.97, 0.29),
+    ("fgdaco.scenario2", "aco.fgdaco", "fgdaco.scenario2", 100, 20, {}, 38.74, 0.39),
+    ("fgdaco.scenario3", "aco.fgdaco", "fgdaco.scenario3", 100, 20, {}, 74.33, 0.74),
+    ("dsaco.complex, paper's step rule", "aco.dsaco", "dsaco.complex", 500, 10, {"step_rule": "longitude"},
+     3.95, 0.04),
+    ("dsaco.complex, graph rule", "aco.dsaco", "dsaco.complex", 500, 10, {}, 3.95, 0.04),
+    ("gant.fig7", "aco.gant", "gant.fig7", 100, 100, {}, 9.38, 0.066),
+    ("iaca.offroad", "aco.iaca", "iaca.offroad", 100, 40, {}, 21.0, 0.034),
+)
+BIG_ROWS = (("gant.simple.1", "aco.gant", "gant.simple.1", 30, 20, {}, 671.0, 6.7),)
+AS_TARGET = 10e6
+ASTAR_TARGET = 50.0
+
+
+def cpu_plan(planner, scenario, iterations: int, seed: int = 0) -> tuple[float, pathzoo.PlanResult]:
+    """CPU seconds and result of one ``plan()``."""
+    started = time.process_time()
+    result = planner.plan(scenario, budget=Budget(iterations=iterations), rng=np.random.default_rng(seed))
+    return time.process_time() - started, result
+
+
+def planner_rows(rows, repeats: int) -> None:
+    print("| setting | iterations x ants | cold (s) | warm, median (s) | target (s) | met | paper (s) | speed-up (warm) |")
+    print("|---|---|---|---|---|---|---|---|")
+    for label, pid, sid, iters, ants, params, paper, target in rows:
+        scenario = pathzoo.load_scenario(sid)
+        scenario.graph
+        pathzoo.make_planner(pid, n_ants=1, **params).plan(  # compile numba on another scenario object
+            pathzoo.load_scenario(sid), budget=Budget(iterations=1), rng=np.random.default_rng(0))
+        planner = pathzoo.make_planner(pid, n_ants=ants, **params)
+        cold, _ = cpu_plan(planner, scenario, iters)
+        warm = statistics.median(cpu_plan(planner, scenario, iters)[0] for _ in range(repeats))
+        print(f"| {label} | {iters} x {ants} | {cold:.3f} | {warm:.3f} | {target} | "
+              f"{'yes' if warm <= target else 'no'} | {paper} | {paper / warm:.0f}x |", flush=True)
+
+
+def as_throughput(repeats: int) -> None:
+    scenario = room512()
+    scenario.graph
+    planner = pathzoo.make_planner("aco.as")
+    cpu_plan(planner, scenario, 1)
+    rates = []
+    for _ in range(repeats):
+        cpu, result = cpu_plan(planner, scenario, 5)
+        rates.append(result.extras["ant_steps"] / cpu)
+    rate = statistics.median(rates)
+    print(f"| aco.as ant-steps per CPU second, 8room_000, 5 colonies, whole plan() | {rate / 1e6:.2f} M | "
+          f"{AS_TARGET / 1e6:.0f} M | {'yes' if rate >= AS_TARGET else 'no'} |", flush=True)
+
+
+def astar_against_pathfinding(n_problems: int) -> None:
+    """exact.astar against the pure-Python ``pathfinding`` A* and SciPy's Dijkstra on 8room_000 (512 x 512)."""
+    from pathfinding.core.diagonal_movement import DiagonalMovement
+    from pathfinding.core.grid import Grid
+    from pathfinding.finder.a_star import AStarFinder
+    from scipy.sparse.csgraph import dijkstra
+
+    from pathzoo.io import load_scenario_files
+
+    scen = Path(__file__).resolve().parents[1] / ".." / "shared" / "data" / "movingai" / "grid" / "rooms"
+    problems = load_scenario_files((scen / "8room_000.map.scen").resolve())
+    buckets = sorted({p.metadata["bucket"] for p in problems})
+    chosen = [next(p for p in problems if p.metadata["bucket"] == b)
+              for b in np.linspace(buckets[len(buckets) // 10], buckets[-1], n_problems).astype(int)
+              if any(p.metadata["bucket"] == b for p in problems)]
+    graph = chosen[0].graph
+    matrix = graph.to_sparse("length")
+    astar = pathzoo.make_planner("exact.astar")
+    astar.plan(chosen[0], budget=Budget(), rng=np.random.default_rng(0))
+    ours = theirs = scipy_s = 0.0
+    expanded = scipy_nodes = 0
+    finder = AStarFinder(diagonal_movement=DiagonalMovement.only_when_no_obstacle)
+    for s in chosen:
+        started = time.process_time()
+        result = astar.plan(s, budget=Budget(), rng=np.random.default_rng(0))
+        ours += time.process_time() - started
+        expanded += result.evaluations
+        grid = Grid(matrix=(~s.blocked).astype(int).tolist())
+        (sc, sr), (gc, gr) = (tuple(int(v) for v in np.floor(p / s.cell_size)) for p in (s.start, s.goal))
+        started = time.process_time()
+        path, _ = finder.find_path(grid.node(sc, sr), grid.node(gc, gr), grid)
+        theirs += time.process_time() - started
+        length = sum(np.hypot(b.x - a.x, b.y - a.y) for a, b in zip(path, path[1:]))
+        if abs(length - result.extras["graph_cost"]) > 1e-9 * length:
+            raise RuntimeError(f"pathfinding and exact.astar disagree on {s.id}: {length} vs {result.extras}")
+        started = time.process_time()
+        dist = dijkstra(matrix, indices=s.start_node)
+        scipy_s += time.process_time() - started
+        scipy_nodes += int(np.isfinite(dist).sum())
+    ratio = theirs / ours
+    print(f"| exact.astar vs pathfinding A*, {len(chosen)} problems of 8room_000 (CPU {ours:.3f} s vs {theirs:.2f} s) "
+          f"| {ratio:.1f}x | {ASTAR_TARGET:.0f}x | {'yes' if ratio >= ASTAR_TARGET else 'no'} |")
+    ours_rate, scipy_rate = expanded / ours, scipy_nodes / scipy_s
+    print(f"| exact.astar expansions/s (whole plan()) vs scipy dijkstra nodes/s | {ours_rate / 1e6:.2f} M vs "
+          f"{scipy_rate / 1e6:.2f} M | >= scipy | {'yes' if ours_rate >= scipy_rate else 'no'} |", flush=True)
+
+
+CHILD = """
+import json, resource, sys, time
+import numpy as np
+import pathzoo
+from pathzoo import Budget
+c0 = time.process_time()
+s = pathzoo.load_scenario("ggaco.case1")
+s.blocked
+load_s = time.process_time() - c0
+s.graph
+graph_s = time.process_time() - c0 - load_s
+c1 = time.process_time()
+r = pathzoo.make_planner("aco.ggaco").plan(s, budget=Budget(), rng=np.random.default_rng(0))
+plan_s = time.process_time() - c1
+print(json.dumps({"load_s": load_s, "graph_s": graph_s, "plan_s": plan_s, "total_s": time.process_time() - c0,
+                  "iterations": r.iterations, "peak_gb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1e6}))
+"""
+
+
+def ggaco_case1() -> None:
+    with tempfile.TemporaryDirectory(prefix="pathzoo-speed-") as cache:
+        env = {**os.environ, "PATHZOO_CACHE_DIR": cache}
+        for label in ("graph built (empty cache)", "graph memory-mapped from the cache"):
+            out = subprocess.run([sys.executable, "-c", CHILD], env=env, capture_output=True, text=True, check=True)
+            m = json.loads(out.stdout.strip().splitlines()[-1])
+            print(f"| ggaco.case1, 1000 x 20, {label}: DEM load {m['load_s']:.1f} s + graph {m['graph_s']:.1f} s + "
+                  f"plan() {m['plan_s']:.1f} s "
+                  f"| {m['total_s']:.1f} s | 29.5 s | {'yes' if m['total_s'] <= 29.5 else 'no'} |")
+            print(f"| ggaco.case1 peak RSS, {label} | {m['peak_gb']:.2f} GB | 1.5 GB | "
+                  f"{'yes' if m['peak_gb'] <= 1.5 else 'no'} |", flush=True)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="skip ggaco.case1 and gant.simple.1")
+    parser.add_argument("--repeats", type=int, default=3, help="warm plan() calls per row (median)")
+    parser.add_argument("--astar-problems", type=int, default=8, help="8room_000 problems for the A* rows")
+    args = parser.parse_args()
+    print(f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} CPUs; CPU seconds of one plan()\n")
+    planner_rows(ROWS + (() if args.quick else BIG_ROWS), args.repeats)
+    print("\n| figure | measured | target | met |\n|---|---|---|---|")
+    as_throughput(args.repeats)
+    astar_against_pathfinding(args.astar_problems)
+    if not args.quick:
+        ggaco_case1()
+
+
+if __name__ == "__main__":
+    main()

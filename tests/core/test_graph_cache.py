@@ -1,0 +1,66 @@
+"""The on-disk graph cache: same arrays as a fresh build, keyed by everything the graph depends on."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from pathzoo import Budget, Scenario, VehicleModel, make_planner
+from pathzoo.generators import fractal_terrain
+from pathzoo.grid.graph import build_graph
+from pathzoo.grid.graph_cache import cache_dir, cached_graph, graph_digest
+
+ARRAYS = ("indptr", "indices", "length", "slope", "offset_id", "offsets")
+
+
+def _terrain(climb: float = 25.0, seed: int = 1) -> Scenario:
+    elev = fractal_terrain((40, 50), seed=seed, hurst=0.8, relief=8.0)
+    return Scenario(id="cache-terrain", kind="terrain", occupancy=np.zeros((40, 50), bool), cell_size=1.0,
+                    start=(0.5, 0.5), goal=(49.5, 39.5), elevation=elev,
+                    vehicle=VehicleModel(max_climb_deg=climb, max_descent_deg=climb))
+
+
+@pytest.fixture
+def cache(tmp_path, monkeypatch):
+    monkeypatch.setenv("PATHZOO_CACHE_DIR", str(tmp_path))
+    monkeypatch.setenv("PATHZOO_GRAPH_CACHE_MIN_CELLS", "1")
+    return tmp_path
+
+
+def test_cached_graph_equals_a_fresh_build_and_is_read_only(cache):
+    built = cached_graph(_terrain())  # stored
+    entry = cache_dir() / graph_digest(_terrain())
+    assert entry.is_dir()
+    loaded = cached_graph(_terrain())  # memory-mapped
+    fresh = build_graph(_terrain())
+    for name in ARRAYS:
+        a, b, c = getattr(built, name), getattr(loaded, name), getattr(fresh, name)
+        assert a.dtype == b.dtype == c.dtype and np.array_equal(a, c) and np.array_equal(b, c)
+    assert not loaded.indices.flags.writeable
+
+
+def test_digest_changes_with_what_the_graph_depends_on(cache):
+    base = graph_digest(_terrain())
+    assert graph_digest(_terrain()) == base
+    assert graph_digest(_terrain(climb=20.0)) != base
+    assert graph_digest(_terrain(seed=2)) != base
+
+
+def test_planner_result_is_the_same_on_a_cached_graph(cache, monkeypatch):
+    planner = make_planner("aco.ggaco", n_ants=5)
+    runs = []
+    for _ in range(2):  # the first scenario builds and stores the graph, the second loads it
+        r = planner.plan(_terrain(), budget=Budget(iterations=3), rng=np.random.default_rng(3))
+        runs.append((r.path.tobytes(), r.iterations, r.extras["ant_steps"]))
+    monkeypatch.setenv("PATHZOO_GRAPH_CACHE", "0")
+    r = planner.plan(_terrain(), budget=Budget(iterations=3), rng=np.random.default_rng(3))
+    assert runs[0] == runs[1] == (r.path.tobytes(), r.iterations, r.extras["ant_steps"])
+
+
+def test_damaged_entry_is_rebuilt(cache):
+    cached_graph(_terrain())
+    entry = cache_dir() / graph_digest(_terrain())
+    (entry / "length.npy").write_bytes(b"not an array")
+    graph = cached_graph(_terrain())
+    assert np.array_equal(graph.length, build_graph(_terrain()).length)
+    assert np.array_equal(cached_graph(_terrain()).length, graph.length)
