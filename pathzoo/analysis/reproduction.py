@@ -41,7 +41,7 @@ from typing import Any, Callable, Mapping, Sequence
 import numpy as np
 import pandas as pd
 
-from pathzoo.analysis.comparison_table import paper_table
+from pathzoo.analysis.comparison_table import NOT_TESTABLE, paper_table
 from pathzoo.analysis.formatting import format_number, format_percent, render_table
 from pathzoo.analysis.frame import success_mask
 from pathzoo.core.errors import InvalidExperimentError, InvalidParameterError, PathzooError
@@ -423,6 +423,8 @@ def _verdict(paper_mark: str, ours: str, status: str, has_runs: bool) -> str:
         return "no claim"
     if not has_runs or not ours:
         return "not testable: no runs"
+    if ours == NOT_TESTABLE:
+        return "not testable: too few runs"
     if ours == paper_mark:
         return "holds"
     if paper_mark == "≈":

@@ -119,3 +119,16 @@ def test_an_available_planner_without_runs_is_reported_not_run():
     assert t.loc["fuzzy_ga", "status"].startswith("not run")
     assert t.loc["fuzzy_ga", "verdict"] == "not testable: rival not run"
     assert "not run" in format_reproduction(rep)
+
+
+def test_too_few_runs_give_not_testable_never_reversed():
+    """With 2 seeds and 3 rivals no Holm-corrected test can reach 0.05: every claim is 'not testable'."""
+    paper = load_paper("fgdaco")
+    base = np.array([126.0, 127.0])
+    runs = _runs({"fgdaco": list(base), "coa": list(base + 10.0), "fuzzy_ga": list(base + 1.0),
+                  "flaco": list(base - 5.0)})
+    rep = compare_paper(paper, runs)
+    t = rep.table[(rep.table["metric"] == "length") & (rep.table["status"] == "")].set_index("planner")
+    rivals = t.drop(index="fgdaco")
+    assert (rivals["mark"] == "n/s").all()
+    assert (rivals["verdict"] == "not testable: too few runs").all()
