@@ -53,7 +53,8 @@ def test_reproduce_fgdaco_lists_every_rival(tmp_path, capsys):
     assert main(args) == 0
     out = capsys.readouterr().out
     for label in ("Proposed FGDACO (aco.fgdaco)", "COA (swarm.cuckoo, on the static variant)",
-                  "Fuzzy-GA (evo.fuzzy_ga, on the static variant)", "FLACO (aco.flaco"):
+                  "Fuzzy-GA (evo.fuzzy_ga, on the static variant)",
+                  "FLACO (our reconstruction from the abstract) (aco.flaco"):
         assert out.count(label) == 2, label  # one row per metric table
     assert "126.65" in out and "135.96" not in out  # scenario 2 was not selected
 
