@@ -65,7 +65,13 @@ def plot_metric_boxes(
     df = df[df["scenario"].isin(order)]
     hue_order = sorted(df["config"].unique())
     ax = new_axes(ax, (max(5.0, 1.2 + 0.35 * len(order) * len(hue_order)), 4.2))
-    good = df[df["success"]]
+    good = df[df["success"] & pd.to_numeric(df[metric], errors="coerce").notna()]
+    if good.empty:  # e.g. length_ratio on a scenario with no reference length: nothing to draw
+        ax.text(0.5, 0.5, f"no {metric} value in any successful run", transform=ax.transAxes, ha="center",
+                va="center", color="#888888")
+        ax.set_ylabel(info.label)
+        ax.set_xticks([])
+        return ax
     with warnings.catch_warnings():  # seaborn 0.13 still passes matplotlib's deprecated ``vert``
         warnings.simplefilter("ignore", MatplotlibDeprecationWarning)
         sns.boxplot(data=good, x="scenario", y=metric, hue="config", order=order, hue_order=hue_order, ax=ax,

@@ -84,6 +84,17 @@ def test_panels_give_each_scenario_its_own_axis():
     assert [t.get_text() for t in fig.legends[0].get_texts()] == ["a", "b"]
 
 
+def test_a_panel_without_values_says_so_instead_of_crashing():
+    # length_ratio is NaN on a dynamic scenario (no reference length): the report must still draw the others
+    runs = make_runs({"static": {"a": [1.0, 1.1], "b": [1.2, 1.3]},
+                      "dynamic": {"a": [np.nan, np.nan], "b": [np.nan, np.nan]}})
+    runs.loc[runs["scenario"] == "dynamic", "status"] = "solved"
+    runs.loc[runs["scenario"] == "dynamic", "valid"] = True
+    fig = plot_metric_panels(runs, "length")
+    texts = [t.get_text() for ax in fig.axes for t in ax.texts]
+    assert any(t.startswith("no length value") for t in texts)
+
+
 def test_palette_is_distinct_and_stable():
     labels = [f"p{i:02d}" for i in range(30)]
     colors = planner_colors(labels)
