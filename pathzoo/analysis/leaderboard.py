@@ -142,6 +142,7 @@ def leaderboard(
         other["a12"] = 1.0 - other["a12"]  # P(this beats the reference)
         other["vs_reference"] = other["winner"].map(verdict).where(other["testable"].astype(bool), "n/s")
         table = table.merge(other.drop(columns=["winner", "testable"]), on=["scenario", "config"], how="left")
+        table["runs_needed"] = table["runs_needed"].astype("Int64")  # no float 8.0 in CSV/JSON
         table.loc[table["config"] == reference, "vs_reference"] = "reference"
     table = table.sort_values(["scenario", "rank", "config"], kind="stable").reset_index(drop=True)
     table.attrs.update(metric=info, reference=reference, alpha=alpha)
