@@ -40,12 +40,12 @@ def _run(args: argparse.Namespace) -> int:
             path = Path(args.experiment)
             if not path.is_file():
                 raise FileNotFoundError(errno.ENOENT, "no such experiment file", str(path))
-        from pathzoo.harness.experiment import Experiment
+        from pathzoo.harness.experiment import Experiment, resolve_seeds
         from pathzoo.harness.runner import DEFAULT_DB, run_experiment
 
         exp = Experiment.from_toml(path)
     if args.seeds is not None:
-        exp = dataclasses.replace(exp, seeds=tuple(range(args.seeds)))
+        exp = dataclasses.replace(exp, seeds=resolve_seeds(args.seeds))
     executor = f"dask:{args.dask_address}" if args.dask_address else args.executor
     db = args.db or exp.db or DEFAULT_DB
     try:

@@ -10,7 +10,10 @@ Layout (schema version 1; ``sqlite3 results.sqlite .schema`` shows it):
   :class:`~pathzoo.core.results.RunRecord` field, parameters and versions as
   JSON, path and times as float64 bytes (C order) with the path's shape as
   JSON, the metrics as JSON *and* as one ``REAL`` column per metric, named
-  ``"metric:<id>"`` (added with ``ALTER TABLE`` when a new metric appears);
+  ``"metric:<id>"`` (added with ``ALTER TABLE`` when a new metric appears,
+  by whichever harness sees it first: concurrent harnesses on one file are
+  fine), and ``isolated`` (0 for runs of the ``inline`` executor, whose
+  planner shared the harness's process; added to older files when opened for writing);
 - ``history``: the convergence points of every run (experiment, run_key,
   iteration, evaluations, best_cost, time_s).
 
@@ -29,7 +32,7 @@ import re
 import sqlite3
 from contextlib import contextmanager
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Iterator
+from typing import TYPE_CHECKING, Any, Collection, Iterator
 
 import numpy as np
 
@@ -61,6 +64,7 @@ SCHEMA_VERSION = 1
 RUN_COLUMNS: tuple[str, ...] = (
     "run_key", "experiment", "planner", "planner_version", "params_hash", "params", "scenario", "seed_index",
     "seed", "status", "valid", "invalid_reason", "message", "wall_time_s", "cpu_time_s", "iterations", "evaluations",
+    "isolated",
 )
 """The leading columns of :func:`read_runs`; one column per metric id follows."""
 
@@ -102,6 +106,7 @@ CREATE TABLE runs (
     started_at TEXT NOT NULL,
     finished_at TEXT NOT NULL,
     metrics TEXT NOT NULL,
+    isolated INTEGER NOT NULL DEFAULT 1,
     UNIQUE (experiment, run_key)
 );
 CREATE TABLE history (
@@ -189,9 +194,21 @@ class ResultStore:
     def __init__(self, path: str | Path) -> None:
         self.path = Path(path)
         self.conn = _connect(self.path, create=True)
-        self._metric_columns = {
-            r[1] for r in self.conn.execute("PRAGMA table_info(runs)") if str(r[1]).startswith("metric:")
-        }
+        self._run_columns = self._columns()
+        if "isolated" not in self._run_columns:  # a file written before the column existed
+            self._add_column("isolated INTEGER NOT NULL DEFAULT 1")
+
+    def _columns(self) -> set[str]:
+        return {str(r[1]) for r in self.conn.execute("PRAGMA table_info(runs)")}
+
+    def _add_column(self, definition: str) -> None:
+        """``ALTER TABLE runs ADD COLUMN``; another harness adding the same column first is fine."""
+        try:
+            self.conn.execute(f"ALTER TABLE runs ADD COLUMN {definition}")
+        except sqlite3.OperationalError as exc:
+            if "duplicate column name" not in str(exc):
+                raise
+        self._run_columns = self._columns()
 
     def __enter__(self) -> "ResultStore":
         return self
@@ -236,9 +253,10 @@ class ResultStore:
                     f"not {value!r}; use another experiment name (or database) for different settings"
                 )
 
-    def finished_keys(self, experiment: str) -> set[str]:
-        """Run keys already stored for an experiment."""
-        return {r[0] for r in self.conn.execute("SELECT run_key FROM runs WHERE experiment = ?", (experiment,))}
+    def finished_keys(self, experiment: str, exclude_statuses: tuple[str, ...] = ()) -> set[str]:
+        """Run keys already stored for an experiment, except those stored with one of ``exclude_statuses``."""
+        rows = self.conn.execute("SELECT run_key, status FROM runs WHERE experiment = ?", (experiment,))
+        return {key for key, status in rows if status not in exclude_statuses}
 
     def count_runs(self, experiment: str) -> int:
         """Number of stored runs of an experiment."""
@@ -247,12 +265,16 @@ class ResultStore:
     def _ensure_metric_columns(self, ids: list[str]) -> None:
         for mid in ids:
             col = f"metric:{mid}"
-            if col not in self._metric_columns and _METRIC_ID.match(mid):
-                self.conn.execute(f"ALTER TABLE runs ADD COLUMN {_metric_column(mid)} REAL")
-                self._metric_columns.add(col)
+            if col not in self._run_columns and _METRIC_ID.match(mid):
+                self._add_column(f"{_metric_column(mid)} REAL")
 
-    def insert(self, record: RunRecord) -> bool:
-        """Store one run and its history in one transaction; False if the key was already stored."""
+    def insert(self, record: RunRecord, replace_statuses: tuple[str, ...] = ()) -> bool:
+        """Store one run and its history in one transaction; False if the key was already stored.
+
+        A stored run of the same key whose status is in ``replace_statuses``
+        (``pathzoo run --retry``) is deleted in the same transaction, so an
+        interrupted retry never loses the old row.
+        """
         metric_ids = [m for m in record.metrics if _METRIC_ID.match(m)]
         self._ensure_metric_columns(metric_ids)
         returned = record.status in RETURNED
@@ -281,12 +303,22 @@ class ResultStore:
             "started_at": record.started_at,
             "finished_at": utc_now(),
             "metrics": json.dumps({k: float(v) for k, v in record.metrics.items()}),
+            "isolated": int(bool(record.isolated)),
         }
         for mid in metric_ids:
             values[f"metric:{mid}"] = _real(record.metrics[mid])
         cols = ", ".join(f'"{c}"' for c in values)
         marks = ", ".join("?" for _ in values)
         with _transaction(self.conn):
+            if replace_statuses:
+                marks_ = ", ".join("?" for _ in replace_statuses)
+                old = self.conn.execute(
+                    f"DELETE FROM runs WHERE experiment = ? AND run_key = ? AND status IN ({marks_})",
+                    (record.experiment, record.run_key, *replace_statuses),
+                )
+                if old.rowcount:
+                    self.conn.execute("DELETE FROM history WHERE experiment = ? AND run_key = ?",
+                                      (record.experiment, record.run_key))
             cur = self.conn.execute(f"INSERT OR IGNORE INTO runs ({cols}) VALUES ({marks})", tuple(values.values()))
             if cur.rowcount == 0:
                 return False
@@ -310,10 +342,11 @@ def _experiment_filter(conn: sqlite3.Connection, path: Path, experiment: str | N
     return " WHERE experiment = ?", (experiment,)
 
 
-def read_runs(db: str | Path, experiment: str | None = None) -> "pd.DataFrame":
-    """One row per run, in the order they were stored.
+def read_runs(db: str | Path, experiment: str | None = None, run_keys: "Collection[str] | None" = None
+              ) -> "pd.DataFrame":
+    """One row per run, in the order they were stored (only ``run_keys``, when given).
 
-    Columns: :data:`RUN_COLUMNS` (``params`` as dicts, ``valid`` as bool,
+    Columns: :data:`RUN_COLUMNS` (``params`` as dicts, ``valid`` and ``isolated`` as bool,
     ``status`` as the :class:`~pathzoo.core.status.RunStatus` value), then one
     float column per metric id. ``iterations`` and ``evaluations`` are NaN
     for crashed and timed-out runs, like the metrics of the same names.
@@ -329,13 +362,18 @@ def read_runs(db: str | Path, experiment: str | None = None) -> "pd.DataFrame":
     conn = _connect(path, create=False)
     try:
         where, args = _experiment_filter(conn, path, experiment)
-        base = ", ".join(f'"{c}"' for c in RUN_COLUMNS)
+        present = {str(r[1]) for r in conn.execute("PRAGMA table_info(runs)")}
+        base = ", ".join(f'"{c}"' if c in present else f'1 AS "{c}"' for c in RUN_COLUMNS)
         rows = conn.execute(f"SELECT {base}, metrics FROM runs{where} ORDER BY id", args).fetchall()
     finally:
         conn.close()
+    if run_keys is not None:
+        wanted = set(run_keys)
+        rows = [r for r in rows if r[0] in wanted]
     frame = pd.DataFrame([r[: len(RUN_COLUMNS)] for r in rows], columns=list(RUN_COLUMNS))
     frame["params"] = [json.loads(p) for p in frame["params"]]
     frame["valid"] = frame["valid"].astype(bool)
+    frame["isolated"] = frame["isolated"].astype(bool)
     for col in ("wall_time_s", "cpu_time_s", "iterations", "evaluations"):
         frame[col] = pd.to_numeric(frame[col], errors="coerce").astype(float)
     metrics = [json.loads(r[-1]) for r in rows]
@@ -428,6 +466,7 @@ def read_record(db: str | Path, experiment: str, run_key: str) -> RunRecord:
         metrics=json.loads(row["metrics"]),
         versions=json.loads(row["versions"]),
         started_at=row["started_at"],
+        isolated=bool(row.get("isolated", 1)),
     )
 
 
