@@ -11,10 +11,10 @@ from importlib import resources
 from pathlib import Path
 from typing import Any
 
-from pathzoo.cli.cmd_leaderboard import add_table_options, render_leaderboard
+from pathzoo.cli.cmd_leaderboard import add_table_options, isolation_note, render_leaderboard
 from pathzoo.cli.errors import CommandError
 
-__all__ = ["add_parser", "positive_int"]
+__all__ = ["add_parser", "positive_int", "status_list"]
 
 EXECUTORS = ("process", "dask", "inline")
 
@@ -28,6 +28,18 @@ def positive_int(text: str) -> int:
     if value < 1:
         raise argparse.ArgumentTypeError(f"must be a positive integer, got {text!r}")
     return value
+
+
+def status_list(text: str) -> tuple[str, ...]:
+    """argparse type: comma-separated run statuses (``crash,timeout``)."""
+    from pathzoo.core.status import RunStatus
+
+    allowed = [s.value for s in RunStatus]
+    statuses = tuple(dict.fromkeys(t.strip() for t in text.split(",") if t.strip()))
+    bad = [t for t in statuses if t not in allowed]
+    if bad or not statuses:
+        raise argparse.ArgumentTypeError(f"unknown status(es) {bad or [text]}; allowed: {', '.join(allowed)}")
+    return statuses
 
 
 def _run(args: argparse.Namespace) -> int:
@@ -49,11 +61,15 @@ def _run(args: argparse.Namespace) -> int:
     executor = f"dask:{args.dask_address}" if args.dask_address else args.executor
     db = args.db or exp.db or DEFAULT_DB
     try:
-        runs = run_experiment(exp, db=db, jobs=args.jobs, executor=executor, progress=not args.no_progress)
+        runs = run_experiment(exp, db=db, jobs=args.jobs, executor=executor, progress=not args.no_progress,
+                              retry=args.retry)
     except KeyboardInterrupt:
         raise CommandError(f"interrupted; finished runs are stored in {db}, run the same command again to resume") from None
     print(f"experiment '{exp.name}': {len(runs)} runs stored in {db}", file=sys.stderr)
     sys.stdout.write(render_leaderboard(runs, args))
+    note = isolation_note(runs)
+    if note:
+        print(note, file=sys.stderr)
     return 0
 
 
@@ -75,6 +91,11 @@ def add_parser(subparsers: Any) -> None:
     parser.add_argument("--jobs", type=positive_int, metavar="N", help="worker processes (default: number of CPUs)")
     parser.add_argument("--executor", choices=EXECUTORS, default="process", help="where runs execute (default: process)")
     parser.add_argument("--dask-address", metavar="ADDR", help="Dask scheduler address, with --executor dask")
+    parser.add_argument(
+        "--retry", type=status_list, default=(), metavar="STATUSES",
+        help="run again the stored runs with these statuses, comma-separated (e.g. crash,timeout); "
+        "each new result replaces the old row",
+    )
     parser.add_argument("--seeds", type=positive_int, metavar="N", help="override the experiment's number of seeds")
     parser.add_argument("--no-progress", action="store_true", help="do not show a progress bar")
     add_table_options(parser)

@@ -86,8 +86,9 @@ class PlannerSpec:
         InvalidParameterError
             A parameter is unknown or out of range.
         InvalidExperimentError
-            The object is none of the above, or an instance of a class that is
-            not the one registered under its id (workers rebuild planners by id).
+            The object is none of the above, an instance of a class that is
+            not the one registered under its id (workers rebuild planners by
+            id), or the planner needs an optional package that is not installed.
         """
         from pathzoo import make_planner
         from pathzoo.plugins.manager import get_registry
@@ -110,6 +111,9 @@ class PlannerSpec:
             raise InvalidExperimentError(
                 f"a planner must be an id, an (id, params) pair or a Planner instance, got {obj!r}"
             )
+        unavailable = get_registry().get("planners", planner_id).unavailable
+        if unavailable:
+            raise InvalidExperimentError(f"planner '{planner_id}' is not available here: it {unavailable}")
         return cls(planner_id, make_planner(planner_id, **params).get_params())
 
     @property

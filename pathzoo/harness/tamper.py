@@ -38,7 +38,7 @@ def _attributes(obj: Any) -> dict[str, Any]:
 
 _TRACKED = (types.ModuleType, type, types.FunctionType, types.BuiltinFunctionType, types.MethodType,
             types.MethodDescriptorType, types.WrapperDescriptorType, staticmethod, classmethod, property,
-            functools.partial, float)
+            functools.partial, functools.cached_property, float)
 
 
 def module_fingerprint() -> Fingerprint:

@@ -81,6 +81,7 @@ class GaPlanner(BaselinePlanner):
     version: ClassVar[str] = "1"
     summary: ClassVar[str] = "Genetic algorithm (DEAP) over waypoint or grid-move paths, penalised length"
     preload: ClassVar[tuple[str, ...]] = ("deap.algorithms", "deap.base", "deap.tools")
+    requires: ClassVar[Mapping[str, str]] = {"deap": "evo"}  # optional dependency -> extra
     params: ClassVar[Mapping[str, Param]] = {
         **GA_PARAMS,
         "cxpb": Param(0.9, "probability that a pair of parents is mated", low=0.0, high=1.0),

@@ -101,6 +101,15 @@ def _run_on_worker(task: "RunTask", check_tamper: bool) -> bytes:
     return (b"T" if tainted else b"D") + encode_outcome(outcome)
 
 
+_RESENT_START_S = 120.0
+
+
+def _start_limit(run: "_Run") -> float:
+    """How long a run may wait for its start: the setup limit, or less for a run sent again after a worker restart
+    (such tasks are sometimes lost by the scheduler, which would otherwise hang the experiment)."""
+    return SETUP_TIMEOUT_S if run.attempts == 1 else _RESENT_START_S
+
+
 @dataclass
 class _Run:
     task: "RunTask"
@@ -137,7 +146,11 @@ class DaskExecutor(RunExecutor):
             raise PathzooError("the 'dask' executor needs dask.distributed: pip install 'pathzoo[dask]'") from None
         self._cluster = None
         if address:
-            self._client = Client(address)
+            try:
+                self._client = Client(address, timeout="20s")
+            except (OSError, ValueError, TypeError) as exc:  # TimeoutError is an OSError
+                raise PathzooError(f"cannot connect to the Dask scheduler at {address!r}: "
+                                   f"{' '.join(str(exc).split()) or type(exc).__name__}") from None
         else:
             # a run that kills its worker is a crash, not a task to retry elsewhere
             with dask.config.set({"distributed.scheduler.allowed-failures": 0}):
@@ -248,12 +261,12 @@ class DaskExecutor(RunExecutor):
                 expired = [key for key, run in self._runs.items() if now >= run.deadline]
                 runs = [self._runs.pop(key) for key in expired]
                 lost = [key for key, run in self._runs.items()
-                        if math.isnan(run.started) and now - run.submitted > SETUP_TIMEOUT_S]
+                        if math.isnan(run.started) and now - run.submitted > _start_limit(run)]
                 unstarted = [self._runs.pop(key) for key in lost]
             for run in unstarted:  # never reported a start: a lost task must not hang the experiment
                 run.future.set_result(RunOutcome(
                     run.task.run_key, crash=True, started_at=utc_now(),
-                    message=f"the cluster did not start the run within {SETUP_TIMEOUT_S:g} s"))
+                    message=f"the cluster did not start the run within {_start_limit(run):g} s"))
             for run in runs:
                 elapsed = now - run.started
                 run.future.set_result(RunOutcome(
