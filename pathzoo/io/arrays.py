@@ -26,6 +26,10 @@ def _open(path: Path) -> np.ndarray | np.lib.npyio.NpzFile:
             head = fh.read(len(_NPY_MAGIC))
     except OSError as exc:
         raise InvalidScenarioError(f"cannot read: {exc.strerror or exc}", source=src) from None
+    if head[:1] == b"\x80":  # the opcode every pickle of protocol 2 or later starts with
+        raise InvalidScenarioError(
+            "holds pickled Python objects, which pathzoo never loads; save a plain numeric array", source=src
+        )
     if head != _NPY_MAGIC and not zipfile.is_zipfile(path):
         raise InvalidScenarioError("not a NumPy file (neither an .npy array nor an .npz zip archive)", source=src)
     try:
