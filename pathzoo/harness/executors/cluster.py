@@ -56,7 +56,7 @@ from typing import TYPE_CHECKING, Any
 
 from pathzoo.core.errors import PathzooError
 from pathzoo.harness.executors.base import RunExecutor
-from pathzoo.harness.tamper import changed_names, module_fingerprint
+from pathzoo.harness.tamper import ModuleFingerprint
 from pathzoo.harness.wire import decode_outcome, encode_outcome
 from pathzoo.harness.worker import SETUP_TIMEOUT_S, RunOutcome, ensure_plugins, execute_task, quiet_registry, utc_now
 
@@ -90,14 +90,14 @@ def _run_on_worker(task: "RunTask", check_tamper: bool) -> bytes:
         return b"X" + worker.address.encode()
     quiet_registry()  # discovered before the baseline: the registry is not the planner's change
     ensure_plugins(task.plugin_modules)
-    baseline = _process_state.get("baseline") or module_fingerprint()
+    fingerprint = _process_state.get("fingerprint") or ModuleFingerprint().update()
     outcome = execute_task(task, lambda event: worker.log_event(_STARTED_TOPIC, [task.run_key, event, worker.address]))
-    changed = changed_names(baseline)
+    changed = fingerprint.changed()
     tainted = bool(changed)
     if tainted:
         logging.getLogger("pathzoo.harness").warning("worker %s tainted by run %s: %s", worker.address, task.run_key,
                                                      ", ".join(changed))
-    _process_state.update(tainted=tainted, baseline=None if tainted else module_fingerprint())
+    _process_state.update(tainted=tainted, fingerprint=None if tainted else fingerprint.update())
     return (b"T" if tainted else b"D") + encode_outcome(outcome)
 
 

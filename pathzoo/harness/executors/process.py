@@ -52,7 +52,7 @@ from typing import TYPE_CHECKING, Any
 from pathzoo.core.errors import PathzooError
 from pathzoo.harness.executors.base import RunExecutor
 from pathzoo.harness.launch import NoMainContext, default_start_method
-from pathzoo.harness.tamper import changed_names, module_fingerprint
+from pathzoo.harness.tamper import ModuleFingerprint
 from pathzoo.harness.wire import MAX_OUTCOME_BYTES, decode_outcome, encode_outcome
 from pathzoo.harness.worker import SETUP_TIMEOUT_S, RunOutcome, execute_task, utc_now
 
@@ -84,7 +84,7 @@ def process_cpu_time(pid: int) -> float:
 def _worker_main(conn: Connection) -> None:
     """Loop of one worker process: receive a task, run it, send the outcome and whether the process is clean."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
-    baseline = module_fingerprint()
+    fingerprint = ModuleFingerprint().update()
     conn.send_bytes(b"R")
     while True:
         try:
@@ -102,11 +102,11 @@ def _worker_main(conn: Connection) -> None:
             conn.send_bytes(b"D" + encode_outcome(RunOutcome(
                 task.run_key, crash=True, message=f"outcome could not be sent back: {exc!r}",
                 started_at=outcome.started_at)))
-        changed = changed_names(baseline)
+        changed = fingerprint.changed()
         if changed:
             conn.send_bytes(b"T" + ", ".join(changed).encode("utf-8", "replace")[:1000])
             return
-        baseline = module_fingerprint()
+        fingerprint.update()
         conn.send_bytes(b"I")
 
 
