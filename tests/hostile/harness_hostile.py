@@ -156,8 +156,8 @@ class Counts(_Hostile):
         from pathzoo.grid.reference import reference_path
 
         value = {"huge": 2**70, "nan": math.nan, "text": "many", "negative": -5}[self.how]
-        return PlanResult(Status.SOLVED, path=reference_path(scenario).path.copy(), iterations=value,  # type: ignore[arg-type]
-                          evaluations=value)  # type: ignore[arg-type]
+        path = reference_path(scenario).path.copy()
+        return PlanResult(Status.SOLVED, path=path, iterations=value, evaluations=value)  # type: ignore[arg-type]
 
 
 class Message(_Hostile):

@@ -74,7 +74,8 @@ def test_show_output_must_be_an_image_file(tmp_path, capsys, output, text):
     assert not (tmp_path / "adir.png").exists() and not (tmp_path / "x.nope").exists()
 
 
-MISSING_PYSWARMS = "import sys; sys.modules['pyswarms'] = None\nfrom pathzoo.cli.main import main\nsys.exit(main({argv!r}))"
+MISSING_PYSWARMS = ("import sys; sys.modules['pyswarms'] = None\n"
+                    "from pathzoo.cli.main import main\nsys.exit(main({argv!r}))")
 
 
 def cli_without_pyswarms(argv: list[str], cwd: Path) -> subprocess.CompletedProcess:

@@ -36,7 +36,7 @@ class Plugin:
 
 
 get_registry().add_plugin(Plugin(), "script-plugin")
-runs = pathzoo.run(["exact.astar", "script.mine"], ["movingai.arena.b0.1"], seeds=2, db=sys.argv[1] if len(sys.argv) > 1 else "r.sqlite", jobs=2)
+runs = pathzoo.run(["exact.astar", "script.mine"], ["movingai.arena.b0.1"], seeds=2, db="r.sqlite", jobs=2)
 print("RESULT", sorted(runs.status), runs.isolated.all())
 '''
 
