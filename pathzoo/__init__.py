@@ -162,6 +162,7 @@ def run(
     seed: int = 0,
     executor: str = "process",
     progress: bool = True,
+    retry: Sequence[str] = (),
 ) -> "pd.DataFrame":
     """Run planners x scenarios x seeds, validate every path, store and return the runs.
 
@@ -190,14 +191,19 @@ def run(
     seed : int
         Experiment seed from which each run's seed is derived.
     executor : {"process", "dask", "inline"}
-        Where runs execute. ``inline`` runs in this process (no isolation).
+        Where runs execute. ``inline`` runs in this process (no isolation;
+        its runs are stored with ``isolated = False``). A script needs no
+        ``if __name__ == "__main__":`` guard: workers never import it.
     progress : bool
         Show a progress bar.
+    retry : sequence of str
+        Statuses of stored runs to run again (e.g. ``("crash", "timeout")``).
 
     Returns
     -------
     pandas.DataFrame
-        One row per run of this experiment, metrics as columns.
+        One row per requested run (planners x scenarios x seeds), metrics as
+        columns; other runs stored under the same experiment name are left out.
     """
     from pathzoo.harness.experiment import Experiment
     from pathzoo.harness.runner import run_experiment
@@ -211,4 +217,4 @@ def run(
         name=experiment,
         seed=seed,
     )
-    return run_experiment(exp, db=db, jobs=jobs, executor=executor, progress=progress)
+    return run_experiment(exp, db=db, jobs=jobs, executor=executor, progress=progress, retry=tuple(retry))

@@ -11,14 +11,14 @@ REPO_ROOT = Path(__file__).resolve().parents[1]
 
 @pytest.fixture(scope="session")
 def shared_data() -> Path:
-    """``<repo>/../shared/data``: MovingAI maps and scenarios and real DEMs (see its README.md).
+    """``tests/data``: MovingAI maps and scenarios and real DEMs, with their licences (see its README.md).
 
-    Fails (never skips) when the folder is missing, so a checkout without the
-    shared data cannot pass silently.
+    The files are part of the repository (about 0.7 MB), so a lone clone runs
+    the tests. Fails (never skips) when the folder is incomplete.
     """
-    path = (REPO_ROOT / ".." / "shared" / "data").resolve()
+    path = REPO_ROOT / "tests" / "data"
     if not (path / "movingai").is_dir() or not (path / "dem").is_dir():
-        pytest.fail(f"shared test data not found at {path}: put shared/ beside the repository", pytrace=False)
+        pytest.fail(f"test data not found at {path}", pytrace=False)
     return path
 
 

@@ -47,6 +47,15 @@ def render_leaderboard(runs: "pd.DataFrame", args: argparse.Namespace) -> str:
     return format_leaderboard(table, args.format)
 
 
+def isolation_note(runs: "pd.DataFrame") -> str:
+    """A warning line when some runs were not isolated (``inline`` executor), else ``""``."""
+    if "isolated" not in runs.columns or runs["isolated"].all():
+        return ""
+    n = int((~runs["isolated"].astype(bool)).sum())
+    return (f"pathzoo: note: {n} of {len(runs)} runs ran inline, in the harness's own process (not isolated, "
+            "for debugging only); use --executor process for results")
+
+
 def add_table_options(parser: argparse.ArgumentParser) -> None:
     """The options that shape a printed leaderboard (shared with ``pathzoo run``)."""
     parser.add_argument(
@@ -63,6 +72,9 @@ def add_table_options(parser: argparse.ArgumentParser) -> None:
 def _run(args: argparse.Namespace) -> int:
     runs = load_runs(args.db, args.experiment)
     sys.stdout.write(render_leaderboard(runs, args))
+    note = isolation_note(runs)
+    if note:
+        print(note, file=sys.stderr)
     return 0
 
 

@@ -32,6 +32,11 @@ _DETAIL: dict[str, tuple[str, Callable[[PluginEntry], str]]] = {
 }
 
 
+def _summary(entry: PluginEntry, kind: str) -> str:
+    unavailable = entry.unavailable if kind == "planners" else ""
+    return f"[unavailable, {unavailable}] {entry.summary}" if unavailable else entry.summary
+
+
 def list_table(entries: list[PluginEntry], kind: str) -> str:
     """An aligned text table of registry entries: id, detail, distribution, version and summary."""
     import pandas as pd
@@ -40,7 +45,7 @@ def list_table(entries: list[PluginEntry], kind: str) -> str:
 
     detail_name, detail = _DETAIL[kind]
     columns = ["id", detail_name, "distribution", "version", "summary"]
-    rows = [[e.id, detail(e), e.distribution or "-", e.version or "-", e.summary] for e in entries]
+    rows = [[e.id, detail(e), e.distribution or "-", e.version or "-", _summary(e, kind)] for e in entries]
     frame = pd.DataFrame(rows, columns=columns)
     return render_table(frame, "text", left=columns)
 

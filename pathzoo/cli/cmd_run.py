@@ -11,10 +11,10 @@ from importlib import resources
 from pathlib import Path
 from typing import Any
 
-from pathzoo.cli.cmd_leaderboard import add_table_options, render_leaderboard
+from pathzoo.cli.cmd_leaderboard import add_table_options, isolation_note, render_leaderboard
 from pathzoo.cli.errors import CommandError
 
-__all__ = ["add_parser", "add_execution_options", "executor_of", "positive_int"]
+__all__ = ["add_parser", "add_execution_options", "executor_of", "positive_int", "status_list"]
 
 EXECUTORS = ("process", "dask", "inline")
 
@@ -28,6 +28,18 @@ def positive_int(text: str) -> int:
     if value < 1:
         raise argparse.ArgumentTypeError(f"must be a positive integer, got {text!r}")
     return value
+
+
+def status_list(text: str) -> tuple[str, ...]:
+    """argparse type: comma-separated run statuses (``crash,timeout``)."""
+    from pathzoo.core.status import RunStatus
+
+    allowed = [s.value for s in RunStatus]
+    statuses = tuple(dict.fromkeys(t.strip() for t in text.split(",") if t.strip()))
+    bad = [t for t in statuses if t not in allowed]
+    if bad or not statuses:
+        raise argparse.ArgumentTypeError(f"unknown status(es) {bad or [text]}; allowed: {', '.join(allowed)}")
+    return statuses
 
 
 def executor_of(args: argparse.Namespace) -> str:
@@ -54,19 +66,23 @@ def _run(args: argparse.Namespace) -> int:
             path = Path(args.experiment)
             if not path.is_file():
                 raise FileNotFoundError(errno.ENOENT, "no such experiment file", str(path))
-        from pathzoo.harness.experiment import Experiment
+        from pathzoo.harness.experiment import Experiment, resolve_seeds
         from pathzoo.harness.runner import DEFAULT_DB, run_experiment
 
         exp = Experiment.from_toml(path)
     if args.seeds is not None:
-        exp = dataclasses.replace(exp, seeds=tuple(range(args.seeds)))
+        exp = dataclasses.replace(exp, seeds=resolve_seeds(args.seeds))
     db = args.db or exp.db or DEFAULT_DB
     try:
-        runs = run_experiment(exp, db=db, jobs=args.jobs, executor=executor, progress=not args.no_progress)
+        runs = run_experiment(exp, db=db, jobs=args.jobs, executor=executor, progress=not args.no_progress,
+                              retry=args.retry)
     except KeyboardInterrupt:
         raise CommandError(f"interrupted; finished runs are stored in {db}, run the same command again to resume") from None
     print(f"experiment '{exp.name}': {len(runs)} runs stored in {db}", file=sys.stderr)
     sys.stdout.write(render_leaderboard(runs, args))
+    note = isolation_note(runs)
+    if note:
+        print(note, file=sys.stderr)
     return 0
 
 
@@ -86,6 +102,11 @@ def add_parser(subparsers: Any) -> None:
         "--db", metavar="FILE", help="SQLite results file (default: the experiment's db, else pathzoo-results.sqlite)"
     )
     add_execution_options(parser)
+    parser.add_argument(
+        "--retry", type=status_list, default=(), metavar="STATUSES",
+        help="run again the stored runs with these statuses, comma-separated (e.g. crash,timeout); "
+        "each new result replaces the old row",
+    )
     parser.add_argument("--seeds", type=positive_int, metavar="N", help="override the experiment's number of seeds")
     add_table_options(parser)
     parser.set_defaults(handler=_run)

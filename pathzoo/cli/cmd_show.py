@@ -6,7 +6,15 @@ import argparse
 from pathlib import Path
 from typing import Any
 
+from pathzoo.cli.errors import CommandError
+
 __all__ = ["add_parser"]
+
+
+def _image_formats() -> set[str]:
+    from matplotlib.backend_bases import FigureCanvasBase
+
+    return set(FigureCanvasBase.get_supported_filetypes())
 
 
 def _run(args: argparse.Namespace) -> int:
@@ -14,8 +22,14 @@ def _run(args: argparse.Namespace) -> int:
     from pathzoo.plotting.scenario import save_scenario_png
 
     out = Path(args.output)
+    if out.is_dir():
+        raise CommandError(f"{out}: is a directory; give an image file name such as {out / 'scenario.png'}")
     if not out.parent.is_dir():
         raise FileNotFoundError(2, "output directory does not exist", str(out.parent))
+    formats = _image_formats()
+    if out.suffix.lower().lstrip(".") not in formats:
+        raise CommandError(f"{out}: unknown image format {out.suffix or '(no suffix)'!r}; "
+                           f"use one of: {', '.join('.' + f for f in sorted(formats))}")
     scenario = pathzoo.load_scenario(args.scenario)
     written = save_scenario_png(scenario, out, show_graph=args.graph)
     print(f"wrote {written}")

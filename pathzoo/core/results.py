@@ -93,6 +93,8 @@ class RunRecord:
     metrics: Mapping[str, float]
     versions: Mapping[str, str]
     started_at: str
+    isolated: bool = True
+    """False when the planner ran in the harness's own process (the ``inline`` executor), for debugging only."""
 
     @property
     def success(self) -> bool:

@@ -41,7 +41,7 @@ from pathzoo.core.budget import Budget
 from pathzoo.core.errors import InvalidExperimentError, PathzooError
 from pathzoo.core.scenario import Scenario
 from pathzoo.io.paths import looks_like_path
-from pathzoo.harness.specs import PlannerSpec, RunTask, ScenarioSpec, run_key, run_seed
+from pathzoo.harness.specs import PlannerSpec, RunTask, ScenarioSpec, run_key, run_seed, planner_by_value
 
 if TYPE_CHECKING:
     from pathzoo.core.planner import Planner
@@ -101,12 +101,19 @@ def _resolve_scenarios(
     return tuple(specs.values())
 
 
-def _resolve_seeds(seeds: int | Iterable[int]) -> tuple[int, ...]:
+MAX_RUNS = 2_000_000
+"""Most runs per experiment (planner x scenario pairs x seeds)."""
+
+MAX_SEEDS = 100_000
+"""Most seeds per experiment (a larger count is almost surely a typo, and would exhaust memory)."""
+
+
+def resolve_seeds(seeds: int | Iterable[int]) -> tuple[int, ...]:
     if isinstance(seeds, bool):
         raise InvalidExperimentError(f"seeds must be a count or a list of seed indices, got {seeds!r}")
     if isinstance(seeds, int):
-        if seeds < 1:
-            raise InvalidExperimentError(f"seeds must be >= 1, got {seeds}")
+        if not 1 <= seeds <= MAX_SEEDS:
+            raise InvalidExperimentError(f"seeds must be between 1 and {MAX_SEEDS}, got {seeds}")
         return tuple(range(seeds))
     try:
         out = tuple(seeds)
@@ -114,6 +121,8 @@ def _resolve_seeds(seeds: int | Iterable[int]) -> tuple[int, ...]:
         raise InvalidExperimentError(f"seeds must be a count or a list of seed indices, got {seeds!r}") from None
     if not out or any(isinstance(s, bool) or not isinstance(s, int) or s < 0 for s in out):
         raise InvalidExperimentError(f"seed indices must be a non-empty list of integers >= 0, got {list(out)!r}")
+    if len(out) > MAX_SEEDS:
+        raise InvalidExperimentError(f"at most {MAX_SEEDS} seed indices, got {len(out)}")
     if len(set(out)) != len(out):
         raise InvalidExperimentError(f"seed indices must be distinct, got {list(out)!r}")
     return out
@@ -146,7 +155,7 @@ def _check_jobs(value: Any) -> int | None:
 _FIELD_CHECKS = {
     "name": _check_name,
     "seed": _check_seed,
-    "seeds": lambda v: _resolve_seeds(v),
+    "seeds": lambda v: resolve_seeds(v),
     "timeout_s": _check_timeout,
     "jobs": _check_jobs,
 }
@@ -167,6 +176,8 @@ def read_toml(path: str | Path) -> dict[str, Any]:
         raise InvalidExperimentError(f"{path}: cannot read: {exc.strerror}") from None
     except tomllib.TOMLDecodeError as exc:
         raise InvalidExperimentError(f"{path}: not valid TOML: {exc}") from None
+    except UnicodeDecodeError as exc:
+        raise InvalidExperimentError(f"{path}: not UTF-8 text (byte {exc.start}), so not a TOML file") from None
 
 
 @dataclass(frozen=True)
@@ -294,7 +305,7 @@ class Experiment:
             seed=seed,
             planners=tuple(specs),
             scenarios=_resolve_scenarios(scenarios, None),
-            seeds=_resolve_seeds(seeds),
+            seeds=resolve_seeds(seeds),
             budget=budget,
             timeout_s=timeout_s,
             jobs=jobs,
@@ -414,10 +425,23 @@ class Experiment:
         ]
 
     def tasks(self, plugin_modules: tuple[tuple[str, str], ...] = ()) -> list[RunTask]:
-        """Every run of the experiment, in a deterministic order."""
+        """Every run of the experiment, in a deterministic order.
+
+        Raises
+        ------
+        InvalidExperimentError
+            More than :data:`MAX_RUNS` runs (checked before any is built).
+        """
+        pairs = self.pairs()
+        if len(pairs) * len(self.seeds) > MAX_RUNS:
+            raise InvalidExperimentError(
+                f"experiment '{self.name}' has {len(pairs)} planner x scenario pairs x {len(self.seeds)} seeds = "
+                f"{len(pairs) * len(self.seeds)} runs, more than the limit of {MAX_RUNS}; split it"
+            )
         out = []
-        for planner, scenario in self.pairs():
+        for planner, scenario in pairs:
             version, phash = planner.version, planner.params_hash
+            by_value = planner_by_value(planner.planner_class)
             for index in self.seeds:
                 key = run_key(planner.id, phash, scenario.id, index)
                 out.append(
@@ -433,6 +457,7 @@ class Experiment:
                         budget=self.budget,
                         timeout_s=self.timeout_s,
                         plugin_modules=plugin_modules,
+                        planner_class=by_value,
                     )
                 )
         return out

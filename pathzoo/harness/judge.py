@@ -5,7 +5,8 @@ Rules, applied in order:
 1. the run hit its hard limit (killed by the executor, or measured over it) -> ``timeout``;
 2. ``plan()`` raised, returned something else than a PlanResult, the run
    could not be set up, or the worker process died -> ``crash``;
-3. the planner modified the scenario's arrays -> ``invalid``;
+3. the planner modified or replaced any part of the scenario, or a value it
+   chose is out of bounds (:mod:`pathzoo.harness.bounds`) -> ``invalid``;
 4. the planner says ``SOLVED``: the path must pass
    :func:`~pathzoo.rules.validate_path` -> ``solved``, else ``invalid``
    with the validator's reason;
@@ -14,6 +15,10 @@ Rules, applied in order:
    validator, the claim is false -> ``invalid`` ("claimed no path but one
    exists"); otherwise ``no_path``;
 6. the planner says ``FAILED`` -> ``failed``.
+
+A run that cannot be judged (judging over its time limit, or raising) is
+stored by :func:`unjudged` as ``invalid`` with the reason
+(:mod:`pathzoo.harness.judge_worker`).
 
 Then every metric is computed from the stored path and the scenario; a metric
 that raises gives NaN and a warning, never a lost run.
@@ -38,7 +43,7 @@ if TYPE_CHECKING:
     from pathzoo.harness.specs import RunTask
     from pathzoo.harness.worker import RunOutcome
 
-__all__ = ["judge", "verdict"]
+__all__ = ["judge", "verdict", "unjudged"]
 
 
 def verdict(task: "RunTask", outcome: "RunOutcome", scenario: "Scenario") -> tuple[RunStatus, bool, str, str]:
@@ -49,7 +54,9 @@ def verdict(task: "RunTask", outcome: "RunOutcome", scenario: "Scenario") -> tup
     if outcome.crash:
         return RunStatus.CRASH, False, "", outcome.message
     if outcome.scenario_modified:
-        return RunStatus.INVALID, False, "planner modified the scenario's arrays", outcome.message
+        return RunStatus.INVALID, False, "planner modified or replaced part of the scenario", outcome.message
+    if outcome.bounds_error:
+        return RunStatus.INVALID, False, f"out of bounds: {outcome.bounds_error}", outcome.message
     if outcome.status is Status.SOLVED:
         if outcome.path is None:
             reason = f"claimed solved but the path is {outcome.path_error or 'missing'}"
@@ -69,23 +76,10 @@ def verdict(task: "RunTask", outcome: "RunOutcome", scenario: "Scenario") -> tup
     return RunStatus.FAILED, False, "", outcome.message
 
 
-def judge(task: "RunTask", outcome: "RunOutcome", scenario: "Scenario", metrics: Sequence["Metric"]) -> RunRecord:
-    """Build the :class:`RunRecord` of a run: verdict, then every metric.
-
-    Parameters
-    ----------
-    task : RunTask
-        What was run.
-    outcome : RunOutcome
-        What came back from the worker (or the executor, for kills).
-    scenario : Scenario
-        The harness's own copy of the scenario.
-    metrics : sequence of Metric
-        Every metric to compute.
-    """
-    status, valid, reason, message = verdict(task, outcome, scenario)
+def _record(task: "RunTask", outcome: "RunOutcome", status: RunStatus, valid: bool, reason: str, message: str,
+            isolated: bool) -> RunRecord:
     returned = status in RETURNED
-    record = RunRecord(
+    return RunRecord(
         run_key=task.run_key,
         experiment=task.experiment,
         planner_id=task.planner.id,
@@ -109,7 +103,34 @@ def judge(task: "RunTask", outcome: "RunOutcome", scenario: "Scenario", metrics:
         metrics={},
         versions=dict(outcome.versions),
         started_at=outcome.started_at,
+        isolated=isolated,
     )
+
+
+def unjudged(task: "RunTask", outcome: "RunOutcome", reason: str, *, isolated: bool = True) -> RunRecord:
+    """The record of a run that could not be judged: ``invalid`` with ``reason``, no metrics."""
+    return _record(task, outcome, RunStatus.INVALID, False, reason, outcome.message, isolated)
+
+
+def judge(task: "RunTask", outcome: "RunOutcome", scenario: "Scenario", metrics: Sequence["Metric"], *,
+          isolated: bool = True) -> RunRecord:
+    """Build the :class:`RunRecord` of a run: verdict, then every metric.
+
+    Parameters
+    ----------
+    task : RunTask
+        What was run.
+    outcome : RunOutcome
+        What came back from the worker (or the executor, for kills), bounded.
+    scenario : Scenario
+        The judge's own copy of the scenario.
+    metrics : sequence of Metric
+        Every metric to compute.
+    isolated : bool
+        Whether the planner ran in a process of its own (stored with the run).
+    """
+    status, valid, reason, message = verdict(task, outcome, scenario)
+    record = _record(task, outcome, status, valid, reason, message, isolated)
     values: dict[str, float] = {}
     for metric in metrics:
         try:

@@ -2,17 +2,21 @@
 
 The flow of one run::
 
-    parent: task --submit--> executor --(worker: rebuild, plan(), time)--> outcome
-    parent: outcome --judge (validate, metrics)--> RunRecord --store (1 transaction)--> hooks, progress
+    parent: task --submit--> executor --(worker: rebuild, plan())--> outcome (timed by the executor)
+    parent: outcome --bound--> judge process (validate, metrics) --> RunRecord --store (1 transaction)--> hooks
 
-Judging happens in the harness process, on the harness's own copy of the
-scenario, so nothing a planner does in its worker can change the verdict.
+Every value the planner chose is bounded first (:mod:`pathzoo.harness.bounds`);
+judging happens in the judge's own process, on a scenario it loaded itself,
+under a time limit (:mod:`pathzoo.harness.judge_worker`), so nothing a
+planner does in its worker can change a verdict, and a run that cannot be
+judged is stored as ``invalid`` with the reason while the experiment goes on.
 """
 
 from __future__ import annotations
 
 import logging
 import os
+import sqlite3
 import warnings
 from concurrent.futures import FIRST_COMPLETED, Future, wait
 from pathlib import Path
@@ -22,15 +26,16 @@ from typing import TYPE_CHECKING, Any, Iterator
 from pathzoo.core.errors import InvalidExperimentError
 from pathzoo.core.status import RunStatus
 from pathzoo.harness.executors import RunExecutor, make_executor
-from pathzoo.harness.judge import judge
+from pathzoo.harness.bounds import bound_outcome
+from pathzoo.harness.judge import unjudged
+from pathzoo.harness.judge_worker import JUDGE_TIMEOUT_S, JudgeWorker
 from pathzoo.harness.store import ResultStore, read_runs
-from pathzoo.harness.worker import SCENARIO_CACHE_SIZE, load_cached
 
 if TYPE_CHECKING:
     import pandas as pd
 
-    from pathzoo.core.metric import Metric
     from pathzoo.harness.experiment import Experiment
+    from pathzoo.core.results import RunRecord
     from pathzoo.harness.specs import RunTask
     from pathzoo.harness.worker import RunOutcome
     from pathzoo.plugins.manager import Registry
@@ -77,17 +82,31 @@ def _progress_bar(total: int, name: str, enabled: bool) -> Any:
     return tqdm(total=total, desc=name, unit="run", dynamic_ncols=True)
 
 
+def _store(store: ResultStore, record: "RunRecord", task: "RunTask", outcome: "RunOutcome",
+           retry: tuple[str, ...]) -> "RunRecord":
+    """Store a record; one the database refuses is stored as ``invalid`` with the reason instead."""
+    try:
+        store.insert(record, replace_statuses=retry, label=task.planner.name)
+        return record
+    except (OverflowError, ValueError, TypeError, sqlite3.InterfaceError) as exc:
+        fallback = unjudged(task, outcome, f"the result could not be stored ({type(exc).__name__}: {exc})",
+                            isolated=record.isolated)
+        store.insert(fallback, replace_statuses=retry, label=task.planner.name)
+        return fallback
+
+
 def _execute(
     executor: RunExecutor,
     tasks: list["RunTask"],
     store: ResultStore,
-    metrics: list["Metric"],
+    judge: JudgeWorker,
     registry: "Registry",
     bar: Any,
+    retry: tuple[str, ...],
 ) -> None:
     queue: Iterator[RunTask] = iter(tasks)
     in_flight: dict[Future[RunOutcome], RunTask] = {}
-    cache_size = max(SCENARIO_CACHE_SIZE, 2 * executor.capacity)
+    isolated = bool(getattr(executor, "isolated", False))
     failures = 0
 
     def submit_more() -> None:
@@ -104,8 +123,8 @@ def _execute(
         done, _ = wait(list(in_flight), return_when=FIRST_COMPLETED)
         for future in done:
             task = in_flight.pop(future)
-            record = judge(task, future.result(), load_cached(task.scenario, cache_size), metrics)
-            store.insert(record, label=task.planner.name)
+            outcome = bound_outcome(future.result())
+            record = _store(store, judge.judge(task, outcome, isolated=isolated), task, outcome, retry)
             _call_hook(registry, "pathzoo_run_finished", record=record)
             if record.status is not RunStatus.SOLVED:
                 failures += 1
@@ -122,8 +141,10 @@ def run_experiment(
     jobs: int | None = None,
     executor: "str | RunExecutor" = "process",
     progress: bool = True,
+    retry: "tuple[str, ...] | list[str]" = (),
+    judge_timeout_s: float = JUDGE_TIMEOUT_S,
 ) -> "pd.DataFrame":
-    """Run every run of ``experiment`` not yet stored in ``db``; return all its runs.
+    """Run every run of ``experiment`` not yet stored in ``db``; return exactly the experiment's runs.
 
     Parameters
     ----------
@@ -139,11 +160,18 @@ def run_experiment(
         (see :func:`pathzoo.harness.executors.make_executor`), or an instance.
     progress : bool
         Show a progress bar (runs done, failures, time left) on stderr.
+    retry : sequence of str
+        Run statuses (``"crash"``, ``"timeout"``, ...) whose stored runs are
+        run again; each new result replaces the old row when it is stored.
+    judge_timeout_s : float
+        Limit on judging one run; a run past it is stored as ``invalid``.
 
     Returns
     -------
     pandas.DataFrame
-        :func:`pathzoo.harness.store.read_runs` for this experiment.
+        :func:`pathzoo.harness.store.read_runs` restricted to this
+        experiment's planners x scenarios x seeds (other runs stored under the
+        same name, from earlier calls, are left out).
 
     Notes
     -----
@@ -154,28 +182,39 @@ def run_experiment(
     """
     from pathzoo.plugins.manager import get_registry
 
+    retry_statuses = _retry_statuses(retry)
     if jobs is not None and (isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1):
         raise InvalidExperimentError(f"jobs must be a positive integer, got {jobs!r}")
     db_path = Path(db if db is not None else experiment.db if experiment.db is not None else DEFAULT_DB)
     n_jobs = jobs or experiment.jobs or os.cpu_count() or 1
     registry = get_registry()
-    metrics = [entry.obj() for entry in registry.metrics.values()]
     skipped = experiment.skipped()
     if skipped:
         pairs = ", ".join(f"{p} x {s} ({k})" for p, s, k in skipped)
         log.warning("pathzoo: not running %d unsupported planner x scenario pair(s): %s", len(skipped), pairs)
     with ResultStore(db_path) as store:
         store.add_experiment(experiment)
-        finished = store.finished_keys(experiment.name)
-        tasks = [t for t in experiment.tasks(extra_plugin_modules(registry)) if t.run_key not in finished]
+        finished = store.finished_keys(experiment.name, exclude_statuses=retry_statuses)
+        all_tasks = experiment.tasks(extra_plugin_modules(registry))
+        tasks = [t for t in all_tasks if t.run_key not in finished]
         if tasks:
             bar = _progress_bar(len(tasks), experiment.name, progress)
             try:
-                with make_executor(executor, n_jobs) as pool:
-                    _execute(pool, tasks, store, metrics, registry, bar)
+                with make_executor(executor, n_jobs) as pool, JudgeWorker(judge_timeout_s) as judge:
+                    _execute(pool, tasks, store, judge, registry, bar, retry_statuses)
             finally:
                 if bar is not None:
                     bar.close()
         n_runs = store.count_runs(experiment.name)
     _call_hook(registry, "pathzoo_experiment_finished", experiment=experiment.name, db=str(db_path), n_runs=n_runs)
-    return read_runs(db_path, experiment.name)
+    return read_runs(db_path, experiment.name, run_keys={t.run_key for t in all_tasks})
+
+
+def _retry_statuses(retry: "tuple[str, ...] | list[str]") -> tuple[str, ...]:
+    allowed = [s.value for s in RunStatus]
+    if isinstance(retry, str):
+        retry = [r for r in retry.split(",") if r]
+    bad = [r for r in retry if r not in allowed]
+    if bad:
+        raise InvalidExperimentError(f"retry: unknown status(es) {bad}; allowed: {', '.join(allowed)}")
+    return tuple(dict.fromkeys(retry))

@@ -4,7 +4,11 @@ A worker receives a :class:`RunTask` and rebuilds everything else: the
 planner from its registered id and parameters (:func:`pathzoo.make_planner`),
 the scenario from its registered id or file. Scenario *objects* given in
 Python have no such reference, so they travel pickled inside the task (they
-are pathzoo's own frozen objects, so unpickling them is trusted).
+are pathzoo's own frozen objects, so unpickling them is trusted), and a
+planner class defined in ``__main__`` (a script, a notebook) travels by value,
+pickled with cloudpickle as Dask and loky do, since workers do not import the
+parent's main module. Both are pickled by the harness process itself; nothing
+pickled by a worker or read from a file is ever unpickled.
 """
 
 from __future__ import annotations
@@ -12,6 +16,7 @@ from __future__ import annotations
 import functools
 import hashlib
 import pickle
+import sys
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Literal, Mapping
 
@@ -22,7 +27,7 @@ from pathzoo.core.planner import Planner, config_name, params_hash
 if TYPE_CHECKING:
     from pathzoo.core.scenario import Scenario
 
-__all__ = ["PlannerSpec", "ScenarioSpec", "RunTask", "run_key", "run_seed", "ScenarioSource"]
+__all__ = ["PlannerSpec", "ScenarioSpec", "RunTask", "run_key", "run_seed", "ScenarioSource", "planner_by_value"]
 
 ScenarioSource = Literal["registry", "file", "object"]
 
@@ -47,6 +52,16 @@ def run_seed(experiment_seed: int, key: str) -> int:
     """
     digest = hashlib.sha256(f"{int(experiment_seed)}:{key}".encode()).digest()
     return int.from_bytes(digest[:8], "little") >> 1
+
+
+def planner_by_value(cls: type) -> bytes:
+    """The class pickled by value when workers could not import it by name (defined in ``__main__``), else ``b""``."""
+    module = sys.modules.get(cls.__module__)
+    if cls.__module__ not in ("__main__", "__mp_main__") and getattr(module, "__spec__", None) is not None:
+        return b""
+    import cloudpickle
+
+    return cloudpickle.dumps(cls)
 
 
 @dataclass(frozen=True)
@@ -79,8 +94,9 @@ class PlannerSpec:
         InvalidParameterError
             A parameter is unknown or out of range.
         InvalidExperimentError
-            The object is none of the above, or an instance of a class that is
-            not the one registered under its id (workers rebuild planners by id).
+            The object is none of the above, an instance of a class that is
+            not the one registered under its id (workers rebuild planners by
+            id), or the planner needs an optional package that is not installed.
         """
         from pathzoo import make_planner
         from pathzoo.plugins.manager import get_registry
@@ -111,6 +127,9 @@ class PlannerSpec:
                 "a planner must be an id, an (id, params) pair, an (id, params, label) triple or a Planner "
                 f"instance, got {obj!r}"
             )
+        unavailable = get_registry().get("planners", planner_id).unavailable
+        if unavailable:
+            raise InvalidExperimentError(f"planner '{planner_id}' is not available here: it {unavailable}")
         return cls(planner_id, make_planner(planner_id, **params).get_params(), label)
 
     @property
@@ -187,9 +206,9 @@ class ScenarioSpec:
 
     def load(self) -> "Scenario":
         """Load the scenario (uncached; the worker and the runner cache it)."""
-        if self.source == "object":
+        if self.source == "object":  # a copy: no planner ever gets the caller's own object
             assert self.scenario is not None
-            return self.scenario
+            return pickle.loads(pickle.dumps(self.scenario, protocol=5))
         if self.source == "registry":
             from pathzoo.plugins.manager import get_registry
 
@@ -236,6 +255,9 @@ class RunTask:
     plugin_modules : tuple of (name, module)
         Plugins registered in the parent that are not entry points (e.g. test
         planners); workers import and register them before building the planner.
+    planner_class : bytes
+        The planner class pickled by value (:func:`planner_by_value`) when it
+        is defined in ``__main__``; empty otherwise.
     """
 
     run_key: str
@@ -249,3 +271,11 @@ class RunTask:
     budget: Budget
     timeout_s: float
     plugin_modules: tuple[tuple[str, str], ...] = ()
+    planner_class: bytes = b""
+
+    def build_planner(self) -> Planner:
+        """A fresh planner: from the class sent by value, else by its registered id."""
+        if self.planner_class:
+            cls = pickle.loads(self.planner_class)  # pickled by the harness process (see the module docstring)
+            return cls(**self.planner.params)
+        return self.planner.build()

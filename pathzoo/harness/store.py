@@ -10,10 +10,13 @@ Layout (schema version 1; ``sqlite3 results.sqlite .schema`` shows it):
   :class:`~pathzoo.core.results.RunRecord` field, parameters and versions as
   JSON, path and times as float64 bytes (C order) with the path's shape as
   JSON, the metrics as JSON *and* as one ``REAL`` column per metric, named
-  ``"metric:<id>"`` (added with ``ALTER TABLE`` when a new metric appears),
-  and ``label``, the configuration's name in tables and plots (added with
-  ``ALTER TABLE`` to databases written before it existed; their runs read
-  with an empty label, so analysis falls back to ``id`` / ``id@hash``);
+  ``"metric:<id>"`` (added with ``ALTER TABLE`` when a new metric appears,
+  by whichever harness sees it first: concurrent harnesses on one file are
+  fine), ``label``, the configuration's name in tables and plots (runs of
+  databases written before it existed read with an empty label, so analysis
+  falls back to ``id`` / ``id@hash``), and ``isolated`` (0 for runs of the
+  ``inline`` executor, whose planner shared the harness's process); both are
+  added to older files when they are opened for writing;
 - ``history``: the convergence points of every run (experiment, run_key,
   iteration, evaluations, best_cost, time_s).
 
@@ -32,7 +35,7 @@ import re
 import sqlite3
 from contextlib import contextmanager
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Iterator
+from typing import TYPE_CHECKING, Any, Collection, Iterator
 
 import numpy as np
 
@@ -65,6 +68,7 @@ RUN_COLUMNS: tuple[str, ...] = (
     "run_key", "experiment", "planner", "planner_version", "params_hash", "params", "scenario", "seed_index",
     "seed", "status", "valid", "invalid_reason", "message", "wall_time_s", "cpu_time_s", "iterations", "evaluations",
     "label",
+    "isolated",
 )
 """The leading columns of :func:`read_runs`; one column per metric id follows."""
 
@@ -107,6 +111,7 @@ CREATE TABLE runs (
     finished_at TEXT NOT NULL,
     metrics TEXT NOT NULL,
     label TEXT NOT NULL DEFAULT '',
+    isolated INTEGER NOT NULL DEFAULT 1,
     UNIQUE (experiment, run_key)
 );
 CREATE TABLE history (
@@ -194,10 +199,23 @@ class ResultStore:
     def __init__(self, path: str | Path) -> None:
         self.path = Path(path)
         self.conn = _connect(self.path, create=True)
-        columns = {str(r[1]) for r in self.conn.execute("PRAGMA table_info(runs)")}
-        self._metric_columns = {c for c in columns if c.startswith("metric:")}
-        if "label" not in columns:  # a database written before labels: add the column, keep every row
-            self.conn.execute("ALTER TABLE runs ADD COLUMN label TEXT NOT NULL DEFAULT ''")
+        self._run_columns = self._columns()
+        if "label" not in self._run_columns:  # a file written before labels: add the column, keep every row
+            self._add_column("label TEXT NOT NULL DEFAULT ''")
+        if "isolated" not in self._run_columns:  # a file written before the column existed
+            self._add_column("isolated INTEGER NOT NULL DEFAULT 1")
+
+    def _columns(self) -> set[str]:
+        return {str(r[1]) for r in self.conn.execute("PRAGMA table_info(runs)")}
+
+    def _add_column(self, definition: str) -> None:
+        """``ALTER TABLE runs ADD COLUMN``; another harness adding the same column first is fine."""
+        try:
+            self.conn.execute(f"ALTER TABLE runs ADD COLUMN {definition}")
+        except sqlite3.OperationalError as exc:
+            if "duplicate column name" not in str(exc):
+                raise
+        self._run_columns = self._columns()
 
     def __enter__(self) -> "ResultStore":
         return self
@@ -242,9 +260,10 @@ class ResultStore:
                     f"not {value!r}; use another experiment name (or database) for different settings"
                 )
 
-    def finished_keys(self, experiment: str) -> set[str]:
-        """Run keys already stored for an experiment."""
-        return {r[0] for r in self.conn.execute("SELECT run_key FROM runs WHERE experiment = ?", (experiment,))}
+    def finished_keys(self, experiment: str, exclude_statuses: tuple[str, ...] = ()) -> set[str]:
+        """Run keys already stored for an experiment, except those stored with one of ``exclude_statuses``."""
+        rows = self.conn.execute("SELECT run_key, status FROM runs WHERE experiment = ?", (experiment,))
+        return {key for key, status in rows if status not in exclude_statuses}
 
     def count_runs(self, experiment: str) -> int:
         """Number of stored runs of an experiment."""
@@ -253,14 +272,16 @@ class ResultStore:
     def _ensure_metric_columns(self, ids: list[str]) -> None:
         for mid in ids:
             col = f"metric:{mid}"
-            if col not in self._metric_columns and _METRIC_ID.match(mid):
-                self.conn.execute(f"ALTER TABLE runs ADD COLUMN {_metric_column(mid)} REAL")
-                self._metric_columns.add(col)
+            if col not in self._run_columns and _METRIC_ID.match(mid):
+                self._add_column(f"{_metric_column(mid)} REAL")
 
-    def insert(self, record: RunRecord, label: str = "") -> bool:
+    def insert(self, record: RunRecord, replace_statuses: tuple[str, ...] = (), label: str = "") -> bool:
         """Store one run and its history in one transaction; False if the key was already stored.
 
-        ``label`` is the configuration's name (:attr:`PlannerSpec.name`).
+        A stored run of the same key whose status is in ``replace_statuses``
+        (``pathzoo run --retry``) is deleted in the same transaction, so an
+        interrupted retry never loses the old row. ``label`` is the
+        configuration's name (:attr:`PlannerSpec.name`).
         """
         metric_ids = [m for m in record.metrics if _METRIC_ID.match(m)]
         self._ensure_metric_columns(metric_ids)
@@ -291,12 +312,22 @@ class ResultStore:
             "finished_at": utc_now(),
             "metrics": json.dumps({k: float(v) for k, v in record.metrics.items()}),
             "label": label,
+            "isolated": int(bool(record.isolated)),
         }
         for mid in metric_ids:
             values[f"metric:{mid}"] = _real(record.metrics[mid])
         cols = ", ".join(f'"{c}"' for c in values)
         marks = ", ".join("?" for _ in values)
         with _transaction(self.conn):
+            if replace_statuses:
+                marks_ = ", ".join("?" for _ in replace_statuses)
+                old = self.conn.execute(
+                    f"DELETE FROM runs WHERE experiment = ? AND run_key = ? AND status IN ({marks_})",
+                    (record.experiment, record.run_key, *replace_statuses),
+                )
+                if old.rowcount:
+                    self.conn.execute("DELETE FROM history WHERE experiment = ? AND run_key = ?",
+                                      (record.experiment, record.run_key))
             cur = self.conn.execute(f"INSERT OR IGNORE INTO runs ({cols}) VALUES ({marks})", tuple(values.values()))
             if cur.rowcount == 0:
                 return False
@@ -320,10 +351,11 @@ def _experiment_filter(conn: sqlite3.Connection, path: Path, experiment: str | N
     return " WHERE experiment = ?", (experiment,)
 
 
-def read_runs(db: str | Path, experiment: str | None = None) -> "pd.DataFrame":
-    """One row per run, in the order they were stored.
+def read_runs(db: str | Path, experiment: str | None = None, run_keys: "Collection[str] | None" = None
+              ) -> "pd.DataFrame":
+    """One row per run, in the order they were stored (only ``run_keys``, when given).
 
-    Columns: :data:`RUN_COLUMNS` (``params`` as dicts, ``valid`` as bool,
+    Columns: :data:`RUN_COLUMNS` (``params`` as dicts, ``valid`` and ``isolated`` as bool,
     ``status`` as the :class:`~pathzoo.core.status.RunStatus` value), then one
     float column per metric id. ``iterations`` and ``evaluations`` are NaN
     for crashed and timed-out runs, like the metrics of the same names.
@@ -340,13 +372,18 @@ def read_runs(db: str | Path, experiment: str | None = None) -> "pd.DataFrame":
     try:
         where, args = _experiment_filter(conn, path, experiment)
         present = {str(r[1]) for r in conn.execute("PRAGMA table_info(runs)")}
-        base = ", ".join(f'"{c}"' if c in present else f"'' AS \"{c}\"" for c in RUN_COLUMNS)
+        defaults = {"label": "''", "isolated": "1"}
+        base = ", ".join(f'"{c}"' if c in present else f'{defaults.get(c, "NULL")} AS "{c}"' for c in RUN_COLUMNS)
         rows = conn.execute(f"SELECT {base}, metrics FROM runs{where} ORDER BY id", args).fetchall()
     finally:
         conn.close()
+    if run_keys is not None:
+        wanted = set(run_keys)
+        rows = [r for r in rows if r[0] in wanted]
     frame = pd.DataFrame([r[: len(RUN_COLUMNS)] for r in rows], columns=list(RUN_COLUMNS))
     frame["params"] = [json.loads(p) for p in frame["params"]]
     frame["valid"] = frame["valid"].astype(bool)
+    frame["isolated"] = frame["isolated"].astype(bool)
     for col in ("wall_time_s", "cpu_time_s", "iterations", "evaluations"):
         frame[col] = pd.to_numeric(frame[col], errors="coerce").astype(float)
     metrics = [json.loads(r[-1]) for r in rows]
@@ -439,6 +476,7 @@ def read_record(db: str | Path, experiment: str, run_key: str) -> RunRecord:
         metrics=json.loads(row["metrics"]),
         versions=json.loads(row["versions"]),
         started_at=row["started_at"],
+        isolated=bool(row.get("isolated", 1)),
     )
 
 

@@ -1,22 +1,31 @@
-"""The worker side of a run: rebuild planner and scenario, time ``plan()``, report what came back.
+"""The worker side of a run: rebuild planner and scenario, run ``plan()``, report what came back.
 
 :func:`execute_task` runs in whatever process the executor chose. It never
-raises: a planner that raises (or calls ``sys.exit``) gives an outcome with
-``crash`` set. It does not judge the result either; the harness validates
-and measures it afterwards (:mod:`pathzoo.harness.judge`), in the parent
-process, where the planner's code never ran.
+raises (``SystemExit`` and every other ``BaseException`` from the planner,
+its warm-up or its message's ``__str__`` included): anything that goes wrong
+gives an outcome with ``crash`` set. It does not judge the result either;
+the harness does (:mod:`pathzoo.harness.judge`), in a judge process where no
+planner code ever ran, on a scenario that process loaded itself.
 
 Scenarios are cached per process (a small LRU, keyed by
 :attr:`ScenarioSpec.cache_key`) and their shared geometry (blocked cells,
-neighbourhood graph, clearance) is built when they are loaded, before any
-clock starts, so no planner pays for it. If a planner modifies a cached
-scenario's arrays, the run is flagged and the scenario is evicted.
+neighbourhood graph, clearance, every cached property) is built when they
+are loaded, before any clock starts, so no planner pays for it. The full
+digest of a cached scenario (:func:`pathzoo.harness.digest.scenario_digest`)
+is taken at load and again after each run: a planner that changed or
+replaced any part of it is flagged (``scenario_modified``, judged
+``invalid``) and the scenario is evicted, so the next run loads a fresh one.
+Monkeypatching is caught by :mod:`pathzoo.harness.tamper` and makes the
+executor replace the worker.
+
+The times measured here (``time.perf_counter`` and ``time.process_time``
+inside the planner's process) are only a fallback: the process and Dask
+executors time runs with their own clocks, outside this process.
 """
 
 from __future__ import annotations
 
 import contextlib
-import hashlib
 import importlib
 import io
 import math
@@ -33,6 +42,8 @@ import numpy as np
 
 from pathzoo.core.results import HistoryPoint, PlanResult
 from pathzoo.core.status import Status
+from pathzoo.harness.bounds import bound_outcome, bound_text
+from pathzoo.harness.digest import scenario_digest, warm
 from pathzoo.testing.warmup import warm_up
 
 if TYPE_CHECKING:
@@ -47,6 +58,7 @@ __all__ = [
     "HistoryRecorder",
     "SCENARIO_CACHE_SIZE",
     "SETUP_TIMEOUT_S",
+    "Report",
 ]
 
 SCENARIO_CACHE_SIZE = 4
@@ -54,6 +66,9 @@ SCENARIO_CACHE_SIZE = 4
 
 SETUP_TIMEOUT_S = 900.0
 """Limit on a run's setup in a worker (plugins, planner, scenario, shared geometry), before ``plan()``."""
+
+_clock = time.perf_counter  # bound at import, so a planner that patches the time module changes no timing
+_cpu = time.process_time
 
 TRACEBACK_LINES = 12
 """Lines of traceback kept in a crash message."""
@@ -92,6 +107,12 @@ class RunOutcome:
         Versions of pathzoo, Python, numpy and the planner's distribution.
     started_at : str
         UTC ISO time the run started.
+    tainted : bool
+        The planner rebound module attributes in its process
+        (:mod:`pathzoo.harness.tamper`); the executor must not reuse that process.
+    bounds_error : str
+        Why a planner-chosen value is out of bounds (:mod:`pathzoo.harness.bounds`);
+        the run is judged ``invalid`` with this reason.
     """
 
     run_key: str
@@ -110,6 +131,8 @@ class RunOutcome:
     scenario_modified: bool = False
     versions: dict[str, str] = field(default_factory=dict)
     started_at: str = ""
+    tainted: bool = False
+    bounds_error: str = ""
 
 
 def utc_now() -> str:
@@ -140,12 +163,12 @@ class HistoryRecorder:
     """
 
     def __init__(self) -> None:
-        self.t0 = time.perf_counter()
+        self.t0 = _clock()
         self.points: list[HistoryPoint] = []
         self._last: HistoryPoint | None = None
 
     def __call__(self, iteration: int, evaluations: int, best_cost: float) -> None:
-        point = HistoryPoint(int(iteration), int(evaluations), float(best_cost), time.perf_counter() - self.t0)
+        point = HistoryPoint(int(iteration), int(evaluations), float(best_cost), _clock() - self.t0)
         last = self._last
         if last is None or not _same_cost(point.best_cost, last.best_cost):
             self.points.append(point)
@@ -182,29 +205,24 @@ def quiet_registry() -> Any:
 
 
 # ---------------------------------------------------------------- scenarios
-_scenarios: "OrderedDict[tuple[str, str, str, str], Scenario]" = OrderedDict()
+_scenarios: "OrderedDict[tuple[str, str, str, str], tuple[Scenario, str]]" = OrderedDict()
 _scenario_lock = threading.Lock()
 
 
-def warm(scenario: "Scenario") -> "Scenario":
-    """Build the scenario's shared geometry now, outside any timed region."""
-    _ = scenario.blocked, scenario.graph, scenario.clearance
-    return scenario
-
-
-def load_cached(spec: "ScenarioSpec", size: int = SCENARIO_CACHE_SIZE) -> "Scenario":
-    """Load a scenario once per process (LRU of ``size``), geometry warmed."""
+def load_cached(spec: "ScenarioSpec", size: int = SCENARIO_CACHE_SIZE) -> "tuple[Scenario, str]":
+    """Load a scenario once per process (LRU of ``size``), geometry warmed; returns it with its load-time digest."""
     key = spec.cache_key
     with _scenario_lock:
         if key in _scenarios:
             _scenarios.move_to_end(key)
             return _scenarios[key]
     scenario = warm(spec.load())
+    entry = (scenario, scenario_digest(scenario))
     with _scenario_lock:
-        _scenarios[key] = scenario
+        _scenarios[key] = entry
         while len(_scenarios) > size:
             _scenarios.popitem(last=False)
-    return scenario
+    return entry
 
 
 def evict(spec: "ScenarioSpec") -> None:
@@ -213,23 +231,14 @@ def evict(spec: "ScenarioSpec") -> None:
         _scenarios.pop(spec.cache_key, None)
 
 
-def scenario_digest(scenario: "Scenario") -> str:
-    """Hash of the scenario's arrays, to detect planners that modify them."""
-    h = hashlib.blake2b(digest_size=16)
-    for arr in (scenario.occupancy, scenario.elevation, scenario.start, scenario.goal, scenario.blocked):
-        if arr is not None:
-            h.update(np.ascontiguousarray(arr).tobytes())
-    return h.hexdigest()
-
-
 # --------------------------------------------------------------------- runs
 def _versions(task: "RunTask") -> dict[str, str]:
     import pathzoo
     from pathzoo.plugins.manager import get_registry
 
-    entry = get_registry().get("planners", task.planner.id)
     out = {"pathzoo": pathzoo.__version__, "python": platform.python_version(), "numpy": np.__version__}
-    if entry.distribution:
+    entry = get_registry().planners.get(task.planner.id)
+    if entry is not None and entry.distribution:
         out[entry.distribution] = entry.version
     return out
 
@@ -239,52 +248,81 @@ def _as_array(value: Any) -> tuple[np.ndarray | None, str]:
         return None, ""
     try:
         return np.array(value, dtype=np.float64), ""
-    except (TypeError, ValueError) as exc:
+    except Exception as exc:  # noqa: BLE001 - any object a planner returns
         return None, f"not a numeric array ({type(exc).__name__}: {exc})"
 
 
-def execute_task(task: "RunTask", on_started: Callable[[], None] | None = None) -> RunOutcome:
+Report = Callable[[str], None]
+"""Callback through which :func:`execute_task` announces ``"started"`` (setup done) and ``"planning"``."""
+
+
+def _message(value: Any) -> str:
+    """The planner's message as text; a ``__str__`` that fails or exits gives a note instead."""
+    try:
+        return bound_text(str(value))
+    except BaseException as exc:  # noqa: BLE001 - SystemExit from a hostile __str__ included
+        return f"(message could not be converted to text: {type(exc).__name__})"
+
+
+def execute_task(task: "RunTask", report: Report | None = None, *, interruptible: bool = False) -> RunOutcome:
     """Run one task in this process and report what happened; never raises.
 
     Parameters
     ----------
     task : RunTask
         The run.
-    on_started : callable, optional
-        Called once the planner and scenario are ready, just before the clock
-        starts (the process executor starts the hard limit there).
+    report : callable, optional
+        Called with ``"started"`` once the planner and scenario are ready (the
+        hard limit starts there, before the warm-up) and with ``"planning"``
+        just before ``plan()`` (the planning clock starts there).
+    interruptible : bool
+        Let ``KeyboardInterrupt`` through (the inline executor, where Ctrl-C is
+        the user's); otherwise it is a crash like any other exception.
     """
+    try:
+        return bound_outcome(_execute(task, report or (lambda event: None)))
+    except KeyboardInterrupt:
+        if interruptible:
+            raise
+        return RunOutcome(task.run_key, crash=True, message="KeyboardInterrupt raised in the run")
+    except BaseException as exc:  # noqa: BLE001 - whatever a planner raises, the run is an outcome
+        return RunOutcome(task.run_key, crash=True, message=_message(describe_exception(exc)))
+
+
+def _execute(task: "RunTask", report: Report) -> RunOutcome:
     started_at = utc_now()
     try:
         ensure_plugins(task.plugin_modules)
-        planner = task.planner.build()
+        planner = task.build_planner()
         if planner.version != task.planner_version:
             raise RuntimeError(
                 f"{task.planner.id} is version {planner.version} in this worker, {task.planner_version} in the harness"
             )
-        scenario = load_cached(task.scenario)
+        scenario, digest = load_cached(task.scenario)
         versions = _versions(task)
-        before = scenario_digest(scenario)
     except Exception as exc:
         return RunOutcome(task.run_key, message="run setup failed: " + describe_exception(exc), crash=True,
                           started_at=started_at)
     rng = np.random.default_rng(task.seed)
     recorder = HistoryRecorder()
-    if on_started is not None:
-        on_started()
-    # inside the hard limit (a hanging planner still times out), outside planning time
-    warm_up(planner, scenario.kind)
+    report("started")
     crash: BaseException | None = None
     result: Any = None
-    recorder.t0 = t0 = time.perf_counter()
-    c0 = time.process_time()
+    t0 = c0 = math.nan
     try:
+        # inside the hard limit (a hanging planner still times out), outside planning time
+        warm_up(planner, scenario.kind)
+        report("planning")
+        recorder.t0 = t0 = _clock()
+        c0 = _cpu()
         result = planner.plan(scenario, budget=task.budget, rng=rng, progress=recorder)
-    except (Exception, SystemExit) as exc:
+    except KeyboardInterrupt:
+        raise
+    except BaseException as exc:  # noqa: BLE001 - SystemExit included
         crash = exc
-    wall = time.perf_counter() - t0
-    cpu = time.process_time() - c0
-    modified = scenario_digest(scenario) != before
+    wall = _clock() - t0  # NaN when plan() never started
+    cpu = _cpu() - c0
+    modified = scenario_digest(scenario) != digest
     if modified:
         evict(task.scenario)
     common: dict[str, Any] = dict(
@@ -292,27 +330,21 @@ def execute_task(task: "RunTask", on_started: Callable[[], None] | None = None) 
         versions=versions, started_at=started_at,
     )
     if crash is not None:
-        return RunOutcome(task.run_key, message=describe_exception(crash), crash=True, **common)
+        return RunOutcome(task.run_key, message=_message(describe_exception(crash)), crash=True, **common)
     if not isinstance(result, PlanResult) or not isinstance(result.status, Status):
-        what = type(result).__name__ if not isinstance(result, PlanResult) else f"status {result.status!r}"
+        what = type(result).__name__ if not isinstance(result, PlanResult) else f"status {type(result.status)}"
         return RunOutcome(task.run_key, message=f"plan() returned {what}, not a PlanResult with a Status", crash=True,
                           **common)
     path, path_error = _as_array(result.path)
     times, times_error = _as_array(result.times)
-    try:
-        iterations, evaluations = int(result.iterations), int(result.evaluations)
-    except (TypeError, ValueError):
-        return RunOutcome(task.run_key, message="plan() returned non-integer iterations/evaluations", crash=True,
-                          **common)
     return RunOutcome(
         task.run_key,
         status=result.status,
         path=path,
         times=times,
         path_error=path_error or (f"times {times_error}" if times_error else ""),
-        iterations=iterations,
-        evaluations=evaluations,
-        message=str(result.message),
+        iterations=result.iterations,
+        evaluations=result.evaluations,
+        message=_message(result.message),
         **common,
     )
-

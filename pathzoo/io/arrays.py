@@ -16,12 +16,26 @@ NodataPolicy = Literal["error", "obstacle"]
 """What NaN or infinite elevation cells that no NODATA declaration explains mean."""
 
 
+_NPY_MAGIC = b"\x93NUMPY"
+
+
 def _open(path: Path) -> np.ndarray | np.lib.npyio.NpzFile:
     src = str(path)
     try:
-        return np.load(path, allow_pickle=False)
+        with path.open("rb") as fh:
+            head = fh.read(len(_NPY_MAGIC))
     except OSError as exc:
         raise InvalidScenarioError(f"cannot read: {exc.strerror or exc}", source=src) from None
+    if head[:1] == b"\x80":  # the opcode every pickle of protocol 2 or later starts with
+        raise InvalidScenarioError(
+            "holds pickled Python objects, which pathzoo never loads; save a plain numeric array", source=src
+        )
+    if head != _NPY_MAGIC and not zipfile.is_zipfile(path):
+        raise InvalidScenarioError("not a NumPy file (neither an .npy array nor an .npz zip archive)", source=src)
+    try:
+        return np.load(path, allow_pickle=False)
+    except (OSError, zipfile.BadZipFile) as exc:
+        raise InvalidScenarioError(f"cannot read: {getattr(exc, 'strerror', None) or exc}", source=src) from None
     except ValueError as exc:
         if "pickle" in str(exc):
             raise InvalidScenarioError(

@@ -20,6 +20,7 @@ from pathzoo.io.arrays import NodataPolicy, as_elevation, load_array, read_npz, 
 from pathzoo.io.geographic import GridUnits, detect_units, geographic_to_metric
 from pathzoo.io.geotiff import GEOTIFF_SUFFIXES, read_geotiff
 from pathzoo.io.provenance import file_record
+from pathzoo.io.text import read_lines
 
 __all__ = ["DEM", "read_asc", "read_elevation", "ASC_HEADER_KEYS"]
 
@@ -111,10 +112,7 @@ def read_asc(path: str | Path, *, units: GridUnits = "auto", nodata: NodataPolic
     """
     path = Path(path)
     src = str(path)
-    try:
-        lines = path.read_text().splitlines()
-    except (OSError, UnicodeDecodeError) as exc:
-        raise InvalidScenarioError(f"cannot read: {getattr(exc, 'strerror', None) or exc}", source=src) from None
+    lines = read_lines(path)
     header: dict[str, float] = {}
     i = 0
     while i < len(lines) and not _is_number(lines[i].split()[0] if lines[i].split() else "0"):

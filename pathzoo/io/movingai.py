@@ -16,6 +16,7 @@ from pathzoo.core.errors import InvalidScenarioError
 from pathzoo.core.scenario import Scenario
 from pathzoo.generators.checks import relocated
 from pathzoo.io.provenance import file_record
+from pathzoo.io.text import read_lines
 
 __all__ = ["read_map", "read_scen", "scenarios_from_scen", "ScenProblem", "PASSABLE", "BLOCKED"]
 
@@ -34,10 +35,7 @@ def read_map(path: str | Path) -> np.ndarray:
     """
     path = Path(path)
     src = str(path)
-    try:
-        lines = path.read_text().splitlines()
-    except OSError as exc:
-        raise InvalidScenarioError(f"cannot read: {exc.strerror}", source=src) from None
+    lines = read_lines(path)
     header: dict[str, str] = {}
     i = 0
     while i < len(lines) and lines[i].strip() != "map":
@@ -103,10 +101,7 @@ def read_scen(path: str | Path) -> list[ScenProblem]:
     """
     path = Path(path)
     src = str(path)
-    try:
-        lines = path.read_text().splitlines()
-    except OSError as exc:
-        raise InvalidScenarioError(f"cannot read: {exc.strerror}", source=src) from None
+    lines = read_lines(path)
     if not lines or not lines[0].startswith("version"):
         raise InvalidScenarioError("first line must be 'version 1'", source=src, field="version")
     problems: list[ScenProblem] = []

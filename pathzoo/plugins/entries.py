@@ -5,6 +5,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Callable
 
+from pathzoo.plugins.requirements import install_hint, missing_modules
+
 if TYPE_CHECKING:
     from pathzoo.core.scenario import Scenario
 
@@ -45,6 +47,19 @@ class PluginEntry:
     plugin: str
     distribution: str
     version: str
+
+    @property
+    def missing(self) -> dict[str, str]:
+        """Optional modules the object needs that are not installed, with their extras."""
+        return missing_modules(self.obj)
+
+    @property
+    def unavailable(self) -> str:
+        """Why the object cannot be used here (``needs pyswarms: pip install "pathzoo[evo]"``), or ``""``."""
+        missing = self.missing
+        if not missing:
+            return ""
+        return f"needs {', '.join(sorted(missing))}: {install_hint(missing, self.distribution)}"
 
 
 @dataclass(frozen=True)

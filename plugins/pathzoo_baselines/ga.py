@@ -112,6 +112,7 @@ class GaPlanner(BaselinePlanner):
     version: ClassVar[str] = "2"
     summary: ClassVar[str] = "Genetic algorithm (DEAP) over feasible variable-length cell paths (or waypoint/move encodings)"
     preload: ClassVar[tuple[str, ...]] = ("deap.algorithms", "deap.base", "deap.tools")
+    requires: ClassVar[Mapping[str, str]] = {"deap": "evo"}  # optional dependency -> extra
     params: ClassVar[Mapping[str, Param]] = {
         **GA_PARAMS,
         "cxpb": Param(0.9, "probability that a pair of parents is mated", low=0.0, high=1.0),

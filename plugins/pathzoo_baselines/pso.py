@@ -37,6 +37,7 @@ class PsoPlanner(BaselinePlanner):
     version: ClassVar[str] = "2"
     summary: ClassVar[str] = "Particle swarm optimisation (pyswarms) of K waypoints, decoded into a feasible path"
     preload: ClassVar[tuple[str, ...]] = ("pathzoo_baselines.pyswarms_backend",)
+    requires: ClassVar[Mapping[str, str]] = {"pyswarms": "evo"}  # optional dependency -> extra
     params: ClassVar[Mapping[str, Param]] = {
         **ENCODING_PARAMS,
         "particles": Param(50, "swarm size", low=2, high=100_000),

@@ -147,7 +147,8 @@ def test_leaderboard_of_unknown_metric(experiment, tmp_path, capsys):
     ("body", "message"),
     [
         (EXPERIMENT.format(name="x").replace("exact.astar", "exact.nope"), "field 'planner[0]': unknown planner 'exact.nope'"),
-        (EXPERIMENT.format(name="x").replace("seeds = 2", "seeds = 0"), "field 'experiment.seeds': seeds must be >= 1"),
+        (EXPERIMENT.format(name="x").replace("seeds = 2", "seeds = 0"),
+         "field 'experiment.seeds': seeds must be between 1 and 100000"),
         ("this is = not [toml", "not valid TOML"),
     ],
 )
@@ -163,7 +164,7 @@ def test_bad_experiment_files_are_one_line(tmp_path, capsys, body, message):
 def test_executor_options_reach_the_runner(experiment, tmp_path, capsys, monkeypatch):
     seen = {}
 
-    def fake_run_experiment(exp, *, db, jobs, executor, progress):
+    def fake_run_experiment(exp, *, db, jobs, executor, progress, retry=()):
         seen.update(db=db, jobs=jobs, executor=executor, progress=progress, seeds=exp.seeds)
         raise KeyboardInterrupt
 

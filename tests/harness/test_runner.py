@@ -58,6 +58,9 @@ def test_same_results_inline_process_and_dask(forged, small_scen, tmp_path):
         db = tmp_path / f"{name}.sqlite"
         frame = run_experiment(experiment(forged, small_scen), db=db, jobs=2, executor=executor, progress=False)
         results[name] = comparable(db, frame)
+    assert not results["inline"][0].isolated.any() and results["process"][0].isolated.all()
+    assert not results["dask"][0].isolated.any()  # processes=False: threads of the harness process
+    results = {name: (frame.drop(columns="isolated"), rest) for name, (frame, rest) in results.items()}
     base, (paths, hist) = results["inline"]
     assert len(base) == 2 * 4 * 2 and (base.status == "solved").all()
     assert base.iterations.nunique() > 1  # the planner really draws from its rng

@@ -128,7 +128,7 @@ def test_saboteurs_crash_or_time_out(runs, how, status, message):
 def test_modifying_the_scenario_is_invalid_and_does_not_leak(runs):
     frame, _ = runs
     r = row(frame, "test.sabotage", how="mutate")
-    assert r.status == "invalid" and r.invalid_reason == "planner modified the scenario's arrays"
+    assert r.status == "invalid" and r.invalid_reason == "planner modified or replaced part of the scenario"
     assert row(frame, "test.honest").status == "solved"
 
 

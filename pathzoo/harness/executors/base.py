@@ -27,6 +27,10 @@ class RunExecutor(abc.ABC):
     capacity: int = 1
     """How many runs execute at the same time."""
 
+    isolated: bool = False
+    """Whether every run executes in a process of its own that no other planner's code can have changed
+    (stored with each run; an executor that does not say so is taken as not isolated)."""
+
     @abc.abstractmethod
     def submit(self, task: "RunTask") -> "Future[RunOutcome]":
         """Schedule one run."""

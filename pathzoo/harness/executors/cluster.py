@@ -24,25 +24,41 @@ What it can and cannot guarantee:
   that worker has one thread less meanwhile. Runs that die with such a
   restarted worker, or with a worker killed by another run before they
   started, are submitted again (up to 3 attempts), not recorded as crashes;
-- CPU time is process CPU time of the worker, so it is only meaningful with
-  one thread per worker (the local cluster uses ``threads_per_worker=1``);
+- the hard limit counts from the *first* "started" event of the run, on the
+  harness's clock;
+- wall and CPU time are measured *inside* the worker process (with clock
+  functions bound when pathzoo was imported, so patching ``time`` does not
+  change them, but a planner that patches pathzoo itself could). Worker
+  events reach the client with a delay of their own, so the harness cannot
+  time ``plan()`` from outside as the process executor does: use that one
+  when timings must be forgery-proof. CPU time is only meaningful with one
+  thread per worker (the local cluster uses ``threads_per_worker=1``);
+- the outcome comes back as bytes (:mod:`pathzoo.harness.wire`) and is decoded
+  and bounded here, like the process executor's; Dask itself still unpickles
+  what its workers send, so a cluster must only run trusted worker processes;
+- a worker process in which a planner rebound module attributes
+  (:mod:`pathzoo.harness.tamper`) refuses every later task and is restarted
+  through its nanny; the refused tasks are submitted again;
 - file scenarios are read by path on the workers, so the files must be
   visible to them at the same path; Python scenario objects travel in the task.
 """
 
 from __future__ import annotations
 
+import logging
 import math
 import os
 import threading
 import time
 from concurrent.futures import CancelledError, Future
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any
 
 from pathzoo.core.errors import PathzooError
 from pathzoo.harness.executors.base import RunExecutor
-from pathzoo.harness.worker import RunOutcome, execute_task, utc_now
+from pathzoo.harness.tamper import ModuleFingerprint
+from pathzoo.harness.wire import decode_outcome, encode_outcome
+from pathzoo.harness.worker import SETUP_TIMEOUT_S, RunOutcome, ensure_plugins, execute_task, quiet_registry, utc_now
 
 if TYPE_CHECKING:
     from pathzoo.harness.specs import RunTask
@@ -52,14 +68,46 @@ __all__ = ["DaskExecutor"]
 _STARTED_TOPIC = "pathzoo-run-started"
 _TICK_S = 0.1
 _MAX_ATTEMPTS = 3
+_clock = time.perf_counter
+_process_state: dict[str, Any] = {}
 
 
-def _run_on_worker(task: "RunTask") -> RunOutcome:
-    """The Dask task: run one task and report the start of ``plan()`` as a worker event."""
+def _run_on_worker(task: "RunTask", check_tamper: bool) -> bytes:
+    """The Dask task: run one task, report "started" and "planning" as worker events, return the encoded outcome.
+
+    The first byte says whether the process is still clean (``D``), was
+    tainted by this run (``T``) or had been tainted before, so the task was
+    refused (``X``). Worker threads of the harness process (``check_tamper``
+    false) share it with the harness, so there is nothing to check.
+    """
     from distributed import get_worker
 
     worker = get_worker()
-    return execute_task(task, on_started=lambda: worker.log_event(_STARTED_TOPIC, [task.run_key, worker.address]))
+    if not check_tamper:
+        return b"D" + encode_outcome(execute_task(
+            task, lambda event: worker.log_event(_STARTED_TOPIC, [task.run_key, event, worker.address])))
+    if _process_state.get("tainted"):
+        return b"X" + worker.address.encode()
+    quiet_registry()  # discovered before the baseline: the registry is not the planner's change
+    ensure_plugins(task.plugin_modules)
+    fingerprint = _process_state.get("fingerprint") or ModuleFingerprint().update()
+    outcome = execute_task(task, lambda event: worker.log_event(_STARTED_TOPIC, [task.run_key, event, worker.address]))
+    changed = fingerprint.changed()
+    tainted = bool(changed)
+    if tainted:
+        logging.getLogger("pathzoo.harness").warning("worker %s tainted by run %s: %s", worker.address, task.run_key,
+                                                     ", ".join(changed))
+    _process_state.update(tainted=tainted, fingerprint=None if tainted else fingerprint.update())
+    return (b"T" if tainted else b"D") + encode_outcome(outcome)
+
+
+_RESENT_START_S = 120.0
+
+
+def _start_limit(run: "_Run") -> float:
+    """How long a run may wait for its start: the setup limit, or less for a run sent again after a worker restart
+    (such tasks are sometimes lost by the scheduler, which would otherwise hang the experiment)."""
+    return SETUP_TIMEOUT_S if run.attempts == 1 else _RESENT_START_S
 
 
 @dataclass
@@ -88,6 +136,8 @@ class DaskExecutor(RunExecutor):
         Local cluster only: worker processes (True) or threads in this process.
     """
 
+    isolated = True
+
     def __init__(self, jobs: int | None = None, *, address: str | None = None, processes: bool = True) -> None:
         try:
             import dask
@@ -96,7 +146,11 @@ class DaskExecutor(RunExecutor):
             raise PathzooError("the 'dask' executor needs dask.distributed: pip install 'pathzoo[dask]'") from None
         self._cluster = None
         if address:
-            self._client = Client(address)
+            try:
+                self._client = Client(address, timeout="20s")
+            except (OSError, ValueError, TypeError) as exc:  # TimeoutError is an OSError
+                raise PathzooError(f"cannot connect to the Dask scheduler at {address!r}: "
+                                   f"{' '.join(str(exc).split()) or type(exc).__name__}") from None
         else:
             # a run that kills its worker is a crash, not a task to retry elsewhere
             with dask.config.set({"distributed.scheduler.allowed-failures": 0}):
@@ -106,6 +160,7 @@ class DaskExecutor(RunExecutor):
                 )
             self._client = Client(self._cluster)
         self.capacity = max(1, sum(self._client.nthreads().values()))
+        self.isolated = bool(address) or processes  # worker threads in this process are not isolated
         self._lock = threading.Lock()
         self._runs: dict[str, _Run] = {}
         self._restarted: set[str] = set()
@@ -118,11 +173,12 @@ class DaskExecutor(RunExecutor):
         """Submit one run as a Dask task."""
         future: Future[RunOutcome] = Future()
         future.set_running_or_notify_cancel()
-        self._send(_Run(task, future, None, time.perf_counter()))
+        self._send(_Run(task, future, None, _clock()))
         return future
 
     def _send(self, run: _Run) -> None:
-        run.dask_future = self._client.submit(_run_on_worker, run.task, pure=False)
+        run.submitted = _clock()
+        run.dask_future = self._client.submit(_run_on_worker, run.task, self.isolated, pure=False)
         with self._lock:
             self._runs[run.task.run_key] = run
         run.dask_future.add_done_callback(lambda f, key=run.task.run_key: self._done(key, f))
@@ -141,13 +197,19 @@ class DaskExecutor(RunExecutor):
 
     # ------------------------------------------------------------- internals
     def _on_started(self, event: Any) -> None:
-        key, worker = event[1]  # (timestamp, [run_key, worker address])
+        try:
+            key, what, worker = event[1]  # (timestamp, [run_key, "started" or "planning", worker address])
+        except (TypeError, ValueError):
+            return
         with self._lock:
             run = self._runs.get(key)
-            if run is not None:
-                run.started = time.perf_counter()
+            if run is None:
+                return
+            if what == "started" and math.isnan(run.started):
+                run.started = _clock()
                 run.deadline = run.started + run.task.timeout_s
                 run.worker = worker
+
 
     def _done(self, key: str, dask_future: Any) -> None:
         with self._lock:
@@ -155,7 +217,28 @@ class DaskExecutor(RunExecutor):
         if run is None:  # already timed out, or shut down
             return
         try:
-            outcome = dask_future.result()
+            self._resolve(run, key, dask_future)
+        except BaseException as exc:  # noqa: BLE001 - a callback that raises would leave the run pending forever
+            if not run.future.done():
+                run.future.set_result(RunOutcome(key, crash=True, started_at=utc_now(),
+                                                 message=f"dask result could not be handled: {exc!r}"))
+
+    def _resolve(self, run: _Run, key: str, dask_future: Any) -> None:
+        try:
+            data = dask_future.result()
+            if not isinstance(data, bytes) or data[:1] not in (b"D", b"T", b"X"):
+                raise TypeError(f"the worker returned {type(data).__name__}, not an encoded outcome")
+            if data[:1] == b"X" and run.attempts < _MAX_ATTEMPTS:  # a tainted worker refused it: try again
+                self._restart(data[1:].decode("utf-8", "replace"))
+                run.attempts += 1
+                run.started, run.deadline, run.worker = math.nan, math.inf, ""
+                self._send(run)
+                return
+            if data[:1] == b"T":
+                self._restart(run.worker)
+            outcome = decode_outcome(data[1:], key) if data[:1] != b"X" else RunOutcome(
+                key, crash=True, message="refused by tainted workers on every attempt")
+            outcome = replace(outcome, started_at=outcome.started_at or utc_now())
         except CancelledError:
             outcome = RunOutcome(key, crash=True, message="dask task was cancelled", started_at=utc_now())
         except Exception as exc:
@@ -173,10 +256,17 @@ class DaskExecutor(RunExecutor):
 
     def _watch(self) -> None:
         while not self._closing.wait(_TICK_S):
-            now = time.perf_counter()
+            now = _clock()
             with self._lock:
                 expired = [key for key, run in self._runs.items() if now >= run.deadline]
                 runs = [self._runs.pop(key) for key in expired]
+                lost = [key for key, run in self._runs.items()
+                        if math.isnan(run.started) and now - run.submitted > _start_limit(run)]
+                unstarted = [self._runs.pop(key) for key in lost]
+            for run in unstarted:  # never reported a start: a lost task must not hang the experiment
+                run.future.set_result(RunOutcome(
+                    run.task.run_key, crash=True, started_at=utc_now(),
+                    message=f"the cluster did not start the run within {_start_limit(run):g} s"))
             for run in runs:
                 elapsed = now - run.started
                 run.future.set_result(RunOutcome(
@@ -184,6 +274,20 @@ class DaskExecutor(RunExecutor):
                     message=f"dask task abandoned after {elapsed:.3g} s",
                 ))
                 threading.Thread(target=self._restart_worker_of, args=(run.dask_future,), daemon=True).start()
+
+    def _restart(self, worker: str) -> None:
+        """Restart one worker through its nanny, in the background (best effort)."""
+        if not worker:
+            return
+        with self._lock:
+            self._restarted.add(worker)
+
+        def restart() -> None:
+            try:
+                self._client.restart_workers([worker], raise_for_error=False)
+            except Exception:  # noqa: BLE001 - a worker that cannot restart keeps refusing runs
+                pass
+        threading.Thread(target=restart, daemon=True).start()
 
     def _restart_worker_of(self, dask_future: Any) -> None:
         """Cancel the task and restart the worker running it, if the cluster allows (best effort)."""

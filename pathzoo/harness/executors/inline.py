@@ -1,8 +1,19 @@
-"""The inline executor: runs execute one after another in this process (for debugging and docs)."""
+"""The inline executor: runs execute one after another in this process (for debugging and docs only).
+
+Nothing is isolated here: the planner runs in the harness's own process, so
+it could patch the harness itself. The verdict is still given by the judge
+process (:mod:`pathzoo.harness.judge_worker`) on its own scenario, and wall
+and CPU times are read with clock functions bound when this module was
+imported, but every run is stored with ``isolated = False`` and shown so by
+the leaderboard and the report. Use ``process`` or ``dask`` for results.
+"""
 
 from __future__ import annotations
 
+import math
+import time
 from concurrent.futures import Future
+from dataclasses import replace
 from typing import TYPE_CHECKING
 
 from pathzoo.harness.executors.base import RunExecutor
@@ -14,21 +25,33 @@ if TYPE_CHECKING:
 
 __all__ = ["InlineExecutor"]
 
+_clock = time.perf_counter
+_cpu = time.process_time
+
 
 class InlineExecutor(RunExecutor):
-    """Run each task at submission, in the calling process.
+    """Run each task at submission, in the calling process (not isolated; see the module docstring).
 
-    There is no isolation: a planner that hangs hangs the experiment, one that
-    kills its process kills the harness, and the hard limit can only be applied
-    after the fact (a run that returns later than ``timeout_s`` is recorded as
-    ``timeout``). Results are identical to the other executors'.
+    A planner that hangs hangs the experiment, one that kills its process
+    kills the harness, and the hard limit can only be applied after the fact
+    (a run that returns later than ``timeout_s`` is recorded as ``timeout``).
+    Its results are otherwise identical to the other executors'.
     """
 
     capacity = 1
+    isolated = False
 
     def submit(self, task: "RunTask") -> "Future[RunOutcome]":
         """Run the task now and return a completed future."""
         future: Future[RunOutcome] = Future()
         future.set_running_or_notify_cancel()
-        future.set_result(execute_task(task))
+        marks = {"planning": (math.nan, math.nan)}
+
+        def report(event: str) -> None:
+            if event == "planning" and math.isnan(marks["planning"][0]):
+                marks["planning"] = (_clock(), _cpu())
+
+        outcome = execute_task(task, report, interruptible=True)
+        t0, c0 = marks["planning"]
+        future.set_result(replace(outcome, wall_time_s=_clock() - t0, cpu_time_s=_cpu() - c0))
         return future

@@ -2,42 +2,58 @@
 
 Each worker is a :mod:`multiprocessing` process with its own pipe. A monitor
 thread in the harness process hands tasks to idle workers and waits on the
-pipes and on the process sentinels at the same time, so it notices at once
+pipes and on the process sentinels at the same time. Workers run planner
+code, so nothing they send is unpickled: they send short tagged byte strings
+(read with a size limit) and the outcome in the format of
+:mod:`pathzoo.harness.wire`:
 
-- a result (``("done", outcome)``): the future resolves;
-- the start of ``plan()`` (``("started",)``, sent once the planner is built
-  and the scenario is loaded and its graph built): the hard limit
-  ``timeout_s`` counts from here. The setup before it has its own limit,
-  :data:`~pathzoo.harness.worker.SETUP_TIMEOUT_S` (a huge map can take a
-  while to load); a setup past it is recorded as ``crash``;
-- a worker past its hard limit: it gets ``SIGKILL`` (``Process.kill``), the
-  run resolves as ``timed_out`` and a fresh worker replaces it;
-- a worker that died (``os._exit``, segfault, ``SIGKILL`` from outside, out
-  of memory): the run resolves as ``crash`` with the exit code or signal, and
-  a fresh worker replaces it.
+- ``R`` (ready) once started, ``I`` (idle) after each run when the process
+  is still clean, ``T`` (tainted) when the run rebound module attributes
+  (:mod:`pathzoo.harness.tamper`): that worker is retired and a fresh one
+  started, so no planner's patch reaches another run;
+- ``S`` (started: planner built, scenario loaded and its graph built): the
+  hard limit ``timeout_s`` counts from the *first* ``S``; later ones are
+  ignored. The setup before it has its own limit,
+  :data:`~pathzoo.harness.worker.SETUP_TIMEOUT_S`, and is recorded as ``crash``;
+- ``P`` (planning, after the warm-up): the planning clock starts. Wall time is
+  the harness's ``time.perf_counter`` from ``P`` to the outcome, CPU time the
+  worker process's CPU time read from the outside (psutil) at the same two
+  moments, so a planner cannot change its own timings;
+- ``D`` + outcome: the future resolves;
+- a worker past its hard limit gets ``SIGKILL`` (``Process.kill``), the run
+  resolves as ``timed_out`` and a fresh worker replaces it; one that dies
+  (``os._exit``, segfault, out of memory) gives a ``crash`` with the exit code
+  or signal; one that sends anything else, or more than
+  :data:`~pathzoo.harness.wire.MAX_OUTCOME_BYTES`, is killed and its run is a ``crash``.
 
 Workers start with the ``forkserver`` method where available (``spawn``
-elsewhere): replacing a killed worker then costs a fork, not a new
-interpreter, and no state of the harness process leaks into workers. Workers
-ignore ``SIGINT``; Ctrl-C reaches the harness, which kills them on shutdown.
+elsewhere), without the main module: the preparation data that would make
+them re-import ``__main__`` is left out (:class:`~pathzoo.harness.launch.NoMainContext`), so a
+script without an ``if __name__ == "__main__":`` guard (or ``python - <
+script.py``) works; planner classes defined in ``__main__`` travel by value
+(:attr:`~pathzoo.harness.specs.RunTask.planner_class`). Replacing a worker
+costs a fork of the server, which has every entry-point plugin imported.
+Workers ignore ``SIGINT``; Ctrl-C reaches the harness, which kills them on shutdown.
 """
 
 from __future__ import annotations
 
 import math
-import multiprocessing as mp
 import os
 import signal
 import threading
 import time
 from collections import deque
 from concurrent.futures import Future
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from multiprocessing.connection import Connection, wait
 from typing import TYPE_CHECKING, Any
 
 from pathzoo.core.errors import PathzooError
 from pathzoo.harness.executors.base import RunExecutor
+from pathzoo.harness.launch import NoMainContext, default_start_method
+from pathzoo.harness.tamper import ModuleFingerprint
+from pathzoo.harness.wire import MAX_OUTCOME_BYTES, decode_outcome, encode_outcome
 from pathzoo.harness.worker import SETUP_TIMEOUT_S, RunOutcome, execute_task, utc_now
 
 if TYPE_CHECKING:
@@ -45,24 +61,31 @@ if TYPE_CHECKING:
 
     from pathzoo.harness.specs import RunTask
 
-__all__ = ["ProcessExecutor", "WorkerStartError", "default_start_method"]
+__all__ = ["ProcessExecutor", "WorkerStartError", "default_start_method", "process_cpu_time"]
 
-_PRELOAD = ["pathzoo.harness.executors.warmup"]
+_clock = time.perf_counter  # bound at import: a later patch of time.perf_counter does not reach the harness
 
 
 class WorkerStartError(PathzooError, RuntimeError):
     """A worker process died before it was ready: the harness cannot run anything."""
 
 
-def default_start_method() -> str:
-    """``forkserver`` where the platform has it, else ``spawn``."""
-    return "forkserver" if "forkserver" in mp.get_all_start_methods() else "spawn"
+def process_cpu_time(pid: int) -> float:
+    """User + system CPU seconds of a process, read from outside it (NaN when it is gone)."""
+    try:
+        import psutil
+
+        times = psutil.Process(pid).cpu_times()
+        return float(times.user + times.system)
+    except Exception:  # noqa: BLE001 - gone, or psutil unavailable
+        return math.nan
 
 
 def _worker_main(conn: Connection) -> None:
-    """Loop of one worker process: receive a task, run it, send the outcome; ``None`` stops."""
+    """Loop of one worker process: receive a task, run it, send the outcome and whether the process is clean."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
-    conn.send(("ready",))
+    fingerprint = ModuleFingerprint().update()
+    conn.send_bytes(b"R")
     while True:
         try:
             task = conn.recv()
@@ -70,14 +93,21 @@ def _worker_main(conn: Connection) -> None:
             return
         if task is None:
             return
-        outcome = execute_task(task, on_started=lambda: conn.send(("started",)))
+        outcome = execute_task(task, lambda event: conn.send_bytes(b"S" if event == "started" else b"P"))
         try:
-            conn.send(("done", outcome))
+            conn.send_bytes(b"D" + encode_outcome(outcome))
         except (EOFError, OSError):
             return
-        except Exception as exc:  # the outcome did not pickle
-            conn.send(("done", RunOutcome(task.run_key, crash=True, message=f"outcome could not be sent back: {exc!r}",
-                                          started_at=outcome.started_at)))
+        except Exception as exc:  # noqa: BLE001 - the outcome could not be encoded
+            conn.send_bytes(b"D" + encode_outcome(RunOutcome(
+                task.run_key, crash=True, message=f"outcome could not be sent back: {exc!r}",
+                started_at=outcome.started_at)))
+        changed = fingerprint.changed()
+        if changed:
+            conn.send_bytes(b"T" + ", ".join(changed).encode("utf-8", "replace")[:1000])
+            return
+        fingerprint.update()
+        conn.send_bytes(b"I")
 
 
 def describe_exit(exitcode: int | None) -> str:
@@ -96,13 +126,21 @@ def describe_exit(exitcode: int | None) -> str:
 class _Worker:
     process: "BaseProcess"
     conn: Connection
-    ready: bool = False
+    idle: bool = False
+    was_ready: bool = False
+    started_once: bool = False
     task: "RunTask | None" = None
     future: "Future[RunOutcome] | None" = None
     sent_at: float = math.nan
     started_at: str = ""
     deadline: float = math.inf
     in_setup: bool = False
+    plan_t0: float = math.nan
+    plan_c0: float = math.nan
+
+    @property
+    def listening(self) -> bool:
+        return self.task is not None or not self.idle
 
     def finish(self, outcome: RunOutcome) -> None:
         assert self.future is not None
@@ -119,14 +157,14 @@ class ProcessExecutor(RunExecutor):
     jobs : int, optional
         Number of workers (default: ``os.cpu_count()``).
     start_method : str, optional
-        :mod:`multiprocessing` start method (default :func:`default_start_method`).
+        ``"forkserver"`` or ``"spawn"`` (default :func:`default_start_method`).
     """
+
+    isolated = True
 
     def __init__(self, jobs: int | None = None, *, start_method: str | None = None) -> None:
         self.capacity = int(jobs or os.cpu_count() or 1)
-        self._ctx: Any = mp.get_context(start_method or default_start_method())
-        if self._ctx.get_start_method() == "forkserver":
-            self._ctx.set_forkserver_preload(_PRELOAD)
+        self._ctx: Any = NoMainContext(start_method or default_start_method())
         self._lock = threading.Lock()
         self._pending: deque[tuple[RunTask, Future[RunOutcome]]] = deque()
         self._workers: list[_Worker] = []
@@ -155,7 +193,7 @@ class ProcessExecutor(RunExecutor):
         self._wake_w.send(None)
         self._thread.join()
         for worker in self._workers:
-            if worker.task is not None:
+            if worker.task is not None or not worker.idle:
                 worker.process.kill()
             elif worker.process.is_alive():
                 try:
@@ -200,7 +238,7 @@ class ProcessExecutor(RunExecutor):
             with self._lock:
                 if not self._pending:
                     return
-                idle = next((w for w in self._workers if w.ready and w.task is None), None)
+                idle = next((w for w in self._workers if w.idle and w.task is None), None)
                 if idle is not None:
                     task, future = self._pending.popleft()
             if idle is None:  # start the missing workers; they say when they are ready
@@ -210,8 +248,9 @@ class ProcessExecutor(RunExecutor):
             if not future.set_running_or_notify_cancel():
                 continue
             worker = idle
-            worker.task, worker.future = task, future
-            worker.sent_at, worker.started_at = time.perf_counter(), utc_now()
+            worker.task, worker.future, worker.idle, worker.started_once = task, future, False, False
+            worker.sent_at, worker.started_at = _clock(), utc_now()
+            worker.plan_t0 = worker.plan_c0 = math.nan
             worker.deadline = worker.sent_at + max(task.timeout_s, SETUP_TIMEOUT_S)
             worker.in_setup = True
             try:
@@ -224,32 +263,58 @@ class ProcessExecutor(RunExecutor):
             except Exception as exc:  # the task did not pickle
                 worker.finish(RunOutcome(task.run_key, crash=True, message=f"task could not be sent: {exc!r}",
                                          started_at=worker.started_at))
+                worker.idle = True
+
+    def _timed(self, worker: _Worker, outcome: RunOutcome) -> RunOutcome:
+        """The outcome with the harness's own wall and CPU times of ``plan()`` (NaN when it never started)."""
+        wall = _clock() - worker.plan_t0
+        cpu = process_cpu_time(worker.process.pid) - worker.plan_c0
+        return replace(outcome, wall_time_s=wall, cpu_time_s=cpu, started_at=worker.started_at)
+
+    def _violation(self, worker: _Worker, what: str) -> None:
+        if worker.task is not None:
+            worker.finish(RunOutcome(worker.task.run_key, crash=True, started_at=worker.started_at,
+                                     message=f"the worker broke the protocol ({what}) and was killed"))
+        self._retire(worker)
 
     def _receive(self, worker: _Worker) -> None:
-        while (worker.task is not None or not worker.ready) and worker.conn.poll():
+        while worker.listening and worker.conn.poll():
             try:
-                message = worker.conn.recv()
-            except (EOFError, OSError):
-                return  # the sentinel reports the death
-            if message[0] == "ready":
-                worker.ready = True
-            elif message[0] == "started" and worker.task is not None:
-                worker.sent_at = time.perf_counter()
+                message = worker.conn.recv_bytes(MAX_OUTCOME_BYTES + 1)
+            except (EOFError, OSError) as exc:
+                if isinstance(exc, OSError) and worker.process.is_alive():  # over the size limit
+                    self._violation(worker, "a message over the size limit")
+                return  # else the sentinel reports the death
+            tag, body = message[:1], message[1:]
+            if tag == b"R" and not worker.was_ready:
+                worker.idle = worker.was_ready = True
+            elif tag == b"I" and worker.task is None:
+                worker.idle = True
+            elif tag == b"T" and worker.task is None:
+                self._retire(worker)  # a planner patched modules in it: never reuse it
+                return
+            elif tag == b"S" and worker.task is not None and not worker.started_once:
+                worker.started_once, worker.in_setup = True, False
+                worker.sent_at = _clock()
                 worker.deadline = worker.sent_at + worker.task.timeout_s
-                worker.in_setup = False
+            elif tag == b"P" and worker.task is not None and worker.started_once and math.isnan(worker.plan_t0):
+                worker.plan_t0, worker.plan_c0 = _clock(), process_cpu_time(worker.process.pid)
+            elif tag == b"D" and worker.task is not None:
+                worker.finish(self._timed(worker, decode_outcome(body, worker.task.run_key)))
+            elif tag in (b"S", b"P") and worker.task is not None:
+                continue  # repeated announcements change nothing
             else:
-                worker.finish(message[1])
+                self._violation(worker, f"unexpected message {bytes(message[:8])!r}")
+                return
 
     def _died(self, worker: _Worker) -> None:
         worker.process.join()
-        if not worker.ready:
+        if not worker.was_ready:
             raise WorkerStartError(
-                f"a pathzoo worker process failed to start ({describe_exit(worker.process.exitcode)}); "
-                "a script that calls pathzoo.run must do so under `if __name__ == \"__main__\":` "
-                "(workers import the main module), or use executor='inline'"
+                f"a pathzoo worker process failed to start ({describe_exit(worker.process.exitcode)})"
             )
         if worker.task is not None:
-            elapsed = time.perf_counter() - worker.sent_at
+            elapsed = _clock() - worker.sent_at
             worker.finish(RunOutcome(
                 worker.task.run_key, crash=True, wall_time_s=elapsed, started_at=worker.started_at,
                 message=f"worker process died ({describe_exit(worker.process.exitcode)}) after {elapsed:.3g} s",
@@ -258,7 +323,7 @@ class ProcessExecutor(RunExecutor):
 
     def _kill(self, worker: _Worker) -> None:
         assert worker.task is not None
-        elapsed = time.perf_counter() - worker.sent_at
+        elapsed = _clock() - worker.sent_at
         worker.process.kill()
         if worker.in_setup:  # not the planner's time: its plan() never started
             outcome = RunOutcome(worker.task.run_key, crash=True, started_at=worker.started_at,
@@ -276,9 +341,9 @@ class ProcessExecutor(RunExecutor):
                     if self._closing:
                         return
                 self._dispatch()
-                listening = [w for w in self._workers if w.task is not None or not w.ready]
+                listening = [w for w in self._workers if w.listening]
                 nearest = min((w.deadline for w in listening), default=math.inf)
-                timeout = None if math.isinf(nearest) else max(0.0, nearest - time.perf_counter())
+                timeout = None if math.isinf(nearest) else max(0.0, nearest - _clock())
                 ready = set(wait(
                     [self._wake_r, *(w.conn for w in listening), *(w.process.sentinel for w in self._workers)], timeout
                 ))
@@ -286,13 +351,14 @@ class ProcessExecutor(RunExecutor):
                     while self._wake_r.poll():
                         self._wake_r.recv()
                 for worker in listening:
-                    if worker.conn in ready:
+                    if worker.conn in ready and worker in self._workers:
                         self._receive(worker)
                 for worker in list(self._workers):
                     if worker.process.sentinel in ready:
                         self._receive(worker)  # a result sent just before exiting still counts
-                        self._died(worker)
-                now = time.perf_counter()
+                        if worker in self._workers:
+                            self._died(worker)
+                now = _clock()
                 for worker in list(self._workers):
                     if worker.task is not None and now >= worker.deadline:
                         self._kill(worker)

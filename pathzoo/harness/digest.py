@@ -1,0 +1,77 @@
+"""A hash of everything a scenario holds, to notice a planner that changed or replaced any part of it.
+
+:func:`scenario_digest` walks the scenario's fields *and* its cached shared
+geometry (``blocked``, ``graph``, ``clearance``, and anything else stored on
+the instance): arrays by dtype, shape and bytes, dataclasses (vehicle, rules,
+moving obstacles, the graph) field by field, and every object's type, so a
+planner that swaps ``scenario.graph`` for a look-alike, drops
+``moving_obstacles`` or replaces ``vehicle`` changes the digest just as one
+that writes into ``occupancy``.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import functools
+import hashlib
+from typing import Any
+
+import numpy as np
+
+__all__ = ["scenario_digest", "warm"]
+
+_MAX_DEPTH = 6
+
+
+def _feed(h: Any, value: Any, depth: int = 0) -> None:
+    kind = type(value)
+    h.update(f"<{kind.__module__}.{kind.__qualname__}>".encode())
+    if depth > _MAX_DEPTH:
+        h.update(repr(id(value)).encode())
+    elif isinstance(value, np.ndarray):
+        h.update(f"{value.dtype.str}{value.shape}".encode())
+        h.update(np.ascontiguousarray(value).view(np.uint8).data if value.size else b"")
+    elif dataclasses.is_dataclass(value) and not isinstance(value, type):
+        names = [f.name for f in dataclasses.fields(value)]
+        extra = sorted(k for k in getattr(value, "__dict__", {}) if k not in names)
+        for name in (*names, *extra):
+            h.update(name.encode())
+            _feed(h, getattr(value, name), depth + 1)
+    elif isinstance(value, (list, tuple)):
+        h.update(str(len(value)).encode())
+        for item in value:
+            _feed(h, item, depth + 1)
+    elif isinstance(value, (dict, frozenset, set)) or hasattr(value, "items"):
+        items = list(value.items()) if hasattr(value, "items") else [(v, None) for v in value]
+        h.update(str(len(items)).encode())
+        for key, item in sorted(items, key=lambda kv: repr(kv[0])):
+            _feed(h, key, depth + 1)
+            _feed(h, item, depth + 1)
+    else:
+        h.update(repr(value).encode("utf-8", "replace"))
+
+
+def _cached_properties(obj: Any) -> list[str]:
+    return [name for klass in type(obj).__mro__ for name, attr in vars(klass).items()
+            if isinstance(attr, functools.cached_property)]
+
+
+def warm(scenario: Any) -> Any:
+    """Compute every cached property of the scenario and of its graph now (outside any timed region).
+
+    The shared geometry is then built once per process, and a digest taken
+    after a run differs from the one taken at load only if something was
+    changed, not merely computed.
+    """
+    for name in _cached_properties(scenario):
+        getattr(scenario, name)
+    for name in _cached_properties(scenario.graph):
+        getattr(scenario.graph, name)
+    return scenario
+
+
+def scenario_digest(scenario: Any) -> str:
+    """Hex digest of a scenario's fields and of the shared geometry cached on it (see the module docstring)."""
+    h = hashlib.blake2b(digest_size=16)
+    _feed(h, scenario)
+    return h.hexdigest()

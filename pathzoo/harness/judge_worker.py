@@ -1,0 +1,177 @@
+"""The judge's own process: verdict and metrics of each run, where no planner code ever ran, under a time limit.
+
+:class:`JudgeWorker` starts one process (like the workers, without the
+parent's ``__main__``: :mod:`pathzoo.harness.launch`) that loads every
+scenario itself, from its reference (registry id, file, or the pickled
+object the parent holds), builds its geometry, and keeps a small LRU of
+them. For each run the parent sends the task and the bounded outcome; the
+judge process loads the scenario (limit
+:data:`~pathzoo.harness.worker.SETUP_TIMEOUT_S`, like a worker's setup), then
+applies :func:`pathzoo.harness.judge.judge` (limit ``judge_timeout_s``,
+default :data:`JUDGE_TIMEOUT_S`). A judge past its limit is killed and
+replaced, and the run is stored as ``invalid`` with the reason; so is a run
+whose judging raised (``MemoryError`` included) or killed the judge process.
+The experiment goes on either way.
+
+Because the judge process is not the planner's, nothing a planner does to
+its own process (monkeypatching the validator, changing or replacing parts
+of its scenario, patching the clock) can reach a verdict, under every
+executor, ``inline`` included (though inline the planner shares the
+harness's own process, see :class:`~pathzoo.harness.executors.InlineExecutor`).
+"""
+
+from __future__ import annotations
+
+import signal
+import time
+import warnings
+from multiprocessing.connection import Connection, wait
+from typing import TYPE_CHECKING, Any
+
+from pathzoo.harness.launch import NoMainContext, default_start_method
+from pathzoo.harness.worker import SETUP_TIMEOUT_S, describe_exception, ensure_plugins, load_cached, quiet_registry
+
+if TYPE_CHECKING:
+    from multiprocessing.process import BaseProcess
+
+    from pathzoo.core.results import RunRecord
+    from pathzoo.harness.specs import RunTask
+    from pathzoo.harness.worker import RunOutcome
+
+__all__ = ["JudgeWorker", "JUDGE_TIMEOUT_S"]
+
+JUDGE_TIMEOUT_S = 60.0
+"""Default limit on judging one run (validation and every metric), scenario loading excluded."""
+
+_clock = time.perf_counter
+
+
+def _judge_main(conn: Connection) -> None:
+    """Loop of the judge process: load the scenario, say so, judge, send the record (or the error)."""
+    from pathzoo.harness.judge import judge
+
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    conn.send(("ready",))
+    while True:
+        try:
+            request = conn.recv()
+        except (EOFError, OSError):
+            return
+        if request is None:
+            return
+        task, outcome, isolated = request
+        try:
+            ensure_plugins(task.plugin_modules)
+            scenario, _ = load_cached(task.scenario)
+            metrics = [entry.obj() for entry in quiet_registry().metrics.values()]
+            conn.send(("loaded",))
+            with warnings.catch_warnings(record=True) as caught:
+                warnings.simplefilter("always")
+                record = judge(task, outcome, scenario, metrics, isolated=isolated)
+            conn.send(("done", record, [str(w.message) for w in caught if issubclass(w.category, RuntimeWarning)]))
+        except Exception as exc:  # noqa: BLE001 - MemoryError included: the run is invalid, the judge goes on
+            conn.send(("error", describe_exception(exc).splitlines()[0]))
+
+
+class JudgeWorker:
+    """One judge process, restarted when it overruns or dies (see the module docstring).
+
+    Parameters
+    ----------
+    judge_timeout_s : float
+        Limit on judging one run once its scenario is loaded.
+    start_method : str, optional
+        ``"forkserver"`` or ``"spawn"``.
+    """
+
+    def __init__(self, judge_timeout_s: float = JUDGE_TIMEOUT_S, *, start_method: str | None = None) -> None:
+        self.judge_timeout_s = float(judge_timeout_s)
+        self._ctx: Any = NoMainContext(start_method or default_start_method())
+        self._process: BaseProcess | None = None
+        self._conn: Connection | None = None
+
+    def __enter__(self) -> "JudgeWorker":
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+    def _start(self) -> Connection:
+        if self._conn is None:
+            parent, child = self._ctx.Pipe(duplex=True)
+            self._process = self._ctx.Process(target=_judge_main, args=(child,), name="pathzoo-judge")
+            self._process.start()
+            child.close()
+            self._conn = parent
+            if self._receive(SETUP_TIMEOUT_S) != ("ready",):
+                self._stop()
+                raise RuntimeError("the judge process failed to start")
+        return self._conn
+
+    def _stop(self) -> None:
+        if self._process is not None and self._process.pid is not None:
+            self._process.kill()
+            self._process.join()
+        if self._conn is not None:
+            self._conn.close()
+        self._process, self._conn = None, None
+
+    def close(self) -> None:
+        """Stop the judge process."""
+        if self._conn is not None and self._process is not None:
+            try:
+                self._conn.send(None)
+                self._process.join(2.0)
+            except OSError:
+                pass
+        self._stop()
+
+    def _receive(self, limit_s: float) -> Any:
+        """The next message, ``"timeout"`` past ``limit_s`` or ``"died"``."""
+        assert self._conn is not None and self._process is not None
+        deadline = _clock() + limit_s
+        while True:
+            left = deadline - _clock()
+            if left <= 0:
+                return "timeout"
+            ready = wait([self._conn, self._process.sentinel], left)
+            if self._conn in ready:
+                try:
+                    return self._conn.recv()
+                except (EOFError, OSError):
+                    return "died"
+            if self._process.sentinel in ready:
+                return "died"
+
+    def judge(self, task: "RunTask", outcome: "RunOutcome", *, isolated: bool = True) -> "RunRecord":
+        """The stored record of one run: judged in the judge process, or ``invalid`` when it could not be."""
+        from pathzoo.harness.judge import unjudged
+
+        conn = self._start()
+        try:
+            conn.send((task, outcome, isolated))
+        except Exception as exc:  # noqa: BLE001 - e.g. a scenario object that does not pickle
+            return unjudged(task, outcome, f"the run could not be sent to the judge ({type(exc).__name__})",
+                            isolated=isolated)
+        reply = self._receive(SETUP_TIMEOUT_S)
+        limit = SETUP_TIMEOUT_S
+        if reply == ("loaded",):
+            reply, limit = self._receive(self.judge_timeout_s), self.judge_timeout_s
+        if isinstance(reply, tuple) and reply[0] == "done":
+            for text in reply[2]:  # e.g. a metric that failed: warn here, where the caller can see it
+                warnings.warn(text, RuntimeWarning, stacklevel=2)
+            return reply[1]
+        if isinstance(reply, tuple) and reply[0] == "error":
+            return unjudged(task, outcome, f"the run could not be judged: {reply[1]}", isolated=isolated)
+        if reply == "timeout":
+            what = "judging" if limit == self.judge_timeout_s else "loading the scenario for judging"
+            reason = f"{what} took over {limit:g} s"
+        elif reply == "died":
+            assert self._process is not None
+            self._process.join(1.0)
+            code = self._process.exitcode
+            reason = f"the judge process died while judging this run (exit code {code})"
+        else:
+            reason = f"the judge sent {reply!r}"
+        self._stop()  # overran, died or confused: a fresh judge for the next run
+        return unjudged(task, outcome, reason, isolated=isolated)

@@ -1,0 +1,240 @@
+"""Hostile planners for the harness tests: each attacks the judge, the clock, the store or later runs.
+
+A plugin module (registered by hand in the test process, shipped to workers
+by module name). Every planner does its attack and then claims ``SOLVED``
+with a path that is *not* valid, unless its docstring says otherwise, so a
+harness that is fooled stores ``solved``.
+"""
+
+from __future__ import annotations
+
+import gc
+import math
+import time
+from typing import Sequence
+
+import numpy as np
+
+from pathzoo import Budget, MovingObstacle, Param, Planner, PlanResult, Scenario, ScenarioEntry, Status, hookimpl
+from pathzoo.core.planner import ProgressCallback
+
+_REAL_CLOCK = time.perf_counter
+KINDS = frozenset({"grid2d", "terrain", "air3d", "dynamic"})
+
+
+def wall_scenario() -> Scenario:
+    """6 x 6 cells of 1 m, a wall in column 3 with a gap in row 0; start and goal on the bottom row."""
+    occ = np.zeros((6, 6), bool)
+    occ[1:, 3] = True
+    return Scenario(id="hostile.wall", kind="grid2d", occupancy=occ, cell_size=1.0, start=(0.5, 5.5), goal=(5.5, 5.5))
+
+
+def crossing_scenario() -> Scenario:
+    """An empty 8 x 3 street; an obstacle of radius 0.9 m parked on the straight line from start to goal."""
+    return Scenario(id="hostile.crossing", kind="dynamic", occupancy=np.zeros((3, 8), bool), cell_size=1.0,
+                    start=(0.5, 1.5), goal=(7.5, 1.5), moving_obstacles=(MovingObstacle(0.9, [(4.0, 1.5)], 0.0),))
+
+
+def straight(scenario: Scenario) -> np.ndarray:
+    """Start to goal in a straight line: through the wall, or through the parked obstacle."""
+    return np.array([scenario.start, scenario.goal], dtype=float)
+
+
+class _Hostile(Planner):
+    kinds = KINDS
+    summary = "hostile test planner"
+
+    def plan(self, scenario: Scenario, *, budget: Budget, rng: np.random.Generator,
+             progress: ProgressCallback | None = None) -> PlanResult:
+        return self.attack(scenario) or PlanResult(Status.SOLVED, path=straight(scenario), iterations=1, evaluations=1)
+
+    def attack(self, scenario: Scenario) -> PlanResult | None:
+        raise NotImplementedError
+
+
+class PatchValidator(_Hostile):
+    """Replaces the validator everywhere it can reach, then claims a path through the wall."""
+
+    id = "hostile.patch_validator"
+
+    def attack(self, scenario: Scenario) -> None:
+        import pathzoo.harness.judge as judge
+        import pathzoo.rules as rules
+        import pathzoo.rules.validation as validation
+
+        class Fine:
+            ok, reason = True, ""
+
+            def __bool__(self) -> bool:
+                return True
+
+        judge.validate_path = rules.validate_path = validation.validate_path = lambda *a, **k: Fine()
+
+
+class DropObstacles(_Hostile):
+    """Removes the moving obstacles, replaces the vehicle, then drives through the obstacle."""
+
+    id = "hostile.drop_obstacles"
+
+    def attack(self, scenario: Scenario) -> None:
+        from pathzoo import VehicleModel
+
+        object.__setattr__(scenario, "moving_obstacles", ())
+        object.__setattr__(scenario, "vehicle", VehicleModel(cruise_speed=1000.0))
+
+
+class ReplaceGraph(_Hostile):
+    """Swaps ``scenario.graph`` for the graph of an empty map (so later grid planners cut through walls)."""
+
+    id = "hostile.replace_graph"
+
+    def attack(self, scenario: Scenario) -> None:
+        from pathzoo.grid.graph import build_graph
+
+        empty = Scenario(id=scenario.id, kind=scenario.kind, occupancy=np.zeros_like(scenario.occupancy),
+                         cell_size=scenario.cell_size, start=scenario.start, goal=scenario.goal)
+        scenario.__dict__["graph"] = build_graph(empty)
+        scenario.__dict__["blocked"] = empty.blocked
+
+
+class PatchClass(_Hostile):
+    """Monkeypatches ``Scenario.graph`` on the class: every later planner in this process sees an empty map."""
+
+    id = "hostile.patch_class"
+
+    def attack(self, scenario: Scenario) -> None:
+        from pathzoo.grid.graph import build_graph
+
+        empty = Scenario(id=scenario.id, kind=scenario.kind, occupancy=np.zeros_like(scenario.occupancy),
+                         cell_size=scenario.cell_size, start=scenario.start, goal=scenario.goal)
+        fake = build_graph(empty)
+        Scenario.graph = property(lambda self: fake)  # type: ignore[assignment, method-assign]
+
+
+class PatchClock(_Hostile):
+    """Freezes ``time.perf_counter`` and ``time.process_time``, then works for 0.4 s (an honest answer)."""
+
+    id = "hostile.patch_clock"
+
+    def attack(self, scenario: Scenario) -> PlanResult:
+        from pathzoo.grid.reference import reference_path
+
+        real = _REAL_CLOCK
+        end = real() + 0.4
+        while real() < end:
+            pass
+        time.perf_counter = lambda: 1.0  # type: ignore[assignment]
+        time.process_time = lambda: 1.0  # type: ignore[assignment]
+        ref = reference_path(scenario)
+        return PlanResult(Status.SOLVED, path=ref.path.copy(), iterations=1, evaluations=1)
+
+
+class SpamStarted(_Hostile):
+    """Finds its worker's pipe and keeps announcing a fresh start, so the hard limit never comes."""
+
+    id = "hostile.spam_started"
+
+    def attack(self, scenario: Scenario) -> None:
+        from multiprocessing.connection import Connection
+
+        conns = [o for o in gc.get_objects() if isinstance(o, Connection)]
+        while True:
+            for conn in conns:
+                try:
+                    conn.send_bytes(b"S")
+                except Exception:  # noqa: BLE001
+                    pass
+            time.sleep(0.05)
+
+
+class Counts(_Hostile):
+    """Reports absurd counts (``how``): ``2**70`` iterations, NaN evaluations, or a string."""
+
+    id = "hostile.counts"
+    params = {"how": Param("huge", "which lie", choices=("huge", "nan", "text", "negative"))}
+
+    def attack(self, scenario: Scenario) -> PlanResult:
+        from pathzoo.grid.reference import reference_path
+
+        value = {"huge": 2**70, "nan": math.nan, "text": "many", "negative": -5}[self.how]
+        path = reference_path(scenario).path.copy()
+        return PlanResult(Status.SOLVED, path=path, iterations=value, evaluations=value)  # type: ignore[arg-type]
+
+
+class Message(_Hostile):
+    """A message whose ``__str__`` raises ``SystemExit`` (``exit``) or that is huge with lone surrogates (``huge``)."""
+
+    id = "hostile.message"
+    params = {"how": Param("exit", "which message", choices=("exit", "huge"))}
+
+    def attack(self, scenario: Scenario) -> PlanResult:
+        class Exits:
+            def __str__(self) -> str:
+                raise SystemExit(0)
+
+        message = Exits() if self.how == "exit" else "\ud800" * 10 + "x" * 10_000_000
+        return PlanResult(Status.FAILED, message=message)  # type: ignore[arg-type]
+
+
+class ExitAlways(_Hostile):
+    """Raises ``SystemExit`` on every call, the untimed warm-up included, or ``KeyboardInterrupt`` (``how``)."""
+
+    id = "hostile.exit_always"
+    params = {"how": Param("exit", "what to raise", choices=("exit", "base"))}
+
+    def attack(self, scenario: Scenario) -> None:
+        if self.how == "exit":
+            raise SystemExit(0)
+
+        class Odd(BaseException):
+            pass
+
+        raise Odd("not an Exception")
+
+
+class HugePath(_Hostile):
+    """A path of ``points`` points zig-zagging in the free part of the wall scenario (claimed solved)."""
+
+    id = "hostile.huge_path"
+    params = {"points": Param(2_000_000, "number of points", low=2)}
+
+    def attack(self, scenario: Scenario) -> PlanResult:
+        n = self.points
+        path = np.empty((n, 2))
+        path[:, 0] = 0.5 + (np.arange(n) % 2) * 0.5
+        path[:, 1] = 5.5
+        path[-1] = scenario.goal
+        return PlanResult(Status.SOLVED, path=path)
+
+
+class Flaky(_Hostile):
+    """Honest, but crashes while the file ``marker`` exists (a missing dependency, fixed later)."""
+
+    id = "hostile.flaky"
+    params = {"marker": Param("", "file whose existence makes it crash")}
+
+    def attack(self, scenario: Scenario) -> PlanResult:
+        import os
+
+        from pathzoo.grid.reference import reference_path
+
+        if os.path.exists(self.marker):
+            raise ImportError("No module named 'pyswarms'")
+        return PlanResult(Status.SOLVED, path=reference_path(scenario).path.copy(), iterations=1, evaluations=1)
+
+
+PLANNERS = [PatchValidator, DropObstacles, ReplaceGraph, PatchClass, PatchClock, SpamStarted, Counts, Message,
+            ExitAlways, HugePath, Flaky]
+
+
+@hookimpl
+def pathzoo_register_planners() -> Sequence[type[Planner]]:
+    return PLANNERS
+
+
+@hookimpl
+def pathzoo_register_scenarios() -> Sequence[ScenarioEntry]:
+    return [
+        ScenarioEntry("hostile.wall", "wall with a gap", wall_scenario, "grid2d"),
+        ScenarioEntry("hostile.crossing", "obstacle parked on the straight line", crossing_scenario, "dynamic"),
+    ]
