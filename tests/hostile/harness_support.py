@@ -10,15 +10,13 @@ import pytest
 
 import harness_hostile
 import pathzoo
-import pathzoo.harness.judge
-import pathzoo.harness.validation
 from pathzoo.core.scenario import Scenario
 from pathzoo.harness import Experiment
 from pathzoo.plugins.manager import get_registry, reset_registry
 
 PLUGIN_NAME = "hostile-harness-test"
 
-_PATCHABLE = [(pathzoo.harness.judge, "validate_path"), (pathzoo.harness.validation, "validate_path"),
+_PATCHABLE = [*((m, "validate_path") for m in harness_hostile.validator_modules()),
               (time, "perf_counter"), (time, "process_time"), (Scenario, "graph")]
 
 
