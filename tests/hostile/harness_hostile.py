@@ -35,6 +35,21 @@ def crossing_scenario() -> Scenario:
                     start=(0.5, 1.5), goal=(7.5, 1.5), moving_obstacles=(MovingObstacle(0.9, [(4.0, 1.5)], 0.0),))
 
 
+def validator_modules() -> list:
+    """Every module holding a ``validate_path``: the judge's import of it and the rules layer that defines it."""
+    import importlib
+
+    out = []
+    for name in ("pathzoo.harness.judge", "pathzoo.rules", "pathzoo.rules.validation"):
+        try:
+            module = importlib.import_module(name)
+        except ImportError:
+            continue
+        if hasattr(module, "validate_path"):
+            out.append(module)
+    return out
+
+
 def straight(scenario: Scenario) -> np.ndarray:
     """Start to goal in a straight line: through the wall, or through the parked obstacle."""
     return np.array([scenario.start, scenario.goal], dtype=float)
@@ -58,17 +73,14 @@ class PatchValidator(_Hostile):
     id = "hostile.patch_validator"
 
     def attack(self, scenario: Scenario) -> None:
-        import pathzoo.harness.judge as judge
-        import pathzoo.rules as rules
-        import pathzoo.rules.validation as validation
-
         class Fine:
             ok, reason = True, ""
 
             def __bool__(self) -> bool:
                 return True
 
-        judge.validate_path = rules.validate_path = validation.validate_path = lambda *a, **k: Fine()
+        for module in validator_modules():
+            module.validate_path = lambda *a, **k: Fine()
 
 
 class DropObstacles(_Hostile):

@@ -10,17 +10,13 @@ import pytest
 
 import harness_hostile
 import pathzoo
-import pathzoo.harness.judge
-import pathzoo.rules
-import pathzoo.rules.validation
 from pathzoo.core.scenario import Scenario
 from pathzoo.harness import Experiment
 from pathzoo.plugins.manager import get_registry, reset_registry
 
 PLUGIN_NAME = "hostile-harness-test"
 
-_PATCHABLE = [(pathzoo.harness.judge, "validate_path"), (pathzoo.rules, "validate_path"),
-              (pathzoo.rules.validation, "validate_path"),
+_PATCHABLE = [*((m, "validate_path") for m in harness_hostile.validator_modules()),
               (time, "perf_counter"), (time, "process_time"), (Scenario, "graph")]
 
 
