@@ -252,6 +252,11 @@ def render_report(
     page.nav(sections)
 
     page.heading(2, "Runs", "outcomes")
+    if "isolated" in df.columns and not df["isolated"].astype(bool).all():
+        n = int((~df["isolated"].astype(bool)).sum())
+        page.note(f"{n} of {len(df)} runs ran inline, in the harness's own process: not isolated from each other "
+                  "or from the harness (for debugging only); rerun with the process or Dask executor for results.",
+                  "warn")
     page.table(render_table(_outcomes(df), "html", title="Run outcomes per planner"))
     planners = df.drop_duplicates("config")[["config", "planner", "planner_version", "params"]].sort_values("config")
     page.begin("details", "Planner parameters")

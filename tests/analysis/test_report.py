@@ -71,6 +71,13 @@ def test_report_from_frames_is_self_contained():
     assert "Leaderboard: length [m], lower is better" in doc and "w/t/l of a" in doc
 
 
+def test_inline_runs_are_flagged_as_not_isolated():
+    runs = make_runs({"s1": {"a": [1.0, 1.1], "b": [2.0, 2.1]}})
+    assert "not isolated" not in render_report(runs.assign(isolated=True)).html("t")
+    doc = render_report(runs.assign(isolated=[True, False, True, True])).html("t")
+    assert "1 of 4 runs ran inline" in doc and "not isolated" in doc
+
+
 def test_power_warning_and_empty_runs():
     few = make_runs({"s1": {"a": [1.0, 1.1, 1.2], "b": [2.0, 2.1, 2.2]},
                      "s2": {"a": [1.0, 1.1, 1.2], "b": [2.0, 2.1, 2.2]}})

@@ -213,9 +213,10 @@ class DaskExecutor(RunExecutor):
 
     def _done(self, key: str, dask_future: Any) -> None:
         with self._lock:
-            run = self._runs.pop(key, None)
-        if run is None:  # already timed out, or shut down
-            return
+            run = self._runs.get(key)
+            if run is None or run.dask_future is not dask_future:  # timed out, shut down, or sent again since
+                return
+            del self._runs[key]
         try:
             self._resolve(run, key, dask_future)
         except BaseException as exc:  # noqa: BLE001 - a callback that raises would leave the run pending forever
@@ -283,11 +284,30 @@ class DaskExecutor(RunExecutor):
             self._restarted.add(worker)
 
         def restart() -> None:
+            before = _clock()
             try:
                 self._client.restart_workers([worker], raise_for_error=False)
             except Exception:  # noqa: BLE001 - a worker that cannot restart keeps refusing runs
                 pass
+            self._resend_unstarted(before)
         threading.Thread(target=restart, daemon=True).start()
+
+    def _resend_unstarted(self, before: float) -> None:
+        """Send again the runs submitted before a worker restart that have not started.
+
+        The scheduler sometimes loses tasks that were queued on a restarted
+        worker; waiting for them would hang the experiment. A copy that does
+        start after all is ignored when it finishes (only the current Dask
+        future of a run counts).
+        """
+        with self._lock:
+            stale = [r for r in self._runs.values()
+                     if math.isnan(r.started) and r.submitted <= before and r.attempts < _MAX_ATTEMPTS]
+        for run in stale:
+            old = run.dask_future
+            run.attempts += 1
+            self._send(run)
+            old.cancel()
 
     def _restart_worker_of(self, dask_future: Any) -> None:
         """Cancel the task and restart the worker running it, if the cluster allows (best effort)."""
@@ -298,6 +318,8 @@ class DaskExecutor(RunExecutor):
             with self._lock:
                 self._restarted.update(workers)
             if workers:
+                before = _clock()
                 self._client.restart_workers(workers, raise_for_error=False)
+                self._resend_unstarted(before)
         except Exception:  # restarting is an optimisation; the run is already recorded
             pass
