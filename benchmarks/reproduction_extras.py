@@ -169,6 +169,7 @@ def _relabel(runs: pd.DataFrame, labels: Callable[[str, dict], str]) -> pd.DataF
     out = runs.copy()
     out["planner"] = [labels(p, params) for p, params in zip(runs["planner"], runs["params"])]
     out["params_hash"] = "x"
+    out["label"] = out["planner"]  # the configuration name the analysis shows (pathzoo.analysis.frame.config_labels)
     return out
 
 

@@ -57,6 +57,7 @@ __all__ = [
     "paper_file",
     "load_paper",
     "planner_status",
+    "selected_scenarios",
     "build_experiments",
     "run_paper",
     "compare_paper",
@@ -251,7 +252,8 @@ def planner_status(planner: PaperPlanner) -> str:
     return ""
 
 
-def _selected_scenarios(paper: PaperData, pattern: str | None) -> dict[str, str]:
+def selected_scenarios(paper: PaperData, pattern: str | None) -> dict[str, str]:
+    """The paper's scenarios (key -> scenario id) whose id matches the glob ``pattern`` (all if ``None``)."""
     chosen = {k: v for k, v in paper.scenarios.items() if pattern is None or fnmatch.fnmatchcase(v, pattern)}
     if not chosen:
         raise InvalidParameterError(f"no scenario of paper '{paper.name}' matches '{pattern}'")
@@ -295,7 +297,7 @@ def build_experiments(
         budget["iterations"] = iterations
     n = seeds if seeds is not None else paper.runs
     name = f"reproduce.{paper.name}.s{n}" + (f".i{iterations}" if iterations is not None else "")
-    ids = list(_selected_scenarios(paper, scenarios).values())
+    ids = list(selected_scenarios(paper, scenarios).values())
     return [
         Experiment.build(planners=specs, scenarios=[sid + variant for sid in ids], seeds=n, budget=Budget(**budget),
                          name=name + variant.replace("_", "."), db=db)
