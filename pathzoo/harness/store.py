@@ -57,6 +57,7 @@ __all__ = [
     "RUN_COLUMNS",
     "read_runs",
     "read_history",
+    "read_versions",
     "read_path",
     "read_record",
     "read_experiments",
@@ -411,6 +412,18 @@ def read_history(db: str | Path, experiment: str | None = None) -> "pd.DataFrame
     frame = pd.DataFrame(rows, columns=["experiment", "run_key", "iteration", "evaluations", "best_cost", "time_s"])
     frame["best_cost"] = pd.to_numeric(frame["best_cost"], errors="coerce").astype(float)
     return frame
+
+
+def read_versions(db: str | Path, experiment: str | None = None) -> dict[str, dict[str, str]]:
+    """``{run_key: versions}``: each run's library versions, CPU, core count and peak RSS (see RunRecord)."""
+    path = Path(db)
+    conn = _connect(path, create=False)
+    try:
+        where, args = _experiment_filter(conn, path, experiment)
+        rows = conn.execute(f"SELECT run_key, versions FROM runs{where} ORDER BY id", args).fetchall()
+    finally:
+        conn.close()
+    return {key: json.loads(text) for key, text in rows}
 
 
 def _run_row(db: str | Path, experiment: str, run_key: str, columns: str) -> tuple[Any, ...]:
