@@ -110,6 +110,13 @@ def _min_distance(cycle, cum, speed, phase, p0x, p0y, p1x, p1y, t0, t1, max_piec
 
 @numba.njit(cache=True)
 def min_distances(cycle, cum, speed, phase, p0, p1, t0, t1, max_pieces):
+    """Minimum distance from a looping obstacle to each vehicle segment ``p0[i]`` at ``t0[i]`` -> ``p1[i]`` at ``t1[i]``.
+
+    ``cycle`` and ``cum`` are the obstacle's closed route and cumulative arc
+    lengths, ``speed`` and ``phase`` its motion; see
+    :meth:`pathzoo.core.moving.MovingObstacle.min_distance` for exactness and
+    the ``max_pieces`` fallback.
+    """
     out = np.empty(p0.shape[0])
     for i in range(p0.shape[0]):
         out[i] = _min_distance(cycle, cum, speed, phase, p0[i, 0], p0[i, 1], p1[i, 0], p1[i, 1], t0[i], t1[i], max_pieces)

@@ -38,8 +38,11 @@ TRACKED: dict[str, str] = {
 """Import name -> distribution name of the libraries planners use; recorded when loaded in the worker."""
 
 CPU_KEY = "cpu"
+"""Key of the CPU model in a run's ``versions``."""
 CORES_KEY = "cpu_count"
+"""Key of the logical core count in a run's ``versions``."""
 PEAK_RSS_KEY = "peak_rss_mb"
+"""Key of the run's peak resident memory in MiB in a run's ``versions``."""
 
 
 def loaded_distributions() -> dict[str, str]:
