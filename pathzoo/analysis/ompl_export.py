@@ -47,6 +47,7 @@ from __future__ import annotations
 import datetime as _dt
 import math
 import re
+from collections import Counter
 from pathlib import Path
 from typing import Any, Mapping
 
@@ -55,6 +56,7 @@ import pandas as pd
 
 from pathzoo.analysis.frame import with_config
 from pathzoo.core.errors import InvalidParameterError
+from pathzoo.harness.provenance import CORES_KEY, CPU_KEY, PEAK_RSS_KEY
 
 __all__ = ["OMPL_STATUS_NAMES", "OMPL_STATUS", "write_ompl_logs", "export_ompl"]
 
@@ -139,6 +141,31 @@ def _progress(hist: pd.DataFrame | None) -> str:
     )
 
 
+def _versions_of(runs: pd.DataFrame) -> list[Mapping[str, str]]:
+    if "versions" not in runs.columns:
+        return []
+    return [v for v in runs["versions"] if isinstance(v, Mapping)]
+
+
+def _host(runs: pd.DataFrame) -> str:
+    """The CPU and core count the runs recorded (the most frequent one), or ``unknown``."""
+    hosts = Counter(f"{v[CPU_KEY]} ({v[CORES_KEY]} cores)" for v in _versions_of(runs)
+                    if CPU_KEY in v and CORES_KEY in v)
+    return _token(hosts.most_common(1)[0][0]) if hosts else "unknown"
+
+
+def _memory_mb(runs: pd.DataFrame) -> int:
+    """The largest peak RSS over the runs, in whole MiB rounded up (0 when no run recorded one)."""
+    peaks = []
+    for v in _versions_of(runs):
+        try:
+            peaks.append(float(v[PEAK_RSS_KEY]))
+        except (KeyError, TypeError, ValueError):
+            continue
+    peaks = [p for p in peaks if math.isfinite(p)]
+    return math.ceil(max(peaks)) if peaks else 0
+
+
 def write_ompl_logs(
     runs: pd.DataFrame,
     out_dir: str | Path,
@@ -164,6 +191,13 @@ def write_ompl_logs(
         Per-run time limit; by default the largest wall time observed.
     setup : mapping, optional
         Extra ``key: value`` lines for each file's setup block (budget, ...).
+
+    Notes
+    -----
+    With a ``versions`` column (dicts, as :func:`export_ompl` adds from the
+    database), "Running on" names the CPU and core count the runs recorded,
+    and "MB per run" (OMPL's memory limit field) is the largest peak RSS of a
+    run; without it they are ``unknown`` and 0.
 
     Returns
     -------
@@ -199,7 +233,7 @@ def write_ompl_logs(
             f"pathzoo_experiment VARCHAR(256) = {_value(experiment)}",
             f"scenario VARCHAR(256) = {_value(scenario)}",
             f"runs_stored INTEGER = {len(sdf)}",
-            "Running on unknown",
+            f"Running on {_host(sdf)}",
             f"Starting at {now}",
             "<<<|",
             f"pathzoo experiment {experiment}, scenario {scenario}",
@@ -207,7 +241,7 @@ def write_ompl_logs(
             "|>>>",
             f"{int(seed)} is the random seed",
             f"{_value(limit)} seconds per run",
-            "0 MB per run",
+            f"{_memory_mb(sdf)} MB per run",
             f"{int(sdf.groupby('config').size().max())} runs per planner",
             f"{_value(float(np.nansum(sdf['wall_time_s'].to_numpy(dtype=float))))} seconds spent to collect the data",
             "1 enum type",
@@ -252,9 +286,13 @@ def export_ompl(db: str | Path, out_dir: str | Path, experiment: str | None = No
     """
     from pathzoo.analysis.database import load_experiment
 
+    from pathzoo.harness.store import read_versions
+
     exp = load_experiment(db, experiment)
     limit = exp.budget.get("time_s")
+    versions = read_versions(db, exp.name)
+    runs = exp.runs.assign(versions=[versions.get(k, {}) for k in exp.runs["run_key"]])
     return write_ompl_logs(
-        exp.runs, out_dir, history=exp.history, seed=exp.seed, time_limit_s=float(limit) if limit is not None else None,
+        runs, out_dir, history=exp.history, seed=exp.seed, time_limit_s=float(limit) if limit is not None else None,
         setup={"budget": exp.budget_text, "timeout_s": str(exp.timeout_s)},
     )

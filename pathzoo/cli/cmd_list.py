@@ -3,12 +3,13 @@
 from __future__ import annotations
 
 import argparse
+import fnmatch
 import sys
 from typing import Any, Callable
 
 from pathzoo.plugins.entries import PluginEntry
 
-__all__ = ["add_parser", "list_table"]
+__all__ = ["add_parser", "list_table", "matches"]
 
 KINDS = ("planners", "scenarios", "metrics")
 
@@ -37,6 +38,11 @@ def _summary(entry: PluginEntry, kind: str) -> str:
     return f"[unavailable, {unavailable}] {entry.summary}" if unavailable else entry.summary
 
 
+def matches(entry_id: str, patterns: list[str]) -> bool:
+    """Whether ``entry_id`` matches any of the shell-style ``patterns`` (case-sensitive; all match when empty)."""
+    return not patterns or any(fnmatch.fnmatchcase(entry_id, p) for p in patterns)
+
+
 def list_table(entries: list[PluginEntry], kind: str) -> str:
     """An aligned text table of registry entries: id, detail, distribution, version and summary."""
     import pandas as pd
@@ -56,11 +62,11 @@ def _run(args: argparse.Namespace) -> int:
     # a fresh discovery (not the cached registry) so import failures are reported here, once, at the end
     registry = discover()
     table = registry.table(args.kind)
-    entries = [table[k] for k in sorted(table)]
+    entries = [table[k] for k in sorted(table) if matches(k, args.patterns)]
     if entries:
         sys.stdout.write(list_table(entries, args.kind))
     else:
-        print(f"no {args.kind} registered")
+        print(f"no {args.kind} match {' '.join(args.patterns)}" if args.patterns else f"no {args.kind} registered")
     for failure in registry.failures:
         print(f"skipped: {failure.plugin}: {failure.error}", file=sys.stderr)
     return 0
@@ -76,4 +82,6 @@ def add_parser(subparsers: Any) -> None:
         "as 'skipped: <plugin>: <error>'.",
     )
     parser.add_argument("kind", choices=KINDS, help="what to list")
+    parser.add_argument("patterns", nargs="*", metavar="PATTERN",
+                        help="only ids matching any of these shell-style patterns, e.g. 'fgdaco.*' (quote them)")
     parser.set_defaults(handler=_run)

@@ -11,7 +11,11 @@ from typing import Any
 from pathzoo.cli.cmd_run import EXECUTORS, positive_int
 from pathzoo.cli.errors import CommandError
 
-__all__ = ["add_parser", "markdown_section", "reductions"]
+__all__ = ["add_parser", "markdown_section", "reductions", "PAPER_NAMES"]
+
+PAPER_NAMES = ("ggaco", "dsaco", "gant", "iaca", "fgdaco")
+"""The papers of the help text, written out so that building the parser imports no pandas or scipy
+(tests check it against :data:`pathzoo.analysis.reproduction.PAPERS` and the data files)."""
 
 DEFAULT_DB = "pathzoo-reproduce.sqlite"
 """Results file of ``pathzoo reproduce`` when ``--db`` is not given."""
@@ -87,8 +91,6 @@ def _run(args: argparse.Namespace) -> int:
 
 def add_parser(subparsers: Any) -> None:
     """Register the ``reproduce`` subcommand."""
-    from pathzoo.analysis.reproduction import PAPERS
-
     parser = subparsers.add_parser(
         "reproduce",
         help="rerun a paper's comparison table and print it beside the paper's numbers",
@@ -97,7 +99,7 @@ def add_parser(subparsers: Any) -> None:
         "the paper's numbers, ↑/↓/≈ marks from rank tests, w/t/l counts and a verdict per claim. Rivals that "
         "are not registered are listed as not available.",
     )
-    parser.add_argument("paper", metavar="PAPER", help="one of " + ", ".join(PAPERS))
+    parser.add_argument("paper", metavar="PAPER", help="one of " + ", ".join(PAPER_NAMES))
     parser.add_argument("--seeds", type=positive_int, metavar="N", help="runs per planner and scenario "
                         "(default: the paper's run count)")
     parser.add_argument("--iterations", type=positive_int, metavar="N",

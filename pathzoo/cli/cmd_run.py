@@ -5,11 +5,12 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import errno
+import logging
 import sys
-from contextlib import ExitStack
+from contextlib import ExitStack, contextmanager, nullcontext
 from importlib import resources
 from pathlib import Path
-from typing import Any
+from typing import Any, Iterator
 
 from pathzoo.cli.cmd_leaderboard import add_table_options, isolation_note, render_leaderboard
 from pathzoo.cli.errors import CommandError
@@ -57,6 +58,22 @@ def add_execution_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--no-progress", action="store_true", help="do not show a progress bar")
 
 
+@contextmanager
+def _harness_info_on_stderr() -> Iterator[None]:
+    """Show the harness logger's INFO messages (e.g. the unsupported pairs not run) on stderr."""
+    logger = logging.getLogger("pathzoo.harness")
+    handler = logging.StreamHandler(sys.stderr)
+    handler.setFormatter(logging.Formatter("%(message)s"))
+    level = logger.level
+    logger.addHandler(handler)
+    logger.setLevel(logging.INFO)
+    try:
+        yield
+    finally:
+        logger.removeHandler(handler)
+        logger.setLevel(level)
+
+
 def _run(args: argparse.Namespace) -> int:
     executor = executor_of(args)
     with ExitStack() as stack:
@@ -74,8 +91,9 @@ def _run(args: argparse.Namespace) -> int:
         exp = dataclasses.replace(exp, seeds=resolve_seeds(args.seeds))
     db = args.db or exp.db or DEFAULT_DB
     try:
-        runs = run_experiment(exp, db=db, jobs=args.jobs, executor=executor, progress=not args.no_progress,
-                              retry=args.retry)
+        with _harness_info_on_stderr() if args.verbose else nullcontext():
+            runs = run_experiment(exp, db=db, jobs=args.jobs, executor=executor, progress=not args.no_progress,
+                                  retry=args.retry)
     except KeyboardInterrupt:
         raise CommandError(f"interrupted; finished runs are stored in {db}, run the same command again to resume") from None
     print(f"experiment '{exp.name}': {len(runs)} runs stored in {db}", file=sys.stderr)
@@ -108,5 +126,7 @@ def add_parser(subparsers: Any) -> None:
         "each new result replaces the old row",
     )
     parser.add_argument("--seeds", type=positive_int, metavar="N", help="override the experiment's number of seeds")
+    parser.add_argument("-v", "--verbose", action="store_true",
+                        help="also list the unsupported planner x scenario pairs that are not run")
     add_table_options(parser)
     parser.set_defaults(handler=_run)

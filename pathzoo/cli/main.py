@@ -9,14 +9,16 @@ traceback. Usage errors (argparse) also exit with code 2.
 from __future__ import annotations
 
 import argparse
+import difflib
 import sqlite3
 import sys
 from typing import Sequence
 
-from pathzoo.cli import cmd_export, cmd_leaderboard, cmd_list, cmd_report, cmd_reproduce, cmd_run, cmd_show, cmd_tune
+from pathzoo.cli import (cmd_completion, cmd_export, cmd_leaderboard, cmd_list, cmd_report, cmd_reproduce, cmd_run,
+                         cmd_show, cmd_tune)
 from pathzoo.core.errors import PathzooError
 
-__all__ = ["build_parser", "main", "EXIT_ERROR"]
+__all__ = ["build_parser", "main", "unknown_command", "EXIT_ERROR"]
 
 EXIT_ERROR = 2
 """Exit code of every handled error, as for argparse usage errors."""
@@ -34,9 +36,23 @@ def build_parser() -> argparse.ArgumentParser:
     )
     parser.add_argument("--version", action="version", version=f"pathzoo {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
-    for command in (cmd_list, cmd_run, cmd_tune, cmd_reproduce, cmd_leaderboard, cmd_report, cmd_export, cmd_show):
+    for command in (cmd_list, cmd_run, cmd_tune, cmd_reproduce, cmd_leaderboard, cmd_report, cmd_export, cmd_show,
+                    cmd_completion):
         command.add_parser(sub)
     return parser
+
+
+def unknown_command(parser: argparse.ArgumentParser, argv: Sequence[str]) -> str | None:
+    """The error for a mistyped subcommand in ``argv``, with the closest command if one is near; else None."""
+    if not argv or argv[0].startswith("-"):
+        return None
+    commands = next(a.choices for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+    word = argv[0]
+    if word in commands:
+        return None
+    close = difflib.get_close_matches(word, list(commands), n=1)
+    hint = f"did you mean '{close[0]}'?" if close else f"choose one of {', '.join(commands)}"
+    return f"unknown command '{word}'; {hint}"
 
 
 def _one_line(exc: BaseException) -> str:
@@ -58,6 +74,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     """
     try:
         parser = build_parser()
+        argv = sys.argv[1:] if argv is None else list(argv)
+        mistyped = unknown_command(parser, argv)
+        if mistyped is not None:
+            print(f"pathzoo: error: {mistyped}", file=sys.stderr)
+            return EXIT_ERROR
         try:
             args = parser.parse_args(argv)
         except SystemExit as exc:  # --help, --version and usage errors

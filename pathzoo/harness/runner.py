@@ -18,6 +18,7 @@ import logging
 import os
 import sqlite3
 import warnings
+from collections import Counter
 from concurrent.futures import FIRST_COMPLETED, Future, wait
 from pathlib import Path
 from types import ModuleType
@@ -27,6 +28,7 @@ from pathzoo.core.errors import InvalidExperimentError
 from pathzoo.core.status import RunStatus
 from pathzoo.harness.executors import RunExecutor, make_executor
 from pathzoo.harness.bounds import bound_outcome
+from pathzoo.harness.eta import RunTimes, eta_seconds
 from pathzoo.harness.judge import unjudged
 from pathzoo.harness.judge_worker import JUDGE_TIMEOUT_S, JudgeWorker
 from pathzoo.harness.store import ResultStore, read_runs
@@ -40,7 +42,7 @@ if TYPE_CHECKING:
     from pathzoo.harness.worker import RunOutcome
     from pathzoo.plugins.manager import Registry
 
-__all__ = ["run_experiment", "extra_plugin_modules", "DEFAULT_DB"]
+__all__ = ["run_experiment", "extra_plugin_modules", "skipped_summary", "DEFAULT_DB"]
 
 DEFAULT_DB = "pathzoo-results.sqlite"
 """Result database used when neither the call nor the experiment names one."""
@@ -79,7 +81,9 @@ def _progress_bar(total: int, name: str, enabled: bool) -> Any:
         return None
     from tqdm.auto import tqdm
 
-    return tqdm(total=total, desc=name, unit="run", dynamic_ncols=True)
+    # tqdm's own time left follows the latest rate and swings between planners; the postfix 'left' replaces it
+    return tqdm(total=total, desc=name, unit="run", dynamic_ncols=True,
+                bar_format="{l_bar}{bar}| {n_fmt}/{total_fmt} [{elapsed}, {rate_fmt}{postfix}]")
 
 
 def _store(store: ResultStore, record: "RunRecord", task: "RunTask", outcome: "RunOutcome",
@@ -95,6 +99,14 @@ def _store(store: ResultStore, record: "RunRecord", task: "RunTask", outcome: "R
         return fallback
 
 
+def _format_eta(seconds: float | None) -> str:
+    if seconds is None:
+        return "?"
+    minutes, secs = divmod(int(round(seconds)), 60)
+    hours, minutes = divmod(minutes, 60)
+    return f"{hours}h{minutes:02d}m" if hours else f"{minutes}m{secs:02d}s"
+
+
 def _execute(
     executor: RunExecutor,
     tasks: list["RunTask"],
@@ -108,6 +120,8 @@ def _execute(
     in_flight: dict[Future[RunOutcome], RunTask] = {}
     isolated = bool(getattr(executor, "isolated", False))
     failures = 0
+    remaining = Counter(t.planner.name for t in tasks)
+    times = RunTimes()
 
     def submit_more() -> None:
         while len(in_flight) < executor.capacity:
@@ -128,10 +142,21 @@ def _execute(
             _call_hook(registry, "pathzoo_run_finished", record=record)
             if record.status is not RunStatus.SOLVED:
                 failures += 1
+            remaining[task.planner.name] -= 1
+            times.add(task.planner.name, record.wall_time_s)
             if bar is not None:
-                bar.set_postfix(failures=failures, refresh=False)
+                eta = eta_seconds(remaining.elements(), times, executor.capacity)
+                bar.set_postfix(failures=failures, left=_format_eta(eta), refresh=False)
                 bar.update(1)
         submit_more()
+
+
+def skipped_summary(skipped: "list[tuple[str, str, str]]") -> str:
+    """One short line on the unsupported ``(planner, scenario, kind)`` pairs that are not run."""
+    kinds = Counter(k for _, _, k in skipped)
+    by_kind = ", ".join(f"{k} {n}" for k, n in sorted(kinds.items()))
+    return (f"pathzoo: skipping {len(skipped)} unsupported planner x scenario pair(s) "
+            f"(scenario kind not supported: {by_kind}); -v lists them")
 
 
 def run_experiment(
@@ -176,8 +201,9 @@ def run_experiment(
     Notes
     -----
     Planner x scenario pairs whose scenario kind the planner does not declare
-    are not run; they are listed once in a warning of the ``pathzoo.harness``
-    logger. Runs already stored (any status) are skipped, so an interrupted
+    are not run; they are counted in one warning of the ``pathzoo.harness``
+    logger and listed at its INFO level (``pathzoo run -v``). The progress
+    bar's ``left`` is :func:`pathzoo.harness.eta.eta_seconds`. Runs already stored (any status) are skipped, so an interrupted
     experiment resumes where it stopped, without doubled rows.
     """
     from pathzoo.plugins.manager import get_registry
@@ -190,8 +216,8 @@ def run_experiment(
     registry = get_registry()
     skipped = experiment.skipped()
     if skipped:
-        pairs = ", ".join(f"{p} x {s} ({k})" for p, s, k in skipped)
-        log.warning("pathzoo: not running %d unsupported planner x scenario pair(s): %s", len(skipped), pairs)
+        log.warning("%s", skipped_summary(skipped))
+        log.info("pathzoo: unsupported pairs not run:\n%s", "\n".join(f"  {p} x {s} ({k})" for p, s, k in skipped))
     with ResultStore(db_path) as store:
         store.add_experiment(experiment)
         finished = store.finished_keys(experiment.name, exclude_statuses=retry_statuses)

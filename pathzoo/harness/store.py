@@ -57,6 +57,7 @@ __all__ = [
     "RUN_COLUMNS",
     "read_runs",
     "read_history",
+    "read_versions",
     "read_path",
     "read_record",
     "read_experiments",
@@ -401,16 +402,27 @@ def read_history(db: str | Path, experiment: str | None = None) -> "pd.DataFrame
     """Convergence points: experiment, run_key, iteration, evaluations, best_cost, time_s."""
     import pandas as pd
 
+    rows = _select(db, experiment, "SELECT * FROM history{where} ORDER BY rowid")
+    frame = pd.DataFrame(rows, columns=["experiment", "run_key", "iteration", "evaluations", "best_cost", "time_s"])
+    frame["best_cost"] = pd.to_numeric(frame["best_cost"], errors="coerce").astype(float)
+    return frame
+
+
+def read_versions(db: str | Path, experiment: str | None = None) -> dict[str, dict[str, str]]:
+    """``{run_key: versions}``: each run's library versions, CPU, core count and peak RSS (see RunRecord)."""
+    rows = _select(db, experiment, "SELECT run_key, versions FROM runs{where} ORDER BY id")
+    return {key: json.loads(text) for key, text in rows}
+
+
+def _select(db: str | Path, experiment: str | None, sql: str) -> list[Any]:
+    """The rows of ``sql``, whose ``{where}`` becomes the filter on ``experiment`` (checked to exist)."""
     path = Path(db)
     conn = _connect(path, create=False)
     try:
         where, args = _experiment_filter(conn, path, experiment)
-        rows = conn.execute(f"SELECT * FROM history{where} ORDER BY rowid", args).fetchall()
+        return conn.execute(sql.format(where=where), args).fetchall()
     finally:
         conn.close()
-    frame = pd.DataFrame(rows, columns=["experiment", "run_key", "iteration", "evaluations", "best_cost", "time_s"])
-    frame["best_cost"] = pd.to_numeric(frame["best_cost"], errors="coerce").astype(float)
-    return frame
 
 
 def _run_row(db: str | Path, experiment: str, run_key: str, columns: str) -> tuple[Any, ...]:

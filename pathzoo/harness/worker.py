@@ -44,6 +44,7 @@ from pathzoo.core.results import HistoryPoint, PlanResult
 from pathzoo.core.status import Status
 from pathzoo.harness.bounds import bound_outcome, bound_text
 from pathzoo.harness.digest import scenario_digest, warm
+from pathzoo.harness.provenance import PEAK_RSS_KEY, host, loaded_distributions, peak_rss_mb, reset_peak_rss
 from pathzoo.testing.warmup import warm_up
 
 if TYPE_CHECKING:
@@ -104,7 +105,9 @@ class RunOutcome:
     scenario_modified : bool
         The planner changed the scenario's arrays.
     versions : dict
-        Versions of pathzoo, Python, numpy and the planner's distribution.
+        Versions of pathzoo, Python, numpy, the planner's distribution and the
+        libraries loaded in the worker, with the CPU, core count and the run's
+        peak RSS in MiB (:mod:`pathzoo.harness.provenance`).
     started_at : str
         UTC ISO time the run started.
     tainted : bool
@@ -243,6 +246,11 @@ def _versions(task: "RunTask") -> dict[str, str]:
     return out
 
 
+def _provenance(versions: dict[str, str]) -> dict[str, str]:
+    """``versions`` with the host, the run's peak RSS and the libraries loaded by now (after ``plan()``)."""
+    return {**versions, **host(), PEAK_RSS_KEY: f"{peak_rss_mb():.1f}", **loaded_distributions()}
+
+
 def _as_array(value: Any) -> tuple[np.ndarray | None, str]:
     if value is None:
         return None, ""
@@ -312,6 +320,7 @@ def _execute(task: "RunTask", report: Report) -> RunOutcome:
     try:
         # inside the hard limit (a hanging planner still times out), outside planning time
         warm_up(planner, scenario.kind)
+        reset_peak_rss()
         report("planning")
         recorder.t0 = t0 = _clock()
         c0 = _cpu()
@@ -322,6 +331,7 @@ def _execute(task: "RunTask", report: Report) -> RunOutcome:
         crash = exc
     wall = _clock() - t0  # NaN when plan() never started
     cpu = _cpu() - c0
+    versions = _provenance(versions)
     modified = scenario_digest(scenario) != digest
     if modified:
         evict(task.scenario)

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import importlib.util
+import os
 import sqlite3
 import subprocess
 import sys
@@ -88,5 +89,22 @@ def test_export_from_database(small_db, tmp_path):
     assert sorted(runs["name"].unique()) == ["exact.astar", "exact.dijkstra"] and len(runs) == 6
     assert (runs["solved"] == 1).all() and runs["solution_length"].nunique() == 1
     assert con.execute("SELECT timelimit FROM experiments").fetchone() == (2.0,)
+    host, memory = con.execute("SELECT hostname, memorylimit FROM experiments").fetchone()
+    assert host != "unknown" and f"({os.cpu_count()}_cores)" in host  # recorded by each run's worker
+    assert memory > 0
     with pytest.raises(InvalidParameterError, match="nothing to export"):
         write_ompl_logs(make_runs({}), tmp_path)
+
+
+def test_host_and_memory_come_from_the_runs_versions(tmp_path):
+    runs, _ = frame()
+    assert list(runs["scenario"]) == ["map one"] * 5 + ["m2"]
+    runs["versions"] = [{"cpu": "Other", "cpu_count": "2", "peak_rss_mb": "nan"}] + [
+        {"cpu": "Model X", "cpu_count": "8", "peak_rss_mb": str(mb)} for mb in (350.4, 90.0, 80.0, 70.0, 60.0)]
+    logs = write_ompl_logs(runs, tmp_path / "logs", seed=1)
+    con = to_arena(logs, tmp_path)
+    got = dict(con.execute("SELECT scenario, hostname || ' ' || memorylimit FROM experiments").fetchall())
+    assert got == {"map one": "Model_X_(8_cores) 351.0", "m2": "Model_X_(8_cores) 60.0"}
+    plain = write_ompl_logs(runs.drop(columns="versions"), tmp_path / "plain", seed=1)
+    text = plain[0].read_text()
+    assert "Running on unknown" in text and "\n0 MB per run" in text

@@ -15,7 +15,7 @@ from pathzoo.cli.main import main
 from pathzoo.plugins import manager
 
 PATHZOO = Path(sys.executable).parent / "pathzoo"
-COMMANDS = ("list", "run", "tune", "reproduce", "leaderboard", "report", "export-ompl", "show")
+COMMANDS = ("list", "run", "tune", "reproduce", "leaderboard", "report", "export-ompl", "show", "completion")
 
 
 def error_lines(stderr: str) -> list[str]:
@@ -44,7 +44,7 @@ def test_top_level_help_lists_subcommands(capsys):
 
 @pytest.mark.parametrize(
     "argv",
-    [[], ["frobnicate"], ["list"], ["list", "bogus"], ["show", "x"], ["run", "--jobs", "0"], ["run", "--seeds", "x"],
+    [[], ["list"], ["list", "bogus"], ["show", "x"], ["run", "--jobs", "0"], ["run", "--seeds", "x"],
      ["leaderboard"], ["leaderboard", "db", "--format", "xml"], ["run", "--executor", "threads"]],
 )
 def test_usage_errors_exit_2(argv, capsys):

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import io
+import logging
 import tomllib
 from importlib import resources
 
@@ -196,3 +197,21 @@ def test_report_and_ompl_export_and_html_leaderboard(experiment, tmp_path, capsy
 def test_report_of_missing_database_is_one_line(tmp_path, capsys):
     assert main(["report", str(tmp_path / "nope.sqlite"), "-o", str(tmp_path / "rep")]) == 2
     assert "nope.sqlite" in one_error(capsys)
+
+
+def test_unsupported_pairs_are_one_short_line_and_listed_with_verbose(tmp_path, capsys, caplog):
+    (tmp_path / "random.toml").write_text(SCENARIO)
+    path = tmp_path / "mixed.toml"
+    path.write_text(EXPERIMENT.format(name="mixed").replace('["random.toml"]', '["random.toml", "fgdaco.scenario1"]'))
+    db = tmp_path / "m.sqlite"
+    run_cli(capsys, "run", str(path), "--db", str(db), "--executor", "inline", "--no-progress", "--seeds", "1")
+    shown = [r.getMessage() for r in caplog.records if r.levelno >= logging.WARNING]
+    short = [m for m in shown if "unsupported" in m]
+    assert len(short) == 1 and len(short[0]) < 120 and "\n" not in short[0], shown
+    assert "skipping 2 unsupported planner x scenario pair(s)" in short[0] and "dynamic 2" in short[0]
+    assert not any("exact.thetastar x fgdaco.scenario1" in r.getMessage() for r in caplog.records)
+    caplog.clear()
+    run_cli(capsys, "run", str(path), "--db", str(db), "--executor", "inline", "--no-progress", "--seeds", "1", "-v")
+    listed = "\n".join(r.getMessage() for r in caplog.records if r.levelno == logging.INFO)
+    assert "  exact.astar x fgdaco.scenario1 (dynamic)" in listed
+    assert "  exact.thetastar x fgdaco.scenario1 (dynamic)" in listed

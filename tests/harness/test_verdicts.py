@@ -133,8 +133,10 @@ def test_modifying_the_scenario_is_invalid_and_does_not_leak(runs):
 
 
 def test_unsupported_pairs_are_skipped_and_reported(forged, tmp_path, caplog):
+    caplog.set_level("INFO", logger="pathzoo.harness")  # the list of pairs; the warning only counts them
     frame = pathzoo.run(["test.gridonly", "test.honest"], ["test.wall", "test.ramp"], seeds=1, db=tmp_path / "s.sqlite",
                         executor="inline", progress=False)
     assert sorted(zip(frame.planner, frame.scenario)) == [
         ("test.gridonly", "test.wall"), ("test.honest", "test.ramp"), ("test.honest", "test.wall")]
     assert "test.gridonly x test.ramp (terrain)" in caplog.text
+    assert "skipping 1 unsupported planner x scenario pair(s) (scenario kind not supported: terrain 1)" in caplog.text
