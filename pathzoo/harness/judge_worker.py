@@ -61,7 +61,7 @@ def _judge_main(conn: Connection) -> None:
             return
         task, outcome, isolated = request
         try:
-            ensure_plugins(task.plugin_modules)
+            ensure_plugins(task.plugin_modules, missing_ok=True)
             scenario, _ = load_cached(task.scenario)
             metrics = [entry.obj() for entry in quiet_registry().metrics.values()]
             conn.send(("loaded",))
