@@ -10,7 +10,7 @@ import pytest
 from pathzoo import Budget, RunStatus, Scenario, make_planner
 from pathzoo.rules import validate_path
 from pathzoo.metrics import BUILTIN_METRICS
-from tests.metrics.test_builtin_metrics import open_grid, record
+from .test_builtin_metrics import open_grid, record
 
 METRIC = next(cls for cls in BUILTIN_METRICS if cls.id == "length_ratio_anyangle")()
 
