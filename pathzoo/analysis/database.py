@@ -79,7 +79,8 @@ def load_experiment(db: str | Path, experiment: str | None = None) -> StoredExpe
     if experiment is None:
         if len(names) != 1:
             raise InvalidParameterError(
-                f"{db} holds {len(names)} experiments ({', '.join(sorted(names)) or 'none'}); choose one with experiment="
+                f"{db} holds {len(names)} experiments ({', '.join(sorted(names)) or 'none'}); choose one "
+                "(experiment= in Python, --experiment on the command line)"
             )
         experiment = names[0]
     runs = read_runs(db, experiment)  # raises for an unknown experiment

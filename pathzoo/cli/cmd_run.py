@@ -81,6 +81,8 @@ def _run(args: argparse.Namespace) -> int:
             path = stack.enter_context(resources.as_file(resources.files("pathzoo.experiments") / "default.toml"))
         else:
             path = Path(args.experiment)
+            if path.is_dir():
+                raise CommandError(f"{path} is a directory; give an experiment TOML file")
             if not path.is_file():
                 raise FileNotFoundError(errno.ENOENT, "no such experiment file", str(path))
         from pathzoo.harness.experiment import Experiment, resolve_seeds

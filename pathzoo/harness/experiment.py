@@ -115,6 +115,8 @@ def resolve_seeds(seeds: int | Iterable[int]) -> tuple[int, ...]:
         if not 1 <= seeds <= MAX_SEEDS:
             raise InvalidExperimentError(f"seeds must be between 1 and {MAX_SEEDS}, got {seeds}")
         return tuple(range(seeds))
+    if isinstance(seeds, (str, bytes)):
+        raise InvalidExperimentError(f"seeds must be a count or a list of seed indices, got {seeds!r}")
     try:
         out = tuple(seeds)
     except TypeError:

@@ -215,3 +215,15 @@ def test_unsupported_pairs_are_one_short_line_and_listed_with_verbose(tmp_path, 
     listed = "\n".join(r.getMessage() for r in caplog.records if r.levelno == logging.INFO)
     assert "  exact.astar x fgdaco.scenario1 (dynamic)" in listed
     assert "  exact.thetastar x fgdaco.scenario1 (dynamic)" in listed
+
+
+def test_a_directory_or_a_string_seed_count_is_a_one_line_error(tmp_path, capsys):
+    from pathzoo.cli.main import main
+
+    assert main(["run", str(tmp_path)]) == 2
+    assert "is a directory; give an experiment TOML file" in capsys.readouterr().err
+    bad = tmp_path / "bad.toml"
+    bad.write_text('[experiment]\nseeds = "two"\nscenarios = ["gant.fig7"]\n[[planner]]\nid = "exact.astar"\n')
+    assert main(["run", str(bad), "--db", str(tmp_path / "r.sqlite")]) == 2
+    err = capsys.readouterr().err
+    assert "field 'experiment.seeds'" in err and "got 'two'" in err and "['t'" not in err
