@@ -44,6 +44,7 @@ import numpy as np
 
 __all__ = [
     "UNIVERSE",
+    "defuzzify",
     "TERMS",
     "INPUT_SUPPORTS",
     "OUTPUT_SUPPORTS",
@@ -177,12 +178,21 @@ def fuzzy_priority(target: np.ndarray, angle: np.ndarray, obstacle: np.ndarray, 
     strength = np.zeros((3, mt.shape[1]))
     for (i, j, k), term in RULES.items():
         np.maximum(strength[term], np.minimum(np.minimum(mt[i], ma[j]), mo[k]), out=strength[term])
-    cons = consequents()
+    return defuzzify(strength, consequents(), UNIVERSE, chunk).reshape(t.shape)
+
+
+def defuzzify(strength: np.ndarray, cons: np.ndarray, universe: np.ndarray, chunk: int) -> np.ndarray:
+    """Crisp outputs from per-term firing strengths ``(T, n)``: clip, aggregate by max, centroid, in batches.
+
+    Mamdani's implication (min with each consequent ``cons[t]`` on
+    ``universe``), max aggregation and :func:`centroid`, ``chunk`` nodes at a
+    time so the ``(chunk, U)`` aggregates stay small. Shared by FLACO's impedance.
+    """
     out = np.empty(strength.shape[1])
     for lo in range(0, out.size, chunk):
         aggregate = np.max(np.minimum(strength[:, lo : lo + chunk, None], cons[:, None, :]), axis=0)
-        out[lo : lo + chunk] = centroid(UNIVERSE, aggregate)
-    return out.reshape(t.shape)
+        out[lo : lo + chunk] = centroid(universe, aggregate)
+    return out
 
 
 @dataclass(frozen=True, eq=False)

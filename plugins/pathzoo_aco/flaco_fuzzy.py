@@ -28,7 +28,7 @@ from typing import Sequence
 import numpy as np
 
 from pathzoo.core.moving import MovingObstacle
-from pathzoo_aco.fgdaco_fuzzy import centroid
+from pathzoo_aco.fgdaco_fuzzy import defuzzify
 
 __all__ = ["UNIVERSE", "TERM_VERTICES", "RULES", "impedance", "traffic_share", "memberships", "consequents"]
 
@@ -84,12 +84,7 @@ def impedance(traffic: np.ndarray, clearance: np.ndarray, *, chunk: int = 2048) 
     strength = np.zeros((3, mt.shape[1]))
     for (i, j), term in RULES.items():
         np.maximum(strength[term], np.minimum(mt[i], mc[j]), out=strength[term])
-    cons = consequents()
-    out = np.empty(strength.shape[1])
-    for lo in range(0, out.size, chunk):
-        aggregate = np.max(np.minimum(strength[:, lo : lo + chunk, None], cons[:, None, :]), axis=0)
-        out[lo : lo + chunk] = centroid(UNIVERSE, aggregate)
-    return out.reshape(t.shape)
+    return defuzzify(strength, consequents(), UNIVERSE, chunk).reshape(t.shape)
 
 
 def traffic_share(points: np.ndarray, obstacles: Sequence[MovingObstacle], sensing_m: float,
