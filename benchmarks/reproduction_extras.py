@@ -29,7 +29,6 @@ import datetime as _dt
 import math
 import sys
 import time
-from pathlib import Path
 from typing import Callable
 
 import numpy as np

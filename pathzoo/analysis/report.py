@@ -20,7 +20,6 @@ from __future__ import annotations
 
 import base64
 import datetime as _dt
-import math
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Callable, Mapping, Sequence

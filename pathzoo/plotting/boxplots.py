@@ -15,7 +15,7 @@ from matplotlib.patches import Patch
 
 from pathzoo.analysis.frame import Direction, metric_info, with_config
 from pathzoo.analysis.formatting import format_percent
-from pathzoo.plotting.figure import new_axes, new_figure, planner_colors
+from pathzoo.plotting.figure import new_axes, new_figure, palette_for
 
 __all__ = ["plot_metric_boxes", "plot_metric_panels"]
 
@@ -75,7 +75,7 @@ def plot_metric_boxes(
     with warnings.catch_warnings():  # seaborn 0.13 still passes matplotlib's deprecated ``vert``
         warnings.simplefilter("ignore", MatplotlibDeprecationWarning)
         sns.boxplot(data=good, x="scenario", y=metric, hue="config", order=order, hue_order=hue_order, ax=ax,
-                    palette=planner_colors(hue_order) if palette is None else palette, fliersize=2.5, linewidth=1.0)
+                    palette=palette_for(hue_order, palette), fliersize=2.5, linewidth=1.0)
     rate = df.groupby(["scenario", "config"])["success"].mean()
     width = 0.8 / max(len(hue_order), 1)
     ymax = good[metric].max() if len(good) else 1.0
@@ -138,7 +138,7 @@ def plot_metric_panels(
     df = with_config(runs, metric)
     order = sorted(df["scenario"].unique()) if scenarios is None else list(scenarios)
     configs = sorted(df["config"].unique())
-    palette = planner_colors(configs) if palette is None else palette
+    palette = palette_for(configs, palette)
     ncols = max(1, min(ncols, len(order)))
     nrows = max(1, math.ceil(len(order) / ncols))
     fig = new_figure((max(4.2 * ncols, 6.0), 3.3 * nrows + 0.5 + 0.22 * math.ceil(len(configs) / 4)))

@@ -7,7 +7,7 @@ from typing import Any, Mapping
 from matplotlib.axes import Axes
 
 from pathzoo.analysis.ranks import FriedmanResult
-from pathzoo.plotting.figure import new_axes, planner_colors
+from pathzoo.plotting.figure import new_axes, palette_for
 
 __all__ = ["plot_cd_diagram"]
 
@@ -36,7 +36,7 @@ def plot_cd_diagram(result: FriedmanResult, ax: Axes | None = None, *,
 
     names = list(result.mean_ranks.index)
     ax = new_axes(ax, (7.0, 1.6 + 0.28 * len(names)))
-    colors = planner_colors(names) if palette is None else palette
+    colors = palette_for(names, palette)
     sp.critical_difference_diagram(
         result.mean_ranks, result.nemenyi_pvalues(), cd=result.cd, alpha=result.alpha, ax=ax,
         color_palette={n: colors[n] for n in names}, label_fmt_left="{label} ({rank:.2f})",

@@ -10,7 +10,7 @@ from matplotlib.ticker import NullFormatter
 
 from pathzoo.analysis.anytime import AnytimeAxis, convergence_curves
 from pathzoo.core.errors import InvalidParameterError
-from pathzoo.plotting.figure import new_axes, planner_colors
+from pathzoo.plotting.figure import new_axes, palette_for
 
 __all__ = ["plot_convergence", "AXIS_LABELS"]
 
@@ -72,7 +72,7 @@ def plot_convergence(
                                 log=log)
     ax = new_axes(ax, (6.0, 4.0))
     configs = sorted(curves["config"].unique())
-    colors = planner_colors(configs) if palette is None else palette
+    colors = palette_for(configs, palette)
     for cfg, c in curves.groupby("config", sort=True):
         ax.plot(c["x"], c["median"], color=colors[cfg], lw=1.8, label=f"{cfg} (n={c['n_runs'].iloc[0]})")
         ax.fill_between(c["x"], c["q25"], c["q75"], color=colors[cfg], alpha=0.2, lw=0)

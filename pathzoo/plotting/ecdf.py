@@ -11,7 +11,7 @@ from matplotlib.ticker import NullFormatter
 
 from pathzoo.analysis.anytime import AnytimeAxis, time_to_target
 from pathzoo.plotting.convergence import AXIS_LABELS
-from pathzoo.plotting.figure import legend_below, new_axes, planner_colors
+from pathzoo.plotting.figure import legend_below, new_axes, palette_for
 
 __all__ = ["plot_time_to_target_ecdf"]
 
@@ -62,7 +62,7 @@ def plot_time_to_target_ecdf(
     hits = time_to_target(history, runs, eps=eps, optimum=optimum, metric=metric, x=x, rtol=rtol)
     ax = new_axes(ax, (6.0, 4.0))
     configs = sorted(hits["config"].unique())
-    colors = planner_colors(configs) if palette is None else palette
+    colors = palette_for(configs, palette)
     finite = hits["hit"][np.isfinite(hits["hit"])]
     positive = finite[finite > 0]
     x_lo = float(positive.min()) if len(positive) else 1.0

@@ -5,14 +5,14 @@ from __future__ import annotations
 import io
 from pathlib import Path
 
-from typing import Any, Iterable
+from typing import Any, Iterable, Mapping
 
 import seaborn as sns
 from matplotlib.axes import Axes
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
-__all__ = ["new_figure", "new_axes", "save_figure", "png_bytes", "legend_below", "planner_colors"]
+__all__ = ["new_figure", "new_axes", "save_figure", "png_bytes", "legend_below", "planner_colors", "palette_for"]
 
 
 def new_figure(figsize: tuple[float, float] = (6.0, 5.0)) -> Figure:
@@ -78,3 +78,8 @@ def planner_colors(labels: Iterable[str]) -> dict[str, Any]:
     base = sns.color_palette("colorblind", 10)
     shades = [*base, *(tuple(0.62 * c for c in rgb) for rgb in base), *(tuple(c + 0.5 * (1 - c) for c in rgb) for rgb in base)]
     return {name: shades[i % len(shades)] for i, name in enumerate(names)}
+
+
+def palette_for(labels: Iterable[str], palette: Mapping[str, Any] | None) -> Mapping[str, Any]:
+    """``palette`` when the caller gave one (an experiment-wide mapping), else :func:`planner_colors` of ``labels``."""
+    return planner_colors(labels) if palette is None else palette

@@ -9,7 +9,7 @@ from matplotlib import patheffects
 from matplotlib.axes import Axes
 
 from pathzoo.core.scenario import Scenario
-from pathzoo.plotting.figure import legend_below, planner_colors
+from pathzoo.plotting.figure import legend_below, palette_for
 from pathzoo.plotting.scenario import draw_path, plot_scenario
 
 __all__ = ["plot_paths"]
@@ -42,7 +42,7 @@ def plot_paths(
         Colour per label (default: :func:`~pathzoo.plotting.figure.planner_colors` of the labels).
     """
     ax = plot_scenario(scenario, ax=ax, title=title, legend=False)
-    colors = planner_colors(paths) if colors is None else colors
+    colors = palette_for(paths, colors)
     outline = [patheffects.withStroke(linewidth=4.0, foreground="white")]
     for label, path in paths.items():
         draw_path(ax, path, label=label, color=colors[label], path_effects=outline)
