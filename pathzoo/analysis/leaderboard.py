@@ -184,8 +184,9 @@ def format_leaderboard(table: pd.DataFrame, fmt: str = "text") -> str:
         display["p (Holm)"] = table["p_holm"].map(lambda x: format_number(x, 2))
         display["A12"] = table["a12"].map(lambda x: f"{x:.2f}" if pd.notna(x) else "–")
         notes.append(_VERDICT_NOTE.format(alpha=table.attrs.get("alpha", 0.05)))
-        if power_note(table):
-            notes.append(power_note(table))
+        note = power_note(table)
+        if note:
+            notes.append(note)
     title = f"Leaderboard: {label}" + (f", {info.better}" if info is not None else "")
     return render_table(
         display, fmt, raw=table, title=title, notes=notes, left=("scenario", "planner", "vs ref")

@@ -12,6 +12,7 @@ explained in ``docs/statistics.md``.
 
 from __future__ import annotations
 
+import functools
 import itertools
 import math
 import warnings
@@ -73,6 +74,7 @@ def min_pvalue(n_a: int, n_b: int, *, paired: bool) -> float:
     return min(1.0, 2.0 / math.comb(n_a + n_b, n_a))
 
 
+@functools.lru_cache(maxsize=256)
 def runs_needed(family: int, alpha: float, *, paired: bool, limit: int = 1000) -> int:
     """Fewest runs per configuration for which one test in a Holm family of ``family`` can reach ``alpha``.
 
