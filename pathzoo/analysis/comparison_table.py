@@ -72,7 +72,7 @@ class PaperTable:
 def paper_table(
     runs: pd.DataFrame,
     reference: str,
-    metrics: Sequence[str] = ("length", "planning_time", "energy"),
+    metrics: Sequence[str | MetricInfo] = ("length", "planning_time", "energy"),
     *,
     alpha: float = 0.05,
     paired: bool | str = "auto",
@@ -85,9 +85,11 @@ def paper_table(
         One row per run.
     reference : str
         Configuration every other one is compared with (the paper's "proposed method").
-    metrics : sequence of str
+    metrics : sequence of str or MetricInfo
         Registered metric ids, in column order (default: length, planning
-        time and energy, the columns of GGACO's Table 2).
+        time and energy, the columns of GGACO's Table 2). A column of ``runs``
+        that is not a registered metric is given as a :class:`MetricInfo`
+        (its unit and direction).
     alpha : float
         Level of the Holm-corrected tests behind the marks.
     paired : bool or "auto"
@@ -100,12 +102,12 @@ def paper_table(
     """
     if not metrics:
         raise InvalidParameterError("metrics must name at least one metric")
-    infos = tuple(metric_info(m) for m in metrics)
+    infos = tuple(m if isinstance(m, MetricInfo) else metric_info(m) for m in metrics)
     table = None
     wtl_rows = []
     for info in infos:
-        tests = pairwise_tests(runs, info.id, reference=reference, alpha=alpha, paired=paired)
-        summ = summarize(runs, info.id)[["scenario", "config", "success_rate", "median", "sd"]]
+        tests = pairwise_tests(runs, info.id, direction=info.direction, reference=reference, alpha=alpha, paired=paired)
+        summ = summarize(runs, info.id, direction=info.direction)[["scenario", "config", "success_rate", "median", "sd"]]
         marks = tests.assign(mark=tests["winner"].map(MARKS).where(tests["testable"].astype(bool), NOT_TESTABLE))
         marks = marks[["scenario", "b", "mark"]]
         summ = summ.merge(marks.rename(columns={"b": "config"}), on=["scenario", "config"], how="left")

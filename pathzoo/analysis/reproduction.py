@@ -43,7 +43,7 @@ import pandas as pd
 
 from pathzoo.analysis.comparison_table import NOT_TESTABLE, paper_table
 from pathzoo.analysis.formatting import format_number, format_percent, render_table
-from pathzoo.analysis.frame import success_mask
+from pathzoo.analysis.frame import MetricInfo, success_mask
 from pathzoo.core.errors import InvalidExperimentError, InvalidParameterError, PathzooError
 
 __all__ = [
@@ -374,15 +374,6 @@ def run_paper(
     return pd.concat(frames, ignore_index=True), names
 
 
-def _register_derived(paper: PaperData) -> None:
-    """Make the derived metrics known to the analysis (unit of the paper, lower is better)."""
-    from pathzoo.analysis import frame
-
-    for m in paper.metrics:
-        if m.derived and m.id not in frame.RUN_COLUMNS:
-            frame.RUN_COLUMNS[m.id] = frame.MetricInfo(m.id, "1", "min")
-
-
 @dataclass(frozen=True)
 class Reproduction:
     """The paper's table with our numbers beside it.
@@ -436,10 +427,11 @@ def _verdict(paper_mark: str, ours: str, status: str, has_runs: bool) -> str:
 
 def compare_paper(paper: PaperData, runs: pd.DataFrame, *, alpha: float = 0.05) -> Reproduction:
     """Build the side-by-side table and the verdicts from labelled runs (:func:`run_paper`)."""
-    _register_derived(paper)
     ours = None
     if len(runs):
-        pt = paper_table(runs, paper.reference, [m.id for m in paper.metrics], alpha=alpha)
+        # derived metrics are columns the reproduction adds, not registered metrics: unit 1, lower is better
+        metrics = [MetricInfo(m.id, "1", "min") if m.derived else m.id for m in paper.metrics]
+        pt = paper_table(runs, paper.reference, metrics, alpha=alpha)
         ours = pt.table
     by_id = {v: k for k, v in paper.scenarios.items()}
     ran = set(runs["scenario"].unique()) if len(runs) else set()

@@ -6,10 +6,12 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from pathzoo.analysis import frame
 from pathzoo.analysis.comparison_table import format_paper_table, paper_table
+from pathzoo.analysis.frame import MetricInfo
 from pathzoo.analysis.stats import pairwise_tests
 from pathzoo.analysis.synthetic import make_runs
-from pathzoo.core.errors import InvalidParameterError
+from pathzoo.core.errors import InvalidParameterError, UnknownPluginError
 
 
 def runs_three_scenarios() -> pd.DataFrame:
@@ -53,6 +55,20 @@ def test_marks_and_counts_follow_the_tests():
     assert tuple(wtl.loc[("length", "slow")]) == (2, 0, 1, 0)
     assert tuple(wtl.loc[("energy", "twin")]) == (3, 0, 0, 0)
     assert tuple(wtl.loc[("energy", "slow")]) == (0, 3, 0, 0)
+
+
+def test_unregistered_column_given_with_its_direction():
+    """A column that is not a registered metric is compared by the MetricInfo it comes with, nothing global changes."""
+    runs = runs_three_scenarios()
+    runs = runs.assign(score=runs["length"])
+    before = dict(frame.RUN_COLUMNS)
+    with pytest.raises(UnknownPluginError):
+        paper_table(runs, "ref", ["score"])
+    lower = paper_table(runs, "ref", [MetricInfo("score", "1", "min")]).table.set_index(["scenario", "config"])
+    higher = paper_table(runs, "ref", [MetricInfo("score", "1", "max")]).table.set_index(["scenario", "config"])
+    assert lower.loc[("s1", "slow"), "score_mark"] == "↑"
+    assert higher.loc[("s1", "slow"), "score_mark"] == "↓"
+    assert frame.RUN_COLUMNS == before
 
 
 def test_formats():
