@@ -4,7 +4,9 @@ from __future__ import annotations
 
 import argparse
 import errno
+import shutil
 import sys
+import textwrap
 from pathlib import Path
 from typing import Any
 
@@ -46,7 +48,9 @@ def _run(args: argparse.Namespace) -> int:
     for col in ("default score", "tuned score"):
         display[col] = [f"{v:.4f}" if v == v else "n/a" for v in table[col]]
     sys.stdout.write(render_table(display, "text", left=("planner", "tuned parameters")))
-    sys.stdout.write(f"\nTest scenarios: {', '.join(s.id for s in setup.test)}\n\n")
+    ids = ", ".join(s.id for s in setup.test)
+    width = max(40, shutil.get_terminal_size().columns)
+    sys.stdout.write("\n" + textwrap.fill(f"Test scenarios ({len(setup.test)}): {ids}", width, subsequent_indent="  ") + "\n\n")
     sys.stdout.write(render_leaderboard(result.test_runs, args))
     return 0
 

@@ -127,6 +127,7 @@ def test_cli_prints_trials_tuned_parameters_and_both_rows(tuning_file, tmp_path,
     assert [r[1] for r in rows[:3]] == ["2", "2", "2"]
     assert "alpha=" in out and "beta=" in out
     assert "mmas default" in out and "Leaderboard" in out
+    assert "Test scenarios (" in out
 
 
 def test_overlapping_train_and_test_is_a_one_line_error(tuning_file, capsys):
