@@ -8,7 +8,7 @@ import pytest
 
 import pathzoo
 from pathzoo import Param, Planner, PlanResult, Status, UnknownPluginError
-from pathzoo.plugins.manager import discover
+from pathzoo.plugins.manager import KIND_GROUPS, discover
 
 
 class Dummy(Planner):
@@ -69,8 +69,9 @@ def test_unknown_ids_and_globs(fake_plugins):
 
 
 def test_builtins_come_through_entry_points():
-    names = {ep.name for ep in md.entry_points(group="pathzoo")}
-    assert {"core", "exact", "aco", "baselines", "ompl", "rivals", "scenarios"} <= names
+    names = {kind: {ep.name for ep in md.entry_points(group=group)} for kind, group in KIND_GROUPS.items()}
+    assert {"exact", "aco", "baselines", "ompl", "rivals"} <= names["planners"]
+    assert "scenarios" in names["scenarios"] and "core" in names["metrics"]
     with pytest.raises(UnknownPluginError):
         pathzoo.make_planner("no.such.planner")
 
