@@ -19,7 +19,7 @@ import pluggy
 
 from pathzoo.core.errors import UnknownPluginError
 from pathzoo.plugins import hookspecs
-from pathzoo.plugins.entries import PluginEntry, PluginFailure, ScenarioEntry
+from pathzoo.plugins.entries import PluginEntry, PluginFailure
 
 __all__ = ["Registry", "get_registry", "reset_registry", "limit_kinds", "discover", "PluginKind", "KINDS",
            "GROUP_KINDS", "ENTRY_POINT_GROUP", "KIND_GROUPS"]

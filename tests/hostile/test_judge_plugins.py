@@ -32,40 +32,31 @@ with open(os.environ["EVIL_PLUGIN_MARKER"], "a") as _f:
     _f.write(f"{__name__} {multiprocessing.current_process().name}\\n")
 """
 
-_PLANNERS = _MARK + """
+
+def _planner_module(planner_id: str, summary: str, extra: str = "") -> str:
+    """Source of a plugin module that records its import and registers an A* under ``planner_id``."""
+    return _MARK + f"""
 import pathzoo
 from pathzoo_exact.astar import AStarPlanner
 
 
-class EvilAStar(AStarPlanner):
-    id = "evil.astar"
-    summary = "A* from a plugin with an import-time side effect"
+class Evil(AStarPlanner):
+    id = "{planner_id}"
+    summary = "{summary}"
 
 
 @pathzoo.hookimpl
 def pathzoo_register_planners():
-    return [EvilAStar]
-"""
-
-_LEGACY = _MARK + """
-import pathzoo
-from pathzoo_exact.astar import AStarPlanner
+    return [Evil]
+{extra}"""
 
 
-class EvilLegacy(AStarPlanner):
-    id = "evil.legacy"
-    summary = "A* from a plugin of the old single entry-point group"
-
-
-@pathzoo.hookimpl
-def pathzoo_register_planners():
-    return [EvilLegacy]
-
-
+_PLANNERS = _planner_module("evil.astar", "A* from a plugin with an import-time side effect")
+_LEGACY = _planner_module("evil.legacy", "A* from a plugin of the old single entry-point group", """
 @pathzoo.hookimpl
 def pathzoo_register_scenarios():
     raise AssertionError("the scenarios hook of a 'pathzoo' group plugin is never called")
-"""
+""")
 
 _SCENARIOS = _MARK + """
 import pathzoo
