@@ -72,7 +72,7 @@ class LazyClass:
     """What a declared field is compared with when the class lacks the attribute."""
 
     def load(self) -> type:
-        """Import the class, and check it against the declaration.
+        """Import the class, and check it against the declaration (once; later calls return it at once).
 
         Raises
         ------
@@ -80,6 +80,9 @@ class LazyClass:
             ``target`` cannot be imported, or a declared field differs from
             the class attribute.
         """
+        loaded = self.__dict__.get("_loaded")
+        if loaded is not None:
+            return loaded
         module_name, _, qualname = self.target.partition(":")
         try:
             obj: Any = importlib.import_module(module_name)
@@ -98,6 +101,7 @@ class LazyClass:
                 raise PluginDeclarationError(
                     f"'{self.id}' declares {name}={declared!r} but {self.target} has {name}={actual!r}"
                 )
+        object.__setattr__(self, "_loaded", obj)  # a cache, not a field: equality and repr ignore it
         return obj
 
 
