@@ -168,6 +168,27 @@ def ggaco_case1() -> None:
                   f"{'yes' if m['peak_gb'] <= 1.5 else 'no'} |", flush=True)
 
 
+LIST_TARGET = 0.5
+
+
+def list_planners_time(repeats: int = 5) -> None:
+    """Wall seconds of ``pathzoo list planners`` (a fresh process each time), median of ``repeats``; CPU beside it."""
+    import resource
+
+    command = [str(Path(sys.executable).parent / "pathzoo"), "list", "planners"]
+    walls, cpus = [], []
+    for _ in range(repeats):
+        before = resource.getrusage(resource.RUSAGE_CHILDREN)
+        started = time.perf_counter()
+        subprocess.run(command, capture_output=True, check=True)
+        walls.append(time.perf_counter() - started)
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
+        cpus.append(after.ru_utime - before.ru_utime + after.ru_stime - before.ru_stime)
+    wall = statistics.median(walls)
+    print(f"| `pathzoo list planners`, wall seconds, median of {repeats} (CPU {statistics.median(cpus):.2f} s) "
+          f"| {wall:.2f} s | {LIST_TARGET} s | {'yes' if wall <= LIST_TARGET else 'no'} |", flush=True)
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="skip ggaco.case1 and gant.simple.1")
@@ -179,6 +200,7 @@ def main() -> None:
     print("\n| figure | measured | target | met |\n|---|---|---|---|")
     as_throughput(args.repeats)
     astar_against_pathfinding(args.astar_problems)
+    list_planners_time()
     if not args.quick:
         ggaco_case1()
 

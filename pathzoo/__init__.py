@@ -34,7 +34,7 @@ from pathzoo.core import (
     UnsupportedScenarioError,
     VehicleModel,
 )
-from pathzoo.plugins.entries import PluginEntry, ScenarioEntry
+from pathzoo.plugins.entries import LazyMetric, LazyPlanner, PluginEntry, ScenarioEntry
 from pathzoo.io.paths import looks_like_path
 from pathzoo.plugins.hookspecs import hookimpl
 
@@ -51,6 +51,8 @@ __all__ = [
     "InvalidExperimentError",
     "InvalidParameterError",
     "InvalidScenarioError",
+    "LazyMetric",
+    "LazyPlanner",
     "Metric",
     "MovingObstacle",
     "Param",

@@ -8,7 +8,7 @@ with pathzoo while the script runs, checks it with the conformance kit
 :mod:`pathzoo.testing` and runs it against the exact optimum.
 
 A planner you want to share belongs in a package that registers it through
-the ``pathzoo`` entry-point group, so that ``pathzoo list`` and worker
+the ``pathzoo.planners`` entry-point group, so that ``pathzoo list`` and worker
 processes find it: :doc:`/register-a-planner` walks through one.
 """
 
@@ -128,7 +128,7 @@ print("FewestMoves passes every conformance check")
 # Register it
 # -----------
 # A plugin is any module with pathzoo's hook functions. Installed packages
-# declare theirs in the ``pathzoo`` entry-point group; here a module built on
+# declare theirs in the ``pathzoo.planners`` entry-point group; here a module built on
 # the fly is added to the registry by hand. From then on the planner is
 # known by its id like the built-in ones.
 

@@ -10,6 +10,7 @@ from typing import Literal, Sequence
 import pandas as pd
 
 from pathzoo.core.errors import InvalidParameterError
+from pathzoo.text_table import aligned_text
 
 __all__ = ["TABLE_FORMATS", "TableFormat", "format_number", "format_percent", "render_table"]
 
@@ -104,18 +105,7 @@ def render_table(
         head = [f"**{title}**", ""] if title else []
         tail = ["", *notes] if notes else []
         return "\n".join([*head, *lines, *tail]) + "\n"
-    widths = [max(len(r[i]) for r in [header, *rows]) for i in range(len(header))]
-    lefts = set(left)
-
-    def line(cells: list[str]) -> str:
-        out = [c.ljust(w) if h in lefts else c.rjust(w) for c, w, h in zip(cells, widths, header)]
-        return "  ".join(out).rstrip()
-
-    rule = "  ".join("-" * w for w in widths)
-    lines = [line(header), rule, *(line(r) for r in rows)]
-    head = [title, ""] if title else []
-    tail = ["", *notes] if notes else []
-    return "\n".join([*head, *lines, *tail]) + "\n"
+    return aligned_text(header, rows, left=left, title=title, notes=notes)
 
 
 def _latex(display: pd.DataFrame, title: str, notes: Sequence[str], left: Sequence[str]) -> str:

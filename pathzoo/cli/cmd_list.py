@@ -1,4 +1,8 @@
-"""``pathzoo list planners|scenarios|metrics``: what the installed plugins provide, and where it comes from."""
+"""``pathzoo list planners|scenarios|metrics``: what the installed plugins provide, and where it comes from.
+
+It reads the plugins' declarations only: no planner or metric class is
+imported, and neither are numba, pandas or scipy, so it answers at once.
+"""
 
 from __future__ import annotations
 
@@ -8,6 +12,7 @@ import sys
 from typing import Any, Callable
 
 from pathzoo.plugins.entries import PluginEntry
+from pathzoo.text_table import aligned_text
 
 __all__ = ["add_parser", "list_table", "matches"]
 
@@ -15,15 +20,15 @@ KINDS = ("planners", "scenarios", "metrics")
 
 
 def _planner_detail(entry: PluginEntry) -> str:
-    return ",".join(sorted(getattr(entry.obj, "kinds", ())))
+    return ",".join(sorted(entry.declared("kinds", ())))
 
 
 def _scenario_detail(entry: PluginEntry) -> str:
-    return str(getattr(entry.obj, "kind", ""))
+    return str(entry.declared("kind", ""))
 
 
 def _metric_detail(entry: PluginEntry) -> str:
-    return f"{getattr(entry.obj, 'unit', '')}, {getattr(entry.obj, 'direction', '')}"
+    return f"{entry.declared('unit', '')}, {entry.declared('direction', '')}"
 
 
 _DETAIL: dict[str, tuple[str, Callable[[PluginEntry], str]]] = {
@@ -45,22 +50,18 @@ def matches(entry_id: str, patterns: list[str]) -> bool:
 
 def list_table(entries: list[PluginEntry], kind: str) -> str:
     """An aligned text table of registry entries: id, detail, distribution, version and summary."""
-    import pandas as pd
-
-    from pathzoo.analysis.formatting import render_table
-
     detail_name, detail = _DETAIL[kind]
     columns = ["id", detail_name, "distribution", "version", "summary"]
     rows = [[e.id, detail(e), e.distribution or "-", e.version or "-", _summary(e, kind)] for e in entries]
-    frame = pd.DataFrame(rows, columns=columns)
-    return render_table(frame, "text", left=columns)
+    return aligned_text(columns, rows, left=columns)
 
 
 def _run(args: argparse.Namespace) -> int:
     from pathzoo.plugins.manager import discover
 
-    # a fresh discovery (not the cached registry) so import failures are reported here, once, at the end
-    registry = discover()
+    # a fresh discovery (not the cached registry) so import failures are reported here, once, at the end;
+    # only the entry-point groups of this kind are imported
+    registry = discover(kinds=(args.kind,))
     table = registry.table(args.kind)
     entries = [table[k] for k in sorted(table) if matches(k, args.patterns)]
     if entries:

@@ -18,6 +18,13 @@ its own process (monkeypatching the validator, changing or replacing parts
 of its scenario, patching the clock) can reach a verdict, under every
 executor, ``inline`` included (though inline the planner shares the
 harness's own process, see :class:`~pathzoo.harness.executors.InlineExecutor`).
+
+The judge process loads scenario and metric plugins only (:data:`JUDGE_KINDS`,
+:func:`pathzoo.plugins.manager.limit_kinds`): it is spawned afresh, never
+forked from the workers' server, imports no entry point of a planner group,
+and of the modules registered by hand only those that provide scenarios or
+metrics (:meth:`~pathzoo.plugins.manager.Registry.judge_modules`). A
+planner plugin's import-time code never runs where verdicts are made.
 """
 
 from __future__ import annotations
@@ -25,11 +32,13 @@ from __future__ import annotations
 import signal
 import time
 import warnings
+from dataclasses import replace
 from multiprocessing.connection import Connection, wait
 from typing import TYPE_CHECKING, Any
 
-from pathzoo.harness.launch import NoMainContext, default_start_method
+from pathzoo.harness.launch import NoMainContext
 from pathzoo.harness.worker import SETUP_TIMEOUT_S, describe_exception, ensure_plugins, load_cached, quiet_registry
+from pathzoo.plugins.manager import get_registry, limit_kinds
 
 if TYPE_CHECKING:
     from multiprocessing.process import BaseProcess
@@ -43,11 +52,15 @@ __all__ = ["JudgeWorker", "JUDGE_TIMEOUT_S"]
 JUDGE_TIMEOUT_S = 60.0
 """Default limit on judging one run (validation and every metric), scenario loading excluded."""
 
+JUDGE_KINDS = ("scenarios", "metrics")
+"""The only kinds of plugins the judge process loads (see ``docs/register-a-planner.md``)."""
+
 _clock = time.perf_counter
 
 
 def _judge_main(conn: Connection) -> None:
     """Loop of the judge process: load the scenario, say so, judge, send the record (or the error)."""
+    limit_kinds(JUDGE_KINDS)  # before anything discovers plugins: planner plugins are never imported here
     from pathzoo.harness.judge import judge
 
     signal.signal(signal.SIGINT, signal.SIG_IGN)
@@ -80,13 +93,15 @@ class JudgeWorker:
     ----------
     judge_timeout_s : float
         Limit on judging one run once its scenario is loaded.
-    start_method : str, optional
-        ``"forkserver"`` or ``"spawn"``.
+
+    The process is always spawned, never forked from the workers'
+    ``forkserver``: that server has imported the planner plugins, and a
+    forked judge would inherit them.
     """
 
-    def __init__(self, judge_timeout_s: float = JUDGE_TIMEOUT_S, *, start_method: str | None = None) -> None:
+    def __init__(self, judge_timeout_s: float = JUDGE_TIMEOUT_S) -> None:
         self.judge_timeout_s = float(judge_timeout_s)
-        self._ctx: Any = NoMainContext(start_method or default_start_method())
+        self._ctx: Any = NoMainContext("spawn")
         self._process: BaseProcess | None = None
         self._conn: Connection | None = None
 
@@ -149,7 +164,8 @@ class JudgeWorker:
 
         conn = self._start()
         try:
-            conn.send((task, outcome, isolated))
+            conn.send((replace(task, plugin_modules=get_registry().judge_modules(task.plugin_modules)), outcome,
+                       isolated))
         except Exception as exc:  # noqa: BLE001 - e.g. a scenario object that does not pickle
             return unjudged(task, outcome, f"the run could not be sent to the judge ({type(exc).__name__})",
                             isolated=isolated)

@@ -56,6 +56,7 @@ __all__ = [
     "execute_task",
     "load_cached",
     "ensure_plugins",
+    "preload_planners",
     "HistoryRecorder",
     "SCENARIO_CACHE_SIZE",
     "SETUP_TIMEOUT_S",
@@ -215,6 +216,18 @@ def quiet_registry() -> Any:
 
     with contextlib.redirect_stderr(io.StringIO()):
         return get_registry()
+
+
+def preload_planners() -> None:
+    """Import the class of every available planner now, so processes forked later start with them.
+
+    Plugins declare planners lazily; a class that fails to import is skipped
+    here, and its runs report the error when they build the planner.
+    """
+    for entry in quiet_registry().planners.values():
+        if not entry.unavailable:
+            with contextlib.suppress(Exception):
+                entry.obj
 
 
 # ---------------------------------------------------------------- scenarios

@@ -14,7 +14,6 @@ import numpy as np
 
 from pathzoo.core.errors import InvalidScenarioError
 from pathzoo.core.scenario import Scenario
-from pathzoo.generators.checks import relocated
 from pathzoo.io.provenance import file_record
 from pathzoo.io.text import read_lines
 
@@ -195,6 +194,8 @@ def scenarios_from_scen(path: str | Path) -> list[Scenario]:
                 scenario.graph  # build it now so every copy shares it
                 first[name] = scenario
         except InvalidScenarioError as exc:
+            from pathzoo.generators.checks import relocated  # not at the top: the generators import scipy
+
             raise relocated(exc, source=src, note=where) from None
         scenarios.append(scenario)
     return scenarios

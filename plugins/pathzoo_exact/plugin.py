@@ -1,21 +1,31 @@
-"""The ``exact`` plugin: registers Dijkstra, A*, Theta* and the any-angle optimum through pathzoo's entry points."""
+"""The ``exact`` plugin: declares Dijkstra, A*, Theta* and the any-angle optimum (imported when first built)."""
 
 from __future__ import annotations
 
 from typing import Sequence
 
-from pathzoo.core import Planner
+from pathzoo.plugins.entries import LazyPlanner
 from pathzoo.plugins.hookspecs import hookimpl
 
-__all__ = ["pathzoo_register_planners"]
+__all__ = ["pathzoo_register_planners", "PLANNERS"]
+
+_GRID_TERRAIN_AIR = frozenset({"air3d", "grid2d", "terrain"})
+
+PLANNERS: tuple[LazyPlanner, ...] = (
+    LazyPlanner("exact.dijkstra", "Dijkstra on the 8-connected (air: max_step) cell graph; optimal length or energy",
+                "pathzoo_exact.dijkstra:DijkstraPlanner", kinds=_GRID_TERRAIN_AIR),
+    LazyPlanner("exact.astar", "A* on the 8-connected (air: max_step) cell graph; optimal length or energy",
+                "pathzoo_exact.astar:AStarPlanner", kinds=_GRID_TERRAIN_AIR),
+    LazyPlanner("exact.thetastar", "Theta* any-angle search (Nash et al. 2007); never longer than the grid optimum",
+                "pathzoo_exact.thetastar:ThetaStarPlanner", kinds=frozenset({"grid2d"})),
+    LazyPlanner("exact.anyangle",
+                "exact any-angle optimum (visibility graph over corners), pushed 1e-6 cells off obstacles",
+                "pathzoo_exact.anyangle:AnyAnglePlanner", kinds=frozenset({"grid2d"})),
+)
+"""The exact reference planners, declared without importing them."""
 
 
 @hookimpl
-def pathzoo_register_planners() -> Sequence[type[Planner]]:
-    """The exact reference planners ``exact.dijkstra``, ``exact.astar``, ``exact.thetastar`` and ``exact.anyangle``."""
-    from pathzoo_exact.anyangle import AnyAnglePlanner
-    from pathzoo_exact.astar import AStarPlanner
-    from pathzoo_exact.dijkstra import DijkstraPlanner
-    from pathzoo_exact.thetastar import ThetaStarPlanner
-
-    return [DijkstraPlanner, AStarPlanner, ThetaStarPlanner, AnyAnglePlanner]
+def pathzoo_register_planners() -> Sequence[LazyPlanner]:
+    """``exact.dijkstra``, ``exact.astar``, ``exact.thetastar`` and ``exact.anyangle`` (:data:`PLANNERS`)."""
+    return PLANNERS

@@ -38,7 +38,6 @@ from functools import partial
 import numpy as np
 
 from pathzoo.core import Scenario, VehicleModel
-from pathzoo.generators.peak_terrain import peaks_elevation
 from pathzoo.plugins.entries import ScenarioEntry
 from pathzoo_scenarios.common import check_choice, pack_metadata
 
@@ -111,6 +110,8 @@ def peaks_world_m(environment: str) -> np.ndarray:
 
 def load(environment: str) -> Scenario:
     """Build ``dsaco.<environment>`` for ``environment`` in ``{"simple", "medium", "complex"}``."""
+    from pathzoo.generators.peak_terrain import peaks_elevation  # here: the generators import scipy
+
     check_choice(environment, PEAKS, "environment")
     peaks = PEAKS[environment]
     nx, ny = int(SIZE_KM[0] / H_CELL_KM), int(SIZE_KM[1] / H_CELL_KM)

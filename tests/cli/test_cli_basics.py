@@ -75,10 +75,12 @@ def test_list_shows_each_entry_with_its_distribution_and_version(kind, capsys):
 
 
 def test_list_reports_skipped_plugins_at_the_end_on_stderr(monkeypatch, capsys):
-    real = list(md.entry_points(group=manager.ENTRY_POINT_GROUP))
-    broken = md.EntryPoint("broken", "pathzoo_no_such_module_xyz", manager.ENTRY_POINT_GROUP)
+    group = manager.KIND_GROUPS["planners"]
+    real = list(md.entry_points(group=group))
+    broken = md.EntryPoint("broken", "pathzoo_no_such_module_xyz", group)
     original = manager.discover
-    monkeypatch.setattr(manager, "discover", lambda entry_points=None: original([*real, broken]))
+    monkeypatch.setattr(manager, "discover", lambda entry_points=None, kinds=manager.KINDS: original([*real, broken],
+                                                                                                      kinds))
     assert main(["list", "planners"]) == 0
     captured = capsys.readouterr()
     lines = captured.err.strip().splitlines()

@@ -1,4 +1,4 @@
-"""Imported once by the ``forkserver`` process: load numpy, the harness and every entry-point plugin.
+"""Imported once by the ``forkserver`` process: load numpy, the harness, every plugin and every planner class.
 
 Workers are forked from that server, so each starts with the plugins already
 imported (and their numba functions loaded) instead of discovering them
@@ -6,6 +6,6 @@ again: replacing a killed worker costs a fork, not a second of imports.
 Importing this module has that side effect on purpose; nothing else imports it.
 """
 
-from pathzoo.harness.worker import quiet_registry
+from pathzoo.harness.worker import preload_planners
 
-quiet_registry()
+preload_planners()

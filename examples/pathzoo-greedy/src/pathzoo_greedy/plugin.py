@@ -1,4 +1,9 @@
-"""The module named in the ``pathzoo`` entry-point group: it tells pathzoo what this package provides."""
+"""The module named in the ``pathzoo.planners`` entry-point group: it tells pathzoo what this package provides.
+
+It declares the planner without importing it: ``pathzoo list`` reads the
+declaration, and pathzoo imports ``pathzoo_greedy.planner`` only when the
+planner is built (and checks that the class agrees with what is declared).
+"""
 
 from __future__ import annotations
 
@@ -6,12 +11,17 @@ from typing import Sequence
 
 import pathzoo
 
-from pathzoo_greedy.planner import GreedyBestFirst
-
 __all__ = ["pathzoo_register_planners"]
 
 
 @pathzoo.hookimpl
-def pathzoo_register_planners() -> Sequence[type[pathzoo.Planner]]:
+def pathzoo_register_planners() -> Sequence[pathzoo.LazyPlanner]:
     """The planners of this plugin."""
-    return [GreedyBestFirst]
+    return [
+        pathzoo.LazyPlanner(
+            "greedy.best_first",
+            "Greedy best-first search on the grid graph (octile heuristic)",
+            "pathzoo_greedy.planner:GreedyBestFirst",
+            kinds=frozenset({"grid2d", "terrain"}),
+        )
+    ]
