@@ -34,3 +34,14 @@ def test_saboteurs_are_recorded_and_the_next_run_still_runs(forged, tmp_path, ho
     assert by.loc["test.honest"].status == "solved"
     if how == "sleep":
         assert TIMEOUT_S <= bad.wall_time_s < TIMEOUT_S + 5
+
+
+def test_daemonic_workers_of_an_external_cluster_are_refused_with_a_clear_error():
+    """Dask's default workers are daemonic and may not start the planners' processes: say so at once."""
+    from distributed import LocalCluster
+
+    from pathzoo.core.errors import PathzooError
+
+    with LocalCluster(n_workers=1, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
+        with pytest.raises(PathzooError, match="daemonic processes .* DASK_DISTRIBUTED__WORKER__DAEMON=False"):
+            dask_executor(cluster.scheduler_address)

@@ -88,10 +88,10 @@ def _supervisor(token: str) -> ProcessExecutor:
     return executor
 
 
-def _close_supervisors(token: str) -> int:
-    """Shut down the process executors made for ``token`` in this Dask worker process; returns how many."""
+def _close_supervisors(token: str, thread: int | None = None) -> int:
+    """Shut down the process executors made for ``token`` in this Dask worker process (one thread's, or all)."""
     with _supervisors_lock:
-        keys = [key for key in _supervisors if key[0] == token]
+        keys = [key for key in _supervisors if key[0] == token and thread in (None, key[1])]
         executors = [_supervisors.pop(key) for key in keys]
     for executor in executors:
         executor.shutdown()
@@ -108,7 +108,12 @@ def _run_on_worker(task: "RunTask", token: str) -> bytes:
     from distributed import get_worker
 
     get_worker().log_event(_STARTED_TOPIC, [task.run_key])
-    return encode_outcome(_supervisor(token).submit(task).result())
+    try:
+        outcome = _supervisor(token).submit(task).result()
+    except BaseException:  # its child could not start and its monitor stopped: the next run gets a fresh one
+        _close_supervisors(token, threading.get_ident())
+        raise
+    return encode_outcome(outcome)
 
 
 @dataclass
