@@ -59,7 +59,7 @@ def test_same_results_inline_process_and_dask(forged, small_scen, tmp_path):
         frame = run_experiment(experiment(forged, small_scen), db=db, jobs=2, executor=executor, progress=False)
         results[name] = comparable(db, frame)
     assert not results["inline"][0].isolated.any() and results["process"][0].isolated.all()
-    assert not results["dask"][0].isolated.any()  # processes=False: threads of the harness process
+    assert results["dask"][0].isolated.all()  # Dask workers are threads here, but planners run in their children
     results = {name: (frame.drop(columns="isolated"), rest) for name, (frame, rest) in results.items()}
     base, (paths, hist) = results["inline"]
     assert len(base) == 2 * 4 * 2 and (base.status == "solved").all()

@@ -19,6 +19,7 @@ from pathzoo import Budget, MovingObstacle, Param, Planner, PlanResult, Scenario
 from pathzoo.core.planner import ProgressCallback
 
 _REAL_CLOCK = time.perf_counter
+_REAL_CPU = time.process_time
 KINDS = frozenset({"grid2d", "terrain", "air3d", "dynamic"})
 
 
@@ -141,6 +142,37 @@ class PatchClock(_Hostile):
         return PlanResult(Status.SOLVED, path=ref.path.copy(), iterations=1, evaluations=1)
 
 
+CLOCK_HOLDERS = ("pathzoo.harness.worker", "pathzoo.harness.executors.process", "pathzoo.harness.executors.cluster")
+"""Modules whose import-bound clocks (``_clock``, ``_cpu``, ``process_cpu_time``) :class:`PatchAllClocks` freezes."""
+
+
+class PatchAllClocks(_Hostile):
+    """Burns 0.3 s of CPU, then freezes every clock it can reach: ``time``, pathzoo's own, psutil's (an honest answer)."""
+
+    id = "hostile.patch_all_clocks"
+
+    def attack(self, scenario: Scenario) -> PlanResult:
+        import importlib
+        from types import SimpleNamespace
+
+        import psutil
+
+        from pathzoo.grid.reference import reference_path
+
+        end = _REAL_CPU() + 0.3
+        while _REAL_CPU() < end:
+            pass
+        time.perf_counter = time.process_time = lambda: 1.0  # type: ignore[assignment]
+        for name in CLOCK_HOLDERS:
+            module = importlib.import_module(name)
+            for attr, fake in (("_clock", lambda: 1.0), ("_cpu", lambda: 1.0), ("process_cpu_time", lambda pid: 1.0)):
+                if hasattr(module, attr):
+                    setattr(module, attr, fake)
+        psutil.Process.cpu_times = lambda self: SimpleNamespace(user=0.0, system=0.0)  # type: ignore[method-assign]
+        ref = reference_path(scenario)
+        return PlanResult(Status.SOLVED, path=ref.path.copy(), iterations=1, evaluations=1)
+
+
 class SpamStarted(_Hostile):
     """Finds its worker's pipe and keeps announcing a fresh start, so the hard limit never comes."""
 
@@ -236,7 +268,7 @@ class Flaky(_Hostile):
 
 
 PLANNERS = [PatchValidator, DropObstacles, ReplaceGraph, PatchClass, PatchClock, SpamStarted, Counts, Message,
-            ExitAlways, HugePath, Flaky]
+            ExitAlways, HugePath, Flaky, PatchAllClocks]
 
 
 @hookimpl

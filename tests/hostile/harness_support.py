@@ -2,10 +2,12 @@
 
 from __future__ import annotations
 
+import importlib
 import time
 from types import ModuleType
 from typing import Iterator
 
+import psutil
 import pytest
 
 import harness_hostile
@@ -17,7 +19,9 @@ from pathzoo.plugins.manager import get_registry, reset_registry
 PLUGIN_NAME = "hostile-harness-test"
 
 _PATCHABLE = [*((m, "validate_path") for m in harness_hostile.validator_modules()),
-              (time, "perf_counter"), (time, "process_time"), (Scenario, "graph")]
+              (time, "perf_counter"), (time, "process_time"), (Scenario, "graph"), (psutil.Process, "cpu_times"),
+              *((module, name) for module in map(importlib.import_module, harness_hostile.CLOCK_HOLDERS)
+                for name in ("_clock", "_cpu", "process_cpu_time") if name in module.__dict__)]
 
 
 @pytest.fixture()

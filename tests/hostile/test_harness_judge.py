@@ -77,11 +77,8 @@ def test_dask_workers_are_isolated_too(hostile, tmp_path):
     planners = ["hostile.patch_validator", "hostile.patch_class", "exact.astar"]
     exp = experiment(planners, ["hostile.wall"], seeds=2)
     runs = run(exp, tmp_path, dask_executor(jobs=1))
-    by = runs.groupby("planner").status.agg(set)
-    # a run lost while Dask restarts a tainted worker can end as a crash (a known Dask race, see
-    # docs/harness.md); what must never happen is a forgery stored as solved or an honest run judged invalid
-    assert "solved" in by["exact.astar"] and by["exact.astar"] <= {"solved", "crash"}, by["exact.astar"]
-    for planner in planners:
-        if planner != "exact.astar":
-            assert by[planner] <= {"invalid", "crash"} and "invalid" in by[planner], planner
+    by = runs.groupby("planner").status.agg(list)
+    # one Dask worker: each planner runs in a child of it, and a tainted child is replaced before the next run
+    assert by["exact.astar"] == ["solved", "solved"]
+    assert by["hostile.patch_validator"] == by["hostile.patch_class"] == ["invalid", "invalid"]
     assert runs.isolated.all()

@@ -1,113 +1,119 @@
-"""The Dask executor: runs go to a ``dask.distributed`` cluster (or a local one).
+"""The Dask executor: runs go to a ``dask.distributed`` cluster (or a local one), timed outside the planner.
 
 ``dask`` is imported only when this executor is built (``pip install
-pathzoo[dask]``). Each run is one task calling
-:func:`~pathzoo.harness.worker.execute_task` on a Dask worker, which loads
-plugins and scenarios itself (cached per worker process) and returns the
-outcome; the harness judges and stores it as with the other executors.
+pathzoo[dask]``). Each run is one Dask task, but the planner never runs in
+the Dask worker: the task hands the run to a one-worker
+:class:`~pathzoo.harness.executors.process.ProcessExecutor` that the Dask
+worker thread owns (started on its first task, kept for the next ones), so
+the planner runs in a child process of the Dask worker and the Dask worker
+supervises it exactly as the process executor does (read that module's
+docstring). What this gives:
 
-What it can and cannot guarantee:
-
-- exceptions in ``plan()`` are caught in the task and recorded as ``crash``;
-- a worker *process* that dies is detected by the scheduler, which fails the
-  task with ``KilledWorker``: the run is recorded as ``crash``. The local
+- wall time is the Dask worker's clock from the child's "planning" message to
+  its outcome, CPU time the child's CPU time read from outside it (psutil):
+  a planner that patches ``time`` or pathzoo's clocks in its own process
+  changes neither. CPU time is meaningful with any number of threads per
+  Dask worker, since each thread has its own child;
+- the hard limit counts from the child's first "started" message (planner
+  built, scenario loaded), so runs waiting in the cluster's queue never time
+  out; at the limit the child gets ``SIGKILL`` and the run is ``timeout``:
+  no thread keeps running and the Dask worker needs no restart;
+- exceptions in ``plan()``, a child that dies (``os._exit``, segfault, out
+  of memory) or breaks the protocol, and a child whose planner rebound module
+  attributes (:mod:`pathzoo.harness.tamper`) are handled by the process
+  executor: ``crash`` outcomes and a fresh child for the next run;
+- nothing the planner's process sends is unpickled (:mod:`pathzoo.harness.wire`).
+  Dask unpickles what its workers send, but the Dask worker processes now run
+  only pathzoo code; the outcome still travels as bytes and is decoded and
+  bounded here again;
+- a Dask worker *process* that dies is detected by the scheduler, which fails
+  the task with ``KilledWorker``: the run is recorded as ``crash``. The local
   cluster sets ``distributed.scheduler.allowed-failures`` to 0 for this; an
   external scheduler retries the task on other workers as often as its own
   setting allows (3 by default) before giving up;
-- the hard limit counts from the moment ``plan()`` starts (the task reports it
-  with a worker event), so runs waiting in the cluster's queue never time out;
-- a thread cannot be killed: at the hard limit the run is recorded as
-  ``timeout`` and its task cancelled, and the harness asks the scheduler to
-  restart the worker that runs it (best effort: this needs a nanny, i.e. a
-  worker started by ``dask worker`` or a ``LocalCluster(processes=True)``).
-  Without a restart the thread keeps running until ``plan()`` returns, and
-  that worker has one thread less meanwhile. Runs that die with such a
-  restarted worker, or with a worker killed by another run before they
-  started, are submitted again (up to 3 attempts), not recorded as crashes;
-- the hard limit counts from the *first* "started" event of the run, on the
-  harness's clock;
-- wall and CPU time are measured *inside* the worker process (with clock
-  functions bound when pathzoo was imported, so patching ``time`` does not
-  change them, but a planner that patches pathzoo itself could). Worker
-  events reach the client with a delay of their own, so the harness cannot
-  time ``plan()`` from outside as the process executor does: use that one
-  when timings must be forgery-proof. CPU time is only meaningful with one
-  thread per worker (the local cluster uses ``threads_per_worker=1``);
-- the outcome comes back as bytes (:mod:`pathzoo.harness.wire`) and is decoded
-  and bounded here, like the process executor's; Dask itself still unpickles
-  what its workers send, so a cluster must only run trusted worker processes;
-- a worker process in which a planner rebound module attributes
-  (:mod:`pathzoo.harness.tamper`) refuses every later task and is restarted
-  through its nanny; the refused tasks are submitted again;
+- a Dask task that never starts (lost by the scheduler) is given up after
+  :data:`~pathzoo.harness.worker.SETUP_TIMEOUT_S`, and one that never answers
+  after that limit plus the run's hard limit plus :data:`ANSWER_GRACE_S`
+  (both as ``crash``), so an experiment cannot hang on a broken cluster;
+- Dask worker processes must be allowed to have children: Dask starts them as
+  *daemonic* processes by default, which :mod:`multiprocessing` forbids to
+  fork. The local cluster turns that off while the executor lives
+  (``distributed.worker.daemon: False``); for an external cluster start the
+  workers with ``DASK_DISTRIBUTED__WORKER__DAEMON=False`` (or ``dask worker
+  --no-nanny``), else the executor refuses to start with an error saying so;
 - file scenarios are read by path on the workers, so the files must be
   visible to them at the same path; Python scenario objects travel in the task.
 """
 
 from __future__ import annotations
 
-import logging
 import math
+import multiprocessing
 import os
 import threading
 import time
+import uuid
 from concurrent.futures import CancelledError, Future
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any
 
 from pathzoo.core.errors import PathzooError
 from pathzoo.harness.executors.base import RunExecutor
-from pathzoo.harness.tamper import ModuleFingerprint
+from pathzoo.harness.executors.process import ProcessExecutor
 from pathzoo.harness.wire import decode_outcome, encode_outcome
-from pathzoo.harness.worker import SETUP_TIMEOUT_S, RunOutcome, ensure_plugins, execute_task, quiet_registry, utc_now
+from pathzoo.harness.worker import SETUP_TIMEOUT_S, RunOutcome, utc_now
 
 if TYPE_CHECKING:
     from pathzoo.harness.specs import RunTask
 
-__all__ = ["DaskExecutor"]
+__all__ = ["DaskExecutor", "ANSWER_GRACE_S"]
 
 _STARTED_TOPIC = "pathzoo-run-started"
 _TICK_S = 0.1
-_MAX_ATTEMPTS = 3
-_clock = time.perf_counter
-_process_state: dict[str, Any] = {}
+ANSWER_GRACE_S = 120.0
+"""Slack beyond the setup and hard limits before the harness gives up on a Dask task that does not answer."""
+_clock = time.perf_counter  # bound at import: a later patch of time.perf_counter does not reach the harness
+
+_supervisors: dict[tuple[str, int], ProcessExecutor] = {}
+_supervisors_lock = threading.Lock()
 
 
-def _run_on_worker(task: "RunTask", check_tamper: bool) -> bytes:
-    """The Dask task: run one task, report "started" and "planning" as worker events, return the encoded outcome.
+def _supervisor(token: str) -> ProcessExecutor:
+    """The one-worker process executor of this Dask worker thread for the executor ``token`` (made on first use)."""
+    key = (token, threading.get_ident())
+    with _supervisors_lock:
+        executor = _supervisors.get(key)
+        if executor is None:
+            executor = _supervisors[key] = ProcessExecutor(1)
+    return executor
 
-    The first byte says whether the process is still clean (``D``), was
-    tainted by this run (``T``) or had been tainted before, so the task was
-    refused (``X``). Worker threads of the harness process (``check_tamper``
-    false) share it with the harness, so there is nothing to check.
-    """
+
+def _close_supervisors(token: str, thread: int | None = None) -> int:
+    """Shut down the process executors made for ``token`` in this Dask worker process (one thread's, or all)."""
+    with _supervisors_lock:
+        keys = [key for key in _supervisors if key[0] == token and thread in (None, key[1])]
+        executors = [_supervisors.pop(key) for key in keys]
+    for executor in executors:
+        executor.shutdown()
+    return len(executors)
+
+
+def _may_fork() -> bool:
+    """Whether this (Dask worker) process may start child processes, i.e. is not daemonic."""
+    return not multiprocessing.current_process().daemon
+
+
+def _run_on_worker(task: "RunTask", token: str) -> bytes:
+    """The Dask task: report the start, run the task in this thread's supervised child, return the encoded outcome."""
     from distributed import get_worker
 
-    worker = get_worker()
-    if not check_tamper:
-        return b"D" + encode_outcome(execute_task(
-            task, lambda event: worker.log_event(_STARTED_TOPIC, [task.run_key, event, worker.address])))
-    if _process_state.get("tainted"):
-        return b"X" + worker.address.encode()
-    quiet_registry()  # discovered before the baseline: the registry is not the planner's change
-    ensure_plugins(task.plugin_modules)
-    fingerprint = _process_state.get("fingerprint") or ModuleFingerprint().update()
-    outcome = execute_task(task, lambda event: worker.log_event(_STARTED_TOPIC, [task.run_key, event, worker.address]))
-    changed = fingerprint.changed()
-    tainted = bool(changed)
-    if tainted:
-        logging.getLogger("pathzoo.harness").warning("worker %s tainted by run %s: %s", worker.address, task.run_key,
-                                                     ", ".join(changed))
-    _process_state.update(tainted=tainted, fingerprint=None if tainted else fingerprint.update())
-    return (b"T" if tainted else b"D") + encode_outcome(outcome)
-
-
-_RESENT_START_S = 120.0
-
-
-def _start_limit(run: "_Run") -> float:
-    """How long a run may wait for its start: the setup limit, or less for a run sent again after a worker restart
-    (such tasks are sometimes lost by the scheduler, which would otherwise hang the experiment)."""
-    return SETUP_TIMEOUT_S if run.attempts == 1 else _RESENT_START_S
+    get_worker().log_event(_STARTED_TOPIC, [task.run_key])
+    try:
+        outcome = _supervisor(token).submit(task).result()
+    except BaseException:  # its child could not start and its monitor stopped: the next run gets a fresh one
+        _close_supervisors(token, threading.get_ident())
+        raise
+    return encode_outcome(outcome)
 
 
 @dataclass
@@ -117,13 +123,17 @@ class _Run:
     dask_future: Any
     submitted: float
     started: float = math.nan
-    deadline: float = math.inf
-    worker: str = ""
-    attempts: int = 1
+
+    @property
+    def deadline(self) -> float:
+        """When the harness stops waiting: no start within the setup limit, or no answer well past the hard limit."""
+        if math.isnan(self.started):
+            return self.submitted + SETUP_TIMEOUT_S
+        return self.started + SETUP_TIMEOUT_S + self.task.timeout_s + ANSWER_GRACE_S
 
 
 class DaskExecutor(RunExecutor):
-    """Run tasks on a Dask cluster (see the module docstring for its guarantees).
+    """Run tasks on a Dask cluster, each planner in a supervised child of its Dask worker (see the module docstring).
 
     Parameters
     ----------
@@ -133,7 +143,14 @@ class DaskExecutor(RunExecutor):
         Scheduler address such as ``"tcp://10.0.0.5:8786"``; without it a
         ``LocalCluster`` with one thread per worker is started and closed.
     processes : bool
-        Local cluster only: worker processes (True) or threads in this process.
+        Local cluster only: Dask workers as processes (True) or as threads in
+        this process. Planners run in child processes either way.
+
+    Raises
+    ------
+    PathzooError
+        dask is not installed, the scheduler cannot be reached, or its workers
+        are daemonic processes (which cannot start the planners' processes).
     """
 
     isolated = True
@@ -145,115 +162,114 @@ class DaskExecutor(RunExecutor):
         except ImportError:
             raise PathzooError("the 'dask' executor needs dask.distributed: pip install 'pathzoo[dask]'") from None
         self._cluster = None
+        self._config = None
         if address:
             try:
                 self._client = Client(address, timeout="20s")
             except (OSError, ValueError, TypeError) as exc:  # TimeoutError is an OSError
                 raise PathzooError(f"cannot connect to the Dask scheduler at {address!r}: "
                                    f"{' '.join(str(exc).split()) or type(exc).__name__}") from None
+            self._refuse_daemonic_workers(address)
         else:
-            # a run that kills its worker is a crash, not a task to retry elsewhere
-            with dask.config.set({"distributed.scheduler.allowed-failures": 0}):
-                self._cluster = LocalCluster(
-                    n_workers=int(jobs or os.cpu_count() or 1), threads_per_worker=1, processes=processes,
-                    dashboard_address=None,
-                )
+            # a run that kills its Dask worker is a crash, not a task to retry elsewhere; workers (and the ones
+            # their nannies start again later) must be allowed to start the planners' processes
+            self._config = dask.config.set({"distributed.scheduler.allowed-failures": 0,
+                                            "distributed.worker.daemon": False})
+            self._cluster = LocalCluster(
+                n_workers=int(jobs or os.cpu_count() or 1), threads_per_worker=1, processes=processes,
+                dashboard_address=None,
+            )
             self._client = Client(self._cluster)
         self.capacity = max(1, sum(self._client.nthreads().values()))
-        self.isolated = bool(address) or processes  # worker threads in this process are not isolated
+        self._token = uuid.uuid4().hex
         self._lock = threading.Lock()
         self._runs: dict[str, _Run] = {}
-        self._restarted: set[str] = set()
         self._closing = threading.Event()
         self._client.subscribe_topic(_STARTED_TOPIC, self._on_started)
         self._watchdog = threading.Thread(target=self._watch, name="pathzoo-dask-watchdog", daemon=True)
         self._watchdog.start()
 
+    def _refuse_daemonic_workers(self, address: str) -> None:
+        try:
+            allowed = self._client.run(_may_fork)
+        except Exception as exc:  # noqa: BLE001 - any failure to ask is a failure to connect
+            self._client.close()
+            raise PathzooError(f"cannot query the Dask workers at {address!r}: {type(exc).__name__}: {exc}") from None
+        daemonic = sorted(worker for worker, ok in allowed.items() if not ok)
+        if daemonic:
+            self._client.close()
+            raise PathzooError(
+                f"the Dask workers {', '.join(daemonic)} at {address!r} are daemonic processes and cannot start "
+                "planner processes: start them with DASK_DISTRIBUTED__WORKER__DAEMON=False")
+
     def submit(self, task: "RunTask") -> "Future[RunOutcome]":
         """Submit one run as a Dask task."""
         future: Future[RunOutcome] = Future()
         future.set_running_or_notify_cancel()
-        self._send(_Run(task, future, None, _clock()))
+        run = _Run(task, future, None, _clock())
+        with self._lock:
+            self._runs[task.run_key] = run
+        run.dask_future = self._client.submit(_run_on_worker, task, self._token, pure=False)
+        run.dask_future.add_done_callback(lambda f, key=task.run_key: self._done(key, f))
         return future
 
-    def _send(self, run: _Run) -> None:
-        run.submitted = _clock()
-        run.dask_future = self._client.submit(_run_on_worker, run.task, self.isolated, pure=False)
-        with self._lock:
-            self._runs[run.task.run_key] = run
-        run.dask_future.add_done_callback(lambda f, key=run.task.run_key: self._done(key, f))
-
     def shutdown(self) -> None:
-        """Cancel outstanding tasks and close the client (and the local cluster)."""
+        """Cancel outstanding tasks, stop the planners' processes, close the client (and the local cluster)."""
         self._closing.set()
         self._watchdog.join()
         with self._lock:
             runs, self._runs = list(self._runs.values()), {}
         for run in runs:
             run.dask_future.cancel()
+            if not run.future.done():
+                run.future.cancel()
+        try:
+            self._client.run(_close_supervisors, self._token)
+        except Exception:  # noqa: BLE001 - workers that are gone have no children left to stop
+            pass
         self._client.close()
         if self._cluster is not None:
             self._cluster.close()
+        if self._config is not None:
+            self._config.__exit__(None, None, None)
 
     # ------------------------------------------------------------- internals
     def _on_started(self, event: Any) -> None:
         try:
-            key, what, worker = event[1]  # (timestamp, [run_key, "started" or "planning", worker address])
+            (key,) = event[1]  # (timestamp, [run_key])
         except (TypeError, ValueError):
             return
         with self._lock:
             run = self._runs.get(key)
-            if run is None:
-                return
-            if what == "started" and math.isnan(run.started):
+            if run is not None and math.isnan(run.started):
                 run.started = _clock()
-                run.deadline = run.started + run.task.timeout_s
-                run.worker = worker
-
 
     def _done(self, key: str, dask_future: Any) -> None:
         with self._lock:
             run = self._runs.get(key)
-            if run is None or run.dask_future is not dask_future:  # timed out, shut down, or sent again since
+            if run is None or run.dask_future is not dask_future:  # given up, or shut down
                 return
             del self._runs[key]
         try:
-            self._resolve(run, key, dask_future)
+            outcome = self._outcome(key, dask_future)
         except BaseException as exc:  # noqa: BLE001 - a callback that raises would leave the run pending forever
-            if not run.future.done():
-                run.future.set_result(RunOutcome(key, crash=True, started_at=utc_now(),
-                                                 message=f"dask result could not be handled: {exc!r}"))
+            outcome = RunOutcome(key, crash=True, started_at=utc_now(),
+                                 message=f"dask result could not be handled: {exc!r}")
+        run.future.set_result(outcome)
 
-    def _resolve(self, run: _Run, key: str, dask_future: Any) -> None:
+    @staticmethod
+    def _outcome(key: str, dask_future: Any) -> RunOutcome:
         try:
             data = dask_future.result()
-            if not isinstance(data, bytes) or data[:1] not in (b"D", b"T", b"X"):
+            if not isinstance(data, bytes):
                 raise TypeError(f"the worker returned {type(data).__name__}, not an encoded outcome")
-            if data[:1] == b"X" and run.attempts < _MAX_ATTEMPTS:  # a tainted worker refused it: try again
-                self._restart(data[1:].decode("utf-8", "replace"))
-                run.attempts += 1
-                run.started, run.deadline, run.worker = math.nan, math.inf, ""
-                self._send(run)
-                return
-            if data[:1] == b"T":
-                self._restart(run.worker)
-            outcome = decode_outcome(data[1:], key) if data[:1] != b"X" else RunOutcome(
-                key, crash=True, message="refused by tainted workers on every attempt")
-            outcome = replace(outcome, started_at=outcome.started_at or utc_now())
+            outcome = decode_outcome(data, key)
+            return replace(outcome, started_at=outcome.started_at or utc_now())
         except CancelledError:
-            outcome = RunOutcome(key, crash=True, message="dask task was cancelled", started_at=utc_now())
-        except Exception as exc:
-            with self._lock:
-                innocent = not run.worker or run.worker in self._restarted
-            if type(exc).__name__ == "KilledWorker" and innocent and run.attempts < _MAX_ATTEMPTS:
-                # its worker died under another run (or was restarted by us) before or while it ran: run it again
-                run.attempts += 1
-                run.started, run.deadline, run.worker = math.nan, math.inf, ""
-                self._send(run)
-                return
-            outcome = RunOutcome(key, crash=True, started_at=utc_now(),
-                                 message=f"dask task failed: {type(exc).__name__}: {exc}")
-        run.future.set_result(outcome)
+            return RunOutcome(key, crash=True, message="dask task was cancelled", started_at=utc_now())
+        except Exception as exc:  # noqa: BLE001 - KilledWorker, a child that failed to start, a broken connection
+            return RunOutcome(key, crash=True, started_at=utc_now(),
+                              message=f"dask task failed: {type(exc).__name__}: {exc}")
 
     def _watch(self) -> None:
         while not self._closing.wait(_TICK_S):
@@ -261,65 +277,9 @@ class DaskExecutor(RunExecutor):
             with self._lock:
                 expired = [key for key, run in self._runs.items() if now >= run.deadline]
                 runs = [self._runs.pop(key) for key in expired]
-                lost = [key for key, run in self._runs.items()
-                        if math.isnan(run.started) and now - run.submitted > _start_limit(run)]
-                unstarted = [self._runs.pop(key) for key in lost]
-            for run in unstarted:  # never reported a start: a lost task must not hang the experiment
-                run.future.set_result(RunOutcome(
-                    run.task.run_key, crash=True, started_at=utc_now(),
-                    message=f"the cluster did not start the run within {_start_limit(run):g} s"))
-            for run in runs:
-                elapsed = now - run.started
-                run.future.set_result(RunOutcome(
-                    run.task.run_key, timed_out=True, wall_time_s=elapsed, started_at=utc_now(),
-                    message=f"dask task abandoned after {elapsed:.3g} s",
-                ))
-                threading.Thread(target=self._restart_worker_of, args=(run.dask_future,), daemon=True).start()
-
-    def _restart(self, worker: str) -> None:
-        """Restart one worker through its nanny, in the background (best effort)."""
-        if not worker:
-            return
-        with self._lock:
-            self._restarted.add(worker)
-
-        def restart() -> None:
-            before = _clock()
-            try:
-                self._client.restart_workers([worker], raise_for_error=False)
-            except Exception:  # noqa: BLE001 - a worker that cannot restart keeps refusing runs
-                pass
-            self._resend_unstarted(before)
-        threading.Thread(target=restart, daemon=True).start()
-
-    def _resend_unstarted(self, before: float) -> None:
-        """Send again the runs submitted before a worker restart that have not started.
-
-        The scheduler sometimes loses tasks that were queued on a restarted
-        worker; waiting for them would hang the experiment. A copy that does
-        start after all is ignored when it finishes (only the current Dask
-        future of a run counts).
-        """
-        with self._lock:
-            stale = [r for r in self._runs.values()
-                     if math.isnan(r.started) and r.submitted <= before and r.attempts < _MAX_ATTEMPTS]
-        for run in stale:
-            old = run.dask_future
-            run.attempts += 1
-            self._send(run)
-            old.cancel()
-
-    def _restart_worker_of(self, dask_future: Any) -> None:
-        """Cancel the task and restart the worker running it, if the cluster allows (best effort)."""
-        try:
-            processing = self._client.processing()
-            workers = [w for w, keys in processing.items() if dask_future.key in keys]
-            dask_future.cancel()
-            with self._lock:
-                self._restarted.update(workers)
-            if workers:
-                before = _clock()
-                self._client.restart_workers(workers, raise_for_error=False)
-                self._resend_unstarted(before)
-        except Exception:  # restarting is an optimisation; the run is already recorded
-            pass
+            for run in runs:  # a lost or stuck Dask task must not hang the experiment
+                run.dask_future.cancel()
+                what = ("the cluster did not start the run" if math.isnan(run.started)
+                        else "the Dask task did not answer")
+                run.future.set_result(RunOutcome(run.task.run_key, crash=True, started_at=utc_now(),
+                                                 message=f"{what} within {now - run.submitted:.3g} s"))
