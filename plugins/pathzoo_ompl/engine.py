@@ -93,6 +93,8 @@ if TYPE_CHECKING:
 
 __all__ = ["DEFAULT_TIME_S", "compiled_checks", "segment_validator", "solve", "state_checker"]
 
+_now = time.perf_counter
+
 DEFAULT_TIME_S = 1.0
 """Planning time when the budget sets no limit (OMPL's default for ``SimpleSetup.solve``)."""
 
@@ -141,14 +143,14 @@ class _Run:
         """True once a limit is reached (or a callback failed)."""
         return (
             self.steps >= self.step_limit
-            or time.perf_counter() + self.reserve_s >= self.deadline
+            or _now() + self.reserve_s >= self.deadline
             or self.error is not None
             or (self.motion_limited and self.checks.motions >= self.budget.evaluations)
         )
 
-    def step(self, until: float = math.inf) -> bool:
-        """One termination-condition check: count a step and return False; True once spent or at ``until`` steps."""
-        if self.spent() or self.steps >= until:
+    def step(self) -> bool:
+        """One termination-condition check: count a step and return False; True once spent."""
+        if self.spent():
             return True
         self.steps += 1
         return False
@@ -269,7 +271,7 @@ def _plan_prm(planner: Any, si: Any, run: _Run) -> np.ndarray | None:
         target = checkpoint
 
         def stop() -> bool:
-            return run.step(until=target)
+            return run.steps >= target or run.step()
 
         planner.growRoadmapPtc(ob.PlannerTerminationCondition(stop))
         searched = run.clock.elapsed
