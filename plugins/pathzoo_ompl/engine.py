@@ -373,7 +373,7 @@ def _solve(spec: "OmplPlanner", scenario: Scenario, seed: int, run: _Run) -> Pla
 def _simplified(si: Any, raw: np.ndarray, scenario: Scenario, run: _Run) -> tuple[np.ndarray, bool]:
     """OMPL's PathSimplifier on ``raw``; the raw path is kept if the result fails the validator."""
     geometric = og.PathGeometric(si, _states(si, raw))
-    og.PathSimplifier(si).simplify(geometric, ob.PlannerTerminationCondition(lambda: time.perf_counter() >= run.deadline))
+    og.PathSimplifier(si).simplify(geometric, ob.PlannerTerminationCondition(lambda: _now() >= run.deadline))
     shorter = _array(geometric)
     if validate_path(scenario, shorter):
         return shorter, True
