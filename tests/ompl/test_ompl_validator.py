@@ -141,3 +141,22 @@ def test_default_range_caps_ompls_choice_at_eight_cells():
     assert default_range(grid(32, 1.0)) == pytest.approx(6.4)  # OMPL's own 20% on small maps
     assert default_range(grid(512, 1.0)) == pytest.approx(8.0)
     assert default_range(grid(512, 0.5)) == pytest.approx(4.0)
+
+
+def test_compiled_checks_own_their_arrays():
+    """The checks read the map through addresses: the arrays must live as long as the checks, whatever the input."""
+    import gc
+
+    rng = np.random.default_rng(6)
+    blocked = rng.random((12, 9)) < 0.4
+    checks = CompiledChecks(blocked.T.copy().T[:, ::-1][:, ::-1], 1.0)  # a non-contiguous view of a temporary
+    gc.collect()
+    for _ in range(3):
+        np.ones((12, 9), dtype=bool)  # reuse freed memory, if any was freed
+    for r, c in np.ndindex(blocked.shape):
+        assert checks.point(c + 0.5, r + 0.5) == (not blocked[r, c])
+
+
+def test_elevation_must_match_the_map():
+    with pytest.raises(ValueError, match="elevation shape"):
+        CompiledChecks(np.zeros((3, 4), dtype=bool), 1.0, np.zeros((4, 3)))
