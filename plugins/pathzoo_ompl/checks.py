@@ -25,8 +25,8 @@ two functions OMPL's callbacks call are compiled once, eagerly, for one
 signature of plain numbers: a map is passed as the address of its first
 element plus its shape (rebuilt into an array inside the compiled code by
 :func:`numba.carray`), and the callbacks call the compiled entry point
-directly (:data:`POINT_FREE`, :data:`MOTION_CLEAR`:
-``dispatcher.overloads[signature].entry_point``), skipping type dispatch.
+directly (:func:`entry_point`: ``dispatcher.overloads[signature].entry_point``),
+skipping type dispatch.
 :class:`CompiledChecks` holds references to the arrays whose addresses it
 hands out, so they outlive every call made with them. ``benchmarks/baselines.py`` (section
 ``ompl``) measures what each step bought.
@@ -46,10 +46,9 @@ from pathzoo.grid.segments import segment_blocked_2d
 from pathzoo.grid.terrain import segment_slope_range
 
 __all__ = [
-    "MOTION_CLEAR",
-    "POINT_FREE",
     "SLOPE_MARGIN_DEG",
     "CompiledChecks",
+    "entry_point",
     "motion_clear",
     "point_free",
     "segment_clear",
@@ -147,22 +146,24 @@ def motion_clear(block_address: int, x0: float, y0: float, x1: float, y1: float)
     return slopes_within(elevation, cell_size, reals[_MAX_CLIMB], reals[_MAX_DESCENT], x0, y0, x1, y1)
 
 
-def _entry_point(dispatcher: Any) -> Callable[..., bool]:
-    """The compiled function behind ``dispatcher``'s only signature, callable without type dispatch."""
+def entry_point(dispatcher: Any) -> Callable[..., bool]:
+    """The compiled function behind an eagerly compiled ``dispatcher``'s only signature, called without type dispatch.
+
+    Only for :func:`point_free` and :func:`motion_clear`, whose arguments are
+    plain numbers: the entry point does not check its argument types.
+    """
     (signature,) = dispatcher.signatures
     return dispatcher.overloads[signature].entry_point
 
 
-POINT_FREE = _entry_point(point_free)
-""":func:`point_free` without type dispatch."""
-MOTION_CLEAR = _entry_point(motion_clear)
-""":func:`motion_clear` without type dispatch."""
+_POINT_FREE = entry_point(point_free)
+_MOTION_CLEAR = entry_point(motion_clear)
 
 _NO_LIMIT = np.iinfo(np.int64).max
 
 
 class CompiledChecks:
-    """One map prepared for :data:`POINT_FREE` and :data:`MOTION_CLEAR`, and its motion counter.
+    """One map prepared for :func:`point_free` and :func:`motion_clear`, and its motion counter.
 
     Everything the two compiled checks need sits in a small int64 block
     (motion count and limit, the addresses of the blocked and elevation
@@ -216,8 +217,8 @@ class CompiledChecks:
 
     def point(self, x: float, y: float) -> bool:
         """:func:`point_free` at world point ``(x, y)``."""
-        return POINT_FREE(self.address, x, y)
+        return _POINT_FREE(self.address, x, y)
 
     def motion(self, x0: float, y0: float, x1: float, y1: float) -> bool:
         """:func:`motion_clear` for the world segment ``(x0, y0) -> (x1, y1)`` (counted)."""
-        return MOTION_CLEAR(self.address, x0, y0, x1, y1)
+        return _MOTION_CLEAR(self.address, x0, y0, x1, y1)

@@ -86,7 +86,7 @@ from scipy.sparse.csgraph import dijkstra
 
 from pathzoo.core import Budget, BudgetClock, PlanResult, ProgressCallback, Scenario, Status
 from pathzoo.rules import validate_path
-from pathzoo_ompl.checks import MOTION_CLEAR, POINT_FREE, CompiledChecks
+from pathzoo_ompl.checks import CompiledChecks, entry_point, motion_clear, point_free
 
 if TYPE_CHECKING:
     from pathzoo_ompl.planners import OmplPlanner
@@ -94,6 +94,8 @@ if TYPE_CHECKING:
 __all__ = ["DEFAULT_TIME_S", "compiled_checks", "segment_validator", "solve", "state_checker"]
 
 _now = time.perf_counter
+_MOTION_CLEAR = entry_point(motion_clear)
+_POINT_FREE = entry_point(point_free)
 
 DEFAULT_TIME_S = 1.0
 """Planning time when the budget sets no limit (OMPL's default for ``SimpleSetup.solve``)."""
@@ -177,7 +179,7 @@ def segment_validator(si: Any, checks: CompiledChecks) -> Any:
     """An OMPL ``MotionValidator`` applying the harness's segment rule and the evaluation budget.
 
     Each motion costs one compiled call,
-    :data:`~pathzoo_ompl.checks.MOTION_CLEAR`: it counts the motion in
+    :func:`~pathzoo_ompl.checks.motion_clear`: it counts the motion in
     ``checks`` (refusing it unchecked once the limit is reached), then
     applies the validator's closed-cell rule and, on terrain, the slope
     limits (conservatively). The class is built here so that
@@ -195,11 +197,11 @@ def segment_validator(si: Any, checks: CompiledChecks) -> Any:
     address = checks.address
 
     class SegmentValidator(ob.MotionValidator):
-        """Motion validator calling :data:`~pathzoo_ompl.checks.MOTION_CLEAR` on one map."""
+        """Motion validator calling :func:`~pathzoo_ompl.checks.motion_clear` on one map."""
 
         def checkMotion(self, s1: Any, s2: Any) -> bool:  # noqa: N802 (OMPL's name)
             """True when the straight segment ``s1 -> s2`` passes the validator's segment rule."""
-            return MOTION_CLEAR(address, s1[0], s1[1], s2[0], s2[1])
+            return _MOTION_CLEAR(address, s1[0], s1[1], s2[0], s2[1])
 
     validator = SegmentValidator(si)
     validator.checks = checks  # keeps the arrays whose addresses the check reads alive
@@ -207,11 +209,11 @@ def segment_validator(si: Any, checks: CompiledChecks) -> Any:
 
 
 def state_checker(checks: CompiledChecks) -> Callable[[Any], bool]:
-    """OMPL state validity: inside the map and in a free cell (:data:`~pathzoo_ompl.checks.POINT_FREE`)."""
+    """OMPL state validity: inside the map and in a free cell (:func:`~pathzoo_ompl.checks.point_free`)."""
     address = checks.address
 
     def valid(state: Any) -> bool:
-        return POINT_FREE(address, state[0], state[1])
+        return _POINT_FREE(address, state[0], state[1])
 
     valid.checks = checks  # type: ignore[attr-defined]  # keeps the arrays whose addresses the check reads alive
     return valid
