@@ -28,6 +28,16 @@ Sections (each a function in :data:`SECTIONS`):
       a blocked cell's closed square under an exact rational test
       (``tests/baselines/exact_touch.py``; target 0, issue 15).
 
+``ompl``
+    - motion checks per CPU second of the OMPL motion validator on
+      ``8room_000``, called by OMPL's C++ as planners call it (target >= 1 M),
+      beside the rate from Python and of the compiled check alone;
+    - ``ompl.rrtconnect`` on 10 ``8room_000`` problems from buckets >= 100
+      with ``Budget(time_s=10)`` (target >= 95 %); without ``--quick`` also
+      the CPU time each needs to its first solution, up to 8 M steps;
+    - ``exact.anyangle`` against every valid path of six planners on the
+      32 x 32 maps (target: never longer).
+
 A success is a run whose planner returned ``SOLVED`` with a path that
 :func:`pathzoo.rules.validate_path` (the harness's judge)
 accepts; the length ratio is the harness's ``length_ratio`` metric. Runs are
