@@ -210,6 +210,10 @@ class CompiledChecks:
         self.block[_REALS] = self.reals.ctypes.data
         self.address: int = int(self.block.ctypes.data)
 
+    def __reduce__(self) -> Any:
+        """Refuse to be pickled or copied: a copy would carry addresses of arrays it does not own."""
+        raise TypeError("CompiledChecks holds memory addresses; build a new one instead of copying or pickling it")
+
     @property
     def motions(self) -> int:
         """Motions counted (checked) so far."""

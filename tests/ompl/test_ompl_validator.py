@@ -160,3 +160,13 @@ def test_compiled_checks_own_their_arrays():
 def test_elevation_must_match_the_map():
     with pytest.raises(ValueError, match="elevation shape"):
         CompiledChecks(np.zeros((3, 4), dtype=bool), 1.0, np.zeros((4, 3)))
+
+
+def test_compiled_checks_cannot_be_copied_or_pickled():
+    import copy
+    import pickle
+
+    checks = CompiledChecks(np.zeros((2, 2), dtype=bool), 1.0)
+    for clone in (copy.copy, copy.deepcopy, pickle.dumps):
+        with pytest.raises(TypeError, match="memory addresses"):
+            clone(checks)
