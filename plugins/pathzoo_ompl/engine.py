@@ -339,7 +339,8 @@ def _solve(spec: "OmplPlanner", scenario: Scenario, seed: int, run: _Run) -> Pla
     space.setBounds(bounds)
     si = ob.SpaceInformation(space)
     si.setStateValidityChecker(state_checker(run.checks))
-    si.setMotionValidator(segment_validator(si, run.checks))
+    validator = segment_validator(si, run.checks)  # referenced here too for as long as OMPL plans
+    si.setMotionValidator(validator)
     si.setup()
     pdef = ob.ProblemDefinition(si)
     start, goal = _states(si, np.stack([scenario.start, scenario.goal]))
