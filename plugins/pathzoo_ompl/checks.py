@@ -22,14 +22,16 @@ Calling a numba function from Python normally goes through its dispatcher,
 which works out the argument types on every call, and then unboxes each
 array. Per motion that costs as much as the collision check itself. So the
 two functions OMPL's callbacks call are compiled once, eagerly, for one
-signature of plain numbers: a map is passed as the address of its first
-element plus its shape (rebuilt into an array inside the compiled code by
-:func:`numba.carray`), and the callbacks call the compiled entry point
-directly (:func:`entry_point`: ``dispatcher.overloads[signature].entry_point``),
-skipping type dispatch.
-:class:`CompiledChecks` holds references to the arrays whose addresses it
-hands out, so they outlive every call made with them. ``benchmarks/baselines.py`` (section
-``ompl``) measures what each step bought.
+signature of plain numbers: the address of a small int64 block holding
+everything a check needs (the map's address and shape, the address of the
+cell size and slope limits, the motion counter and its limit; arrays are
+rebuilt inside the compiled code by :func:`numba.carray`), then the
+coordinates. The callbacks call the compiled entry point directly
+(:func:`entry_point`: ``dispatcher.overloads[signature].entry_point``),
+skipping type dispatch. :class:`CompiledChecks` owns the block and every
+array it points to, so they outlive every call made with its address. ``docs/planners/ompl.md``
+("Speed") gives the measured costs; ``benchmarks/baselines.py --section ompl``
+measures the resulting rate.
 """
 
 from __future__ import annotations
