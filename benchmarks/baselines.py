@@ -28,6 +28,16 @@ Sections (each a function in :data:`SECTIONS`):
       a blocked cell's closed square under an exact rational test
       (``tests/baselines/exact_touch.py``; target 0, issue 15).
 
+``ompl``
+    - motion checks per CPU second of the OMPL motion validator on
+      ``8room_000``, called by OMPL's C++ as planners call it (target >= 1 M),
+      beside the rate from Python and of the compiled check alone;
+    - ``ompl.rrtconnect`` on 10 ``8room_000`` problems from buckets >= 100
+      with ``Budget(time_s=10)`` (target >= 95 %); without ``--quick`` also
+      the CPU time each needs to its first solution, up to 8 M steps;
+    - ``exact.anyangle`` against every valid path of six planners on the
+      32 x 32 maps (target: never longer).
+
 A success is a run whose planner returned ``SOLVED`` with a path that
 :func:`pathzoo.rules.validate_path` (the harness's judge)
 accepts; the length ratio is the harness's ``length_ratio`` metric. Runs are
@@ -201,56 +211,100 @@ OMPL_8ROOM_SUCCESS_TARGET = 0.95
 
 
 def ompl_motion_checks_per_second(count: int = 50_000) -> dict[str, float]:
-    """Motion checks per CPU second of :class:`pathzoo_ompl.engine.SegmentValidator` on ``8room_000``.
+    """Motion checks per CPU second of the OMPL motion validator (:func:`pathzoo_ompl.engine.segment_validator`).
 
-    ``count`` random motions up to 8 cells long, as OMPL calls them
-    (``SpaceInformation.checkMotion``, through the nanobind trampoline into
-    Python and one compiled call) and as a direct Python call.
+    On ``8room_000``, three ways:
+
+    - ``as planners call it`` (the target's figure): OMPL's C++ calls the
+      validator, as a planner does, through ``PathGeometric.check`` on a
+      random walk of ``count`` free motions up to 8 cells long. Every motion
+      is valid, so every check scans its whole segment (invalid motions stop
+      early): a conservative figure.
+    - ``via si.checkMotion from Python``: ``count`` random motions (valid or
+      not) each sent from Python to ``SpaceInformation.checkMotion``; this
+      adds a Python-to-C++ call per motion that planning never makes.
+    - ``compiled check alone``: the same motions through
+      :meth:`~pathzoo_ompl.checks.CompiledChecks.motion`, without OMPL.
     """
     from ompl import base as ob
+    from ompl import geometric as og
 
-    from pathzoo_ompl.engine import SegmentValidator, _Run, _state_checker
+    from pathzoo_ompl.engine import compiled_checks, segment_validator, state_checker
 
     scenario = pathzoo.load_scenario(spread_problems("8room_000", 1, min_bucket=100)[0])
     space = ob.RealVectorStateSpace(2)
     space.setBounds(0.0, float(scenario.extent.max()))
     si = ob.SpaceInformation(space)
-    si.setStateValidityChecker(_state_checker(scenario))
-    budget = pathzoo.Budget()
-    validator = SegmentValidator(si, scenario, _Run(budget, budget.start(), 1, None))
-    si.setMotionValidator(validator)
+    checks = compiled_checks(scenario)
+    si.setStateValidityChecker(state_checker(checks))
+    si.setMotionValidator(segment_validator(si, checks))
     si.setup()
+
+    def state(x: float, y: float):
+        s = si.allocState()
+        s[0], s[1] = float(x), float(y)
+        return s
+
     rng = np.random.default_rng(0)
+    walker = compiled_checks(scenario)  # a separate counter for building the walk
+    walk = [np.asarray(scenario.start, dtype=float)]
+    while len(walk) <= count:
+        step = np.clip(walk[-1] + rng.uniform(-8.0, 8.0, 2) * scenario.cell_size, 0.0, scenario.extent)
+        if walker.motion(*walk[-1], *step):
+            walk.append(step)
+    path = og.PathGeometric(si, [state(x, y) for x, y in walk])
+    out = {}
+    started, before = time.process_time(), checks.motions
+    valid = path.check()
+    out["as planners call it"] = (checks.motions - before) / (time.process_time() - started)
+    assert valid and checks.motions - before == count, "the walk's motions must all be valid and checked"
+
     a = rng.uniform(0.0, 1.0, (count, 2)) * scenario.extent
     b = np.clip(a + rng.uniform(-8.0, 8.0, (count, 2)) * scenario.cell_size, 0.0, scenario.extent)
-    pairs = []
-    for p, q in zip(a, b):
-        s1, s2 = si.allocState(), si.allocState()
-        s1[0], s1[1], s2[0], s2[1] = float(p[0]), float(p[1]), float(q[0]), float(q[1])
-        pairs.append((s1, s2))
-    out = {}
-    for name, check in (("through OMPL", si.checkMotion), ("direct", validator.checkMotion)):
-        started = time.process_time()
-        for s1, s2 in pairs:
-            check(s1, s2)
-        out[name] = count / (time.process_time() - started)
+    ends = list(zip(a.tolist(), b.tolist()))
+    started = time.process_time()
+    for p, q in ends:
+        checks.motion(p[0], p[1], q[0], q[1])
+    out["compiled check alone"] = count / (time.process_time() - started)
+    pairs = [(state(*p), state(*q)) for p, q in ends]
+    started = time.process_time()
+    for s1, s2 in pairs:
+        si.checkMotion(s1, s2)
+    out["via si.checkMotion from Python"] = count / (time.process_time() - started)
     return out
 
 
-def ompl_8room_success(problems: int, time_s: float) -> pd.DataFrame:
-    """``ompl.rrtconnect`` (default parameters) on ``problems`` 8room_000 problems from buckets >= 100, one seed each."""
+OMPL_8ROOM_STEP_CAP = 8_000_000
+"""Planner steps (termination checks) allowed when measuring the CPU time RRT-Connect needs to solve."""
+
+
+def ompl_8room_success(problems: int, time_s: float | None) -> pd.DataFrame:
+    """``ompl.rrtconnect`` (defaults) on ``problems`` 8room_000 problems from buckets >= 100, seed k for the k-th.
+
+    With ``time_s`` the budget is that wall-clock time (the target's
+    condition); with None it is :data:`OMPL_8ROOM_STEP_CAP` steps, which
+    measures the CPU time to the first solution independently of the load
+    (the same seed makes the same steps on any machine).
+    """
     chosen = spread_problems("8room_000", problems, min_bucket=100)
     planner = pathzoo.make_planner("ompl.rrtconnect")
+    steps = planner.iteration_steps
+    budget = (
+        pathzoo.Budget(time_s=time_s)
+        if time_s is not None
+        else pathzoo.Budget(iterations=OMPL_8ROOM_STEP_CAP // steps, time_s=3600.0)
+    )
     rows = []
     for k, sid in enumerate(chosen):
         scenario = pathzoo.load_scenario(sid)
         started = time.process_time()
-        result = planner.plan(scenario, budget=pathzoo.Budget(time_s=time_s), rng=np.random.default_rng(k))
+        result = planner.plan(scenario, budget=budget, rng=np.random.default_rng(k))
         cpu = time.process_time() - started
         ok = result.status.value == "solved" and bool(validate_path(scenario, result.path))
         checks = int(result.extras.get("motion_checks", 0))
-        rows.append({"scenario": sid, "solved": ok, "motion checks": checks, "cpu (s)": cpu,
-                     "checks per cpu s": checks / cpu if cpu > 0 else float("nan")})
+        rows.append({"scenario": sid, "solved": ok, "steps": int(result.extras.get("steps", 0)),
+                     "motion checks": checks, "cpu (s)": round(cpu, 2),
+                     "checks per cpu s": round(checks / cpu) if cpu > 0 else float("nan")})
     return pd.DataFrame(rows)
 
 
@@ -282,8 +336,9 @@ def ompl_section(quick: bool) -> bool:
     problems, time_s = (3, 10.0) if quick else (10, 10.0)
     rates = ompl_motion_checks_per_second()
     for name, rate in rates.items():
-        met = "met" if rate >= OMPL_MOTION_TARGET else "NOT met"
-        print(f"OMPL motion checks per CPU second ({name}): {rate:,.0f}  (target >= {OMPL_MOTION_TARGET:,}: {met})")
+        target = f"(target >= {OMPL_MOTION_TARGET:,}: {'met' if rate >= OMPL_MOTION_TARGET else 'NOT met'})"
+        print(f"OMPL motion checks per CPU second, {name}: {rate:,.0f}  "
+              f"{target if name == 'as planners call it' else '(for comparison)'}")
     table = ompl_8room_success(problems, time_s)
     print(table.to_string(index=False))
     rate = table["solved"].mean()
@@ -291,11 +346,15 @@ def ompl_section(quick: bool) -> bool:
     print(f"ompl.rrtconnect on 8room_000 (buckets >= 100), {time_s:g} s: success {rate:.0%} "
           f"(target >= {OMPL_8ROOM_SUCCESS_TARGET:.0%}: {met}); "
           f"median motion checks per CPU s while planning {table['checks per cpu s'].median():,.0f}")
+    if not quick:
+        unlimited = ompl_8room_success(problems, None)
+        print(f"The same problems and seeds, up to {OMPL_8ROOM_STEP_CAP:,} steps (CPU time to the first solution):")
+        print(unlimited.to_string(index=False))
     bounds = anyangle_lower_bound(per_map=3 if quick else 10, time_s=1.0)
     print(bounds.groupby("planner")["ratio"].agg(["count", "min", "median"]).to_string())
     broken = int(bounds["below"].sum())
     print(f"exact.anyangle never longer than a valid path: {'met' if broken == 0 else f'NOT met ({broken} shorter paths)'}")
-    return broken == 0 and rate >= OMPL_8ROOM_SUCCESS_TARGET and min(rates.values()) >= OMPL_MOTION_TARGET
+    return broken == 0 and rate >= OMPL_8ROOM_SUCCESS_TARGET and rates["as planners call it"] >= OMPL_MOTION_TARGET
 
 
 SECTIONS: dict[str, Callable[[bool], bool]] = {"metaheuristics": metaheuristics, "ompl": ompl_section}

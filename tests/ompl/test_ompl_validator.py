@@ -3,11 +3,10 @@
 import numpy as np
 import pytest
 
-from pathzoo import Budget
 from pathzoo.rules import segment_problem
 from pathzoo.testing import check_scenario
-from pathzoo_ompl.checks import segment_clear
-from pathzoo_ompl.engine import SegmentValidator, _Run
+from pathzoo_ompl.checks import CompiledChecks
+from pathzoo_ompl.engine import compiled_checks, segment_validator, state_checker
 
 
 def _grid(rng, cell_size):
@@ -31,9 +30,24 @@ def test_compiled_rule_agrees_with_segment_problem(cell_size):
     anywhere = rng.uniform(0, 1, (300, 2)) * scenario.extent
     pts = np.clip(np.concatenate([centres, corners, hairs, anywhere]), 0, scenario.extent)
     pairs = rng.integers(0, len(pts), (6000, 2))
+    checks = CompiledChecks(scenario.blocked, cell_size)
     for i, j in pairs:
         expected = segment_problem(scenario, pts[i], pts[j]) is None
-        assert segment_clear(scenario.blocked, cell_size, *pts[i], *pts[j]) == expected, (pts[i], pts[j])
+        assert checks.motion(*pts[i], *pts[j]) == expected, (pts[i], pts[j])
+    assert checks.motions == len(pairs)
+
+
+@pytest.mark.parametrize("cell_size", [1.0, 0.3])
+def test_compiled_state_check_is_inside_and_free(cell_size):
+    rng = np.random.default_rng(5)
+    scenario = _grid(rng, cell_size)
+    h, w = scenario.shape
+    checks = CompiledChecks(scenario.blocked, cell_size)
+    pts = rng.uniform(-0.2, 1.2, (3000, 2)) * scenario.extent
+    for x, y in pts:
+        col, row = int(np.floor(x / cell_size)), int(np.floor(y / cell_size))
+        expected = 0 <= row < h and 0 <= col < w and not scenario.blocked[row, col]
+        assert checks.point(x, y) == expected, (x, y)
 
 
 def _validator(scenario, evaluations):
@@ -42,9 +56,32 @@ def _validator(scenario, evaluations):
     space = ob.RealVectorStateSpace(2)
     space.setBounds(0.0, float(scenario.extent.max()))
     si = ob.SpaceInformation(space)
-    budget = Budget(evaluations=evaluations)
-    run = _Run(budget, budget.start(), 1, None)
-    return SegmentValidator(si, scenario, run), run, si
+    checks = compiled_checks(scenario, evaluations)
+    return segment_validator(si, checks), checks, si
+
+
+def test_ompl_calls_reach_the_compiled_checks():
+    """Through OMPL's own C++ calls (SpaceInformation.isValid, checkMotion), each check is the compiled one."""
+    from ompl import base as ob
+
+    scenario = check_scenario("grid2d")
+    validator, checks, si = _validator(scenario, None)
+    si.setStateValidityChecker(state_checker(checks))
+    si.setMotionValidator(validator)
+    si.setup()
+    rng = np.random.default_rng(4)
+    pts = rng.uniform(0, 1, (400, 2)) * scenario.extent
+    states = []
+    for x, y in pts:
+        s = si.allocState()
+        s[0], s[1] = float(x), float(y)
+        states.append(s)
+    for s, (x, y) in zip(states, pts):
+        assert si.isValid(s) == checks.point(x, y)
+    for k in range(len(pts) - 1):
+        assert si.checkMotion(states[k], states[k + 1]) == (segment_problem(scenario, pts[k], pts[k + 1]) is None)
+    assert isinstance(validator, ob.MotionValidator)
+    assert checks.motions == len(pts) - 1  # motions are counted; state checks are not
 
 
 def test_terrain_motions_respect_the_slope_limits():
@@ -64,7 +101,7 @@ def test_terrain_motions_respect_the_slope_limits():
 def test_motions_beyond_the_evaluation_limit_are_refused_unchecked():
     scenario = check_scenario("grid2d")
     validator, run, _ = _validator(scenario, 3)
-    free = (tuple((1.5, 1.5)), tuple((2.5, 2.5)))
+    free = ((1.5, 1.5), (2.5, 2.5))
     assert [validator.checkMotion(*free) for _ in range(5)] == [True, True, True, False, False]
     assert run.motions == 3
 
@@ -104,3 +141,32 @@ def test_default_range_caps_ompls_choice_at_eight_cells():
     assert default_range(grid(32, 1.0)) == pytest.approx(6.4)  # OMPL's own 20% on small maps
     assert default_range(grid(512, 1.0)) == pytest.approx(8.0)
     assert default_range(grid(512, 0.5)) == pytest.approx(4.0)
+
+
+def test_compiled_checks_own_their_arrays():
+    """The checks read the map through addresses: the arrays must live as long as the checks, whatever the input."""
+    import gc
+
+    rng = np.random.default_rng(6)
+    blocked = rng.random((12, 9)) < 0.4
+    checks = CompiledChecks(blocked.T.copy().T[:, ::-1][:, ::-1], 1.0)  # a non-contiguous view of a temporary
+    gc.collect()
+    for _ in range(3):
+        np.ones((12, 9), dtype=bool)  # reuse freed memory, if any was freed
+    for r, c in np.ndindex(blocked.shape):
+        assert checks.point(c + 0.5, r + 0.5) == (not blocked[r, c])
+
+
+def test_elevation_must_match_the_map():
+    with pytest.raises(ValueError, match="elevation shape"):
+        CompiledChecks(np.zeros((3, 4), dtype=bool), 1.0, np.zeros((4, 3)))
+
+
+def test_compiled_checks_cannot_be_copied_or_pickled():
+    import copy
+    import pickle
+
+    checks = CompiledChecks(np.zeros((2, 2), dtype=bool), 1.0)
+    for clone in (copy.copy, copy.deepcopy, pickle.dumps):
+        with pytest.raises(TypeError, match="memory addresses"):
+            clone(checks)
