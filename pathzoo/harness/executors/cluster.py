@@ -177,7 +177,7 @@ class DaskExecutor(RunExecutor):
                                             "distributed.worker.daemon": False})
             self._cluster = LocalCluster(
                 n_workers=int(jobs or os.cpu_count() or 1), threads_per_worker=1, processes=processes,
-                dashboard_address=None,
+                dashboard_address=":0",  # Dask always serves HTTP; a free port, never a clash on 8787
             )
             self._client = Client(self._cluster)
         self.capacity = max(1, sum(self._client.nthreads().values()))
