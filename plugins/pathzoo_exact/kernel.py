@@ -36,6 +36,7 @@ __all__ = [
     "FOUND",
     "EXHAUSTED",
     "HEAP_FULL",
+    "cell_heuristic",
     "heuristic",
     "goal_cell",
     "heap_push",
@@ -43,6 +44,7 @@ __all__ = [
     "next_open",
     "end_batch",
     "astar_batch",
+    "astar_moves_batch",
     "trace_path",
     "run_batch",
 ]
@@ -127,13 +129,26 @@ class SearchState:
 
 
 @numba.njit(cache=True)
-def heuristic(node: int, goal: np.ndarray, mode: int, dims: np.ndarray, steps: np.ndarray, scale: float) -> float:
-    """Heuristic from ``node`` to the cell ``goal = (x, y, z)`` (column, row, layer).
+def cell_heuristic(col: int, row: int, layer: int, goal: np.ndarray, mode: int, steps: np.ndarray, scale: float) -> float:
+    """Heuristic from the cell ``(col, row, layer)`` to the cell ``goal = (x, y, z)``.
 
-    ``node`` is a flat id of a grid of shape ``dims = (L, H, W)``; ``steps``
-    holds the metres per cell along ``x, y, z``. The distance (octile or
-    Euclidean, see :data:`H_OCTILE`, :data:`H_EUCLID`) is multiplied by ``scale``.
+    ``steps`` holds the metres per cell along ``x, y, z``. The distance
+    (octile or Euclidean, see :data:`H_OCTILE`, :data:`H_EUCLID`) is
+    multiplied by ``scale``; :data:`H_ZERO` gives 0.
     """
+    if mode == H_ZERO:
+        return 0.0
+    dx = abs(col - goal[0]) * steps[0]
+    dy = abs(row - goal[1]) * steps[1]
+    if mode == H_OCTILE:
+        return scale * (max(dx, dy) + _SQRT2_M1 * min(dx, dy))
+    dz = abs(layer - goal[2]) * steps[2]
+    return scale * math.sqrt(dx * dx + dy * dy + dz * dz)
+
+
+@numba.njit(cache=True)
+def heuristic(node: int, goal: np.ndarray, mode: int, dims: np.ndarray, steps: np.ndarray, scale: float) -> float:
+    """:func:`cell_heuristic` of the flat node id ``node`` of a grid of shape ``dims = (L, H, W)``."""
     if mode == H_ZERO:
         return 0.0
     w = dims[2]
@@ -144,12 +159,7 @@ def heuristic(node: int, goal: np.ndarray, mode: int, dims: np.ndarray, steps: n
         layer = node // (dims[1] * w)
         rest = node - layer * dims[1] * w
     row = rest // w
-    dx = abs(rest - row * w - goal[0]) * steps[0]
-    dy = abs(row - goal[1]) * steps[1]
-    if mode == H_OCTILE:
-        return scale * (max(dx, dy) + _SQRT2_M1 * min(dx, dy))
-    dz = abs(layer - goal[2]) * steps[2]
-    return scale * math.sqrt(dx * dx + dy * dy + dz * dz)
+    return cell_heuristic(rest - row * w, row, layer, goal, mode, steps, scale)
 
 
 def goal_cell(target: int, dims: np.ndarray) -> np.ndarray:
@@ -199,8 +209,9 @@ def heap_pop(heap_node: np.ndarray, heap_f: np.ndarray, heap_g: np.ndarray, size
         if c + 1 < size:
             f1 = heap_f[c + 1]
             f0 = heap_f[c]
-            if f1 < f0 or (f1 == f0 and heap_g[c + 1] > heap_g[c]):
-                c += 1
+            # branch-free choice of the better child: which child wins is a coin toss
+            # the branch predictor misses about half the time
+            c += (f1 < f0) | ((f1 == f0) & (heap_g[c + 1] > heap_g[c]))
         heap_node[i] = heap_node[c]
         heap_f[i] = heap_f[c]
         heap_g[i] = heap_g[c]
@@ -292,6 +303,70 @@ def astar_batch(
                 parent[v] = u
                 f = cand + heuristic(v, goal, mode, dims, steps, scale)
                 size = heap_push(heap_node, heap_f, heap_g, size, v, f, cand)
+    return end_batch(counters, size, done, status)
+
+
+@numba.njit(cache=True)
+def astar_moves_batch(
+    mask: np.ndarray,
+    move_shift: np.ndarray,
+    move_weight: np.ndarray,
+    move_cell: np.ndarray,
+    target: int,
+    goal: np.ndarray,
+    mode: int,
+    dims: np.ndarray,
+    steps: np.ndarray,
+    scale: float,
+    g: np.ndarray,
+    parent: np.ndarray,
+    closed: np.ndarray,
+    heap_node: np.ndarray,
+    heap_f: np.ndarray,
+    heap_g: np.ndarray,
+    counters: np.ndarray,
+    max_expansions: int,
+    max_degree: int,
+) -> int:
+    """:func:`astar_batch` on a grid whose edge costs depend on the move only (see :mod:`pathzoo_exact.moves`).
+
+    Bit ``k`` of ``mask[u]`` says that node ``u`` has the edge of move ``k``,
+    to node ``u + move_shift[k]`` at cost ``move_weight[k]``; ``move_cell[k]``
+    is the move as ``(dx, dy, dz)`` cells. Moves are tried in ascending ``k``,
+    the order of the CSR edges, so every comparison, push and pop is that of
+    :func:`astar_batch` on the same graph and the result is bit-identical. It
+    reads one mask per expansion instead of the CSR row, and derives the
+    neighbours' cells from the expanded cell (no division per push).
+    """
+    size = counters[0]
+    status = RUNNING
+    done = 0
+    w = dims[2]
+    plane = dims[1] * w
+    n_moves = move_shift.shape[0]
+    while done < max_expansions:
+        u, size, status = next_open(closed, heap_node, heap_f, heap_g, size, max_degree)
+        if status != RUNNING:
+            break
+        done += 1
+        if u == target:
+            status = FOUND
+            break
+        gu = g[u]
+        layer = u // plane
+        rest = u - layer * plane
+        row = rest // w
+        col = rest - row * w
+        bits = np.int64(mask[u])
+        for k in range(n_moves):
+            if (bits >> k) & 1:
+                v = u + move_shift[k]
+                cand = gu + move_weight[k]
+                if cand < g[v] and not closed[v]:
+                    g[v] = cand
+                    parent[v] = u
+                    h = cell_heuristic(col + move_cell[k, 0], row + move_cell[k, 1], layer + move_cell[k, 2], goal, mode, steps, scale)
+                    size = heap_push(heap_node, heap_f, heap_g, size, v, cand + h, cand)
     return end_batch(counters, size, done, status)
 
 
