@@ -77,7 +77,9 @@ class SearchState:
     g : ndarray of float64, shape (N,)
         Best known cost from the source (``inf`` when unseen).
     parent : ndarray of int64, shape (N,)
-        Predecessor on the best known path (``-1`` for the source and unseen nodes).
+        Predecessor on the best known path; ``-1`` for the source. Nodes
+        never reached are left uninitialised (nothing reads them), which spares
+        writing (and page-faulting) 8 bytes per node in every search.
     closed : ndarray of bool, shape (N,)
         Whether each node has been expanded.
     heap_node, heap_f, heap_g : ndarray
@@ -99,7 +101,7 @@ class SearchState:
         """A fresh state with only ``source`` (cost 0) on the open list."""
         state = cls(
             g=np.full(n_nodes, np.inf),
-            parent=np.full(n_nodes, -1, dtype=np.int64),
+            parent=np.empty(n_nodes, dtype=np.int64),
             closed=np.zeros(n_nodes, dtype=np.bool_),
             heap_node=np.empty(heap_capacity, dtype=np.int64),
             heap_f=np.empty(heap_capacity),
@@ -107,6 +109,7 @@ class SearchState:
             counters=np.zeros(2, dtype=np.int64),
         )
         state.g[source] = 0.0
+        state.parent[source] = -1
         state.heap_node[0] = source
         state.heap_f[0] = 0.0
         state.heap_g[0] = 0.0
