@@ -1,8 +1,12 @@
 """Numba kernel shared by the exact planners: a binary heap and a resumable A* search.
 
-Dijkstra is this A* with the zero heuristic. The search state lives in plain
-NumPy arrays (:class:`SearchState`), so the Python driver can run the search
-in batches of expansions and look at the clock between batches.
+Dijkstra is this A* with the zero heuristic. The search comes in two forms
+that make the same comparisons, pushes and pops, so give bit-identical
+results: :func:`astar_batch` reads a CSR graph, and
+:func:`astar_moves_batch` reads a move table (:mod:`pathzoo_exact.moves`),
+which is faster where every move has one cost. The search state lives in
+plain NumPy arrays (:class:`SearchState`), so the Python driver can run the
+search in batches of expansions and look at the clock between batches.
 
 The heap is *lazy*: a node whose cost improves is pushed again instead of
 having its key decreased, and stale entries are skipped when popped (the
