@@ -9,9 +9,10 @@ For every problem of the hardest buckets of ``8room_000.map.scen``, and of as
 many buckets around the middle one, it times
 
 - ``exact.dijkstra`` and ``exact.astar`` (``plan()``, which includes building
-  the search state and the returned path; the neighbourhood graph is built
-  once beforehand and shared, as the harness does), and ``exact.thetastar``
-  for comparison (its any-angle length is below the grid optimum);
+  the search state and the returned path; the neighbourhood graph, and the
+  move table their kernel reads on flat grids, are built once beforehand and
+  shared, as the harness does), and ``exact.thetastar`` for comparison (its
+  any-angle length is below the grid optimum);
 - ``scipy.sparse.csgraph.dijkstra`` on ``scenario.graph.to_sparse()`` from the
   start: once over the whole graph, and once with ``limit`` set to the
   optimal cost, SciPy's only way to stop early (it still settles every node

@@ -27,7 +27,8 @@ import numpy as np
 
 from pathzoo.core import Param, Scenario
 from pathzoo_exact.base import BatchFn, GraphSearchPlanner
-from pathzoo_exact.kernel import H_EUCLID, H_OCTILE, astar_batch, goal_cell, run_batch
+from pathzoo_exact.kernel import H_EUCLID, H_OCTILE, astar_batch, astar_moves_batch, goal_cell, run_batch
+from pathzoo_exact.moves import move_table
 
 __all__ = ["AStarPlanner"]
 
@@ -64,11 +65,16 @@ class AStarPlanner(GraphSearchPlanner):
         return mode, float(np.min(graph.energy / graph.length))
 
     def _make_batch(self, scenario: Scenario, target: int) -> BatchFn:
+        """The move-table kernel when every move has one cost (flat grids), else the CSR kernel; both give the same result."""
         graph = scenario.graph
         dims = np.array((1,) * (3 - len(graph.shape)) + tuple(graph.shape), dtype=np.int64)
         sizes = scenario.cell_sizes
         steps = np.array([sizes[0], sizes[1], sizes[2] if len(sizes) == 3 else 0.0])
         mode, scale = self._heuristic(scenario)
-        weights = graph.weights(self.cost)
-        args = (graph.indptr, graph.indices, weights, target, goal_cell(target, dims), mode, dims, steps, scale)
+        problem = (target, goal_cell(target, dims), mode, dims, steps, scale)
+        table = move_table(graph, self.cost)
+        if table is not None:
+            args = (table.mask, table.shift, table.weight, table.cell, *problem)
+            return partial(run_batch, astar_moves_batch, args, table.n_moves)
+        args = (graph.indptr, graph.indices, graph.weights(self.cost), *problem)
         return partial(run_batch, astar_batch, args, len(graph.offsets))
