@@ -41,6 +41,16 @@ EXTRA = (  # planner, scenario id, parameters: non-default settings that take ot
     ("aco.as", "random60", {"dead_end": "die"}),
     ("aco.mmas", "gant.fig7", {"n_ants": 3}),
     ("aco.dsaco", "dsaco.complex", {"step_rule": "longitude"}),
+    ("aco.dsaco", "dsaco.simple", {"step_rule": "longitude", "n_ants": 3}),
+    ("aco.dsaco", "dsaco.complex", {"alpha": 1.5, "q0_initial": 0.0}),
+    ("aco.dsaco", "random60", {"dead_end": "die"}),
+    ("aco.dsaco", "dsaco.complex", {"l_max": 60.0, "l_min": 2.0}),
+    ("aco.dsaco", "dsaco.complex", {"max_steps": 30, "dead_end": "die"}),
+)
+LONG = (  # planner, scenario id, parameters, iterations: whole runs (schedules, evaporation, p decay)
+    ("aco.dsaco", "dsaco.complex", {}, 500),
+    ("aco.dsaco", "dsaco.complex", {"step_rule": "longitude"}, 500),
+    ("aco.dsaco", "dsaco.simple", {"rho": 0.9}, 300),
 )
 
 
@@ -84,6 +94,12 @@ def cases(only: set[str] | None):
         s = scenario(sid)
         for seed in SEEDS:
             yield f"{pid}|{sid}|{seed}|{json.dumps(params, sort_keys=True)}", pid, s, seed, 4, params
+    for pid, sid, params, iters in LONG:
+        if only and pid not in only:
+            continue
+        s = scenario(sid)
+        for seed in SEEDS:
+            yield f"{pid}|{sid}|{seed}|{iters}|{json.dumps(params, sort_keys=True)}", pid, s, seed, iters, params
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -34,14 +34,20 @@ kilometres on its 1 km grid). Table 4: m = 10, n = 500, Q = 100, α = 1,
 from __future__ import annotations
 
 import math
+import time
 from dataclasses import dataclass, replace
 from typing import Any, Mapping
 
-import numba
 import numpy as np
 
+from pathzoo.core.budget import Budget
 from pathzoo.core.errors import InvalidParameterError
-from pathzoo.core.planner import Param
+from pathzoo.core.planner import Param, ProgressCallback
+from pathzoo.core.results import PlanResult
+from pathzoo.core.scenario import Scenario
+from pathzoo.core.status import Status
+from pathzoo_aco.dsaco_colony import AllowedMoves, ColonyRun, run_colony
+from pathzoo_aco.dsaco_fitness import walk_fitness
 from pathzoo_aco.engine import (
     AntColonyPlanner,
     ColonyProblem,
@@ -107,36 +113,6 @@ def segment_lengths(moves: np.ndarray, steps: np.ndarray, offsets: np.ndarray) -
         new[1:] = (moves[1:] != moves[:-1]) | (walk_of_step[1:] != walk_of_step[:-1])
     segment = np.cumsum(new) - 1
     return np.bincount(segment, weights=steps, minlength=int(new.sum())), walk_of_step[new]
-
-
-@numba.njit(cache=True)
-def _walk_fitness(flat, offsets, reached, indices, offset_id, edge_length, height, turn_angle, start, cells,
-                  f1, f2, f3):
-    """Eq. 20 per walk in one pass: the same operations, in the same order, as :meth:`DSACO.fitness_terms`.
-
-    Per position: ``f1 ℓ/cells + f2 (h_i + h_j)/2 + f3 turn``; walks are
-    totalled as differences of one running sum over ``flat`` (as
-    :func:`_per_walk`), so the costs are bit-identical to the array version.
-    """
-    n = offsets.size - 1
-    cum = np.empty(flat.size + 1)
-    cum[0] = 0.0
-    acc = 0.0
-    for a in range(n):
-        i = start  # the segment's first node and the walk's previous move
-        move = -1
-        for p in range(offsets[a], offsets[a + 1]):
-            e = flat[p]
-            j = indices[e]
-            turn = 0.0 if move < 0 else turn_angle[move, offset_id[e]]
-            acc += f1 * (edge_length[e] / cells) + f2 * (0.5 * (height[i] + height[j])) + f3 * turn
-            cum[p + 1] = acc
-            i = j
-            move = offset_id[e]
-    out = np.empty(n)
-    for a in range(n):
-        out[a] = cum[offsets[a + 1]] - cum[offsets[a]] if reached[a] else np.inf
-    return out
 
 
 @dataclass
@@ -286,7 +262,7 @@ class DSACO(AntColonyPlanner):
         """Eq. 20: ``Fitness = f1 D0 + f2 Dh + f3 DT`` (one compiled pass over the walks)."""
         assert isinstance(state, DsacoState) and state.node_height is not None and state.turn_angle is not None
         p = state.problem
-        costs = _walk_fitness(walks.flat, walks.offsets, walks.reached, p.graph.indices, p.graph.offset_id,
+        costs = walk_fitness(walks.flat, walks.offsets, walks.reached, p.graph.indices, p.graph.offset_id,
                               p.graph.length, state.node_height, state.turn_angle, p.start, p.scenario.cell_size,
                               self.f1, self.f2, self.f3)
         if self.l_max > 0.0 or self.l_min > 0.0:
@@ -317,3 +293,74 @@ class DSACO(AntColonyPlanner):
         p = p_schedule(state.iteration, self.p, self.gamma_p)
         amount = self.q / ((1.0 - p) * float(costs[k]) + p * state.best_cost)
         deposit_walks(state.trail, state.problem.graph.indices, walks.flat, walks.offsets, [k], amount)
+
+    # ------------------------------------------------------------- the compiled colony
+    def plan(self, scenario: Scenario, *, budget: Budget, rng: np.random.Generator,
+             progress: ProgressCallback | None = None) -> PlanResult:
+        """Run the colony in compiled code (:mod:`pathzoo_aco.dsaco_colony`); results equal the generic loop's.
+
+        The generic :meth:`AntColonyPlanner.plan` runs instead under a time
+        budget (its walks stop mid-way when time runs out) and when eqs. 2-3
+        are on (``l_max`` or ``l_min``). Without a ``progress`` callback all
+        iterations run in one call; with one, one call per iteration, so each
+        report comes when its iteration ends.
+        """
+        if budget.time_s is not None or self.l_max > 0.0 or self.l_min > 0.0:
+            return super().plan(scenario, budget=budget, rng=rng, progress=progress)
+        self.check_supports(scenario)
+        problem = ColonyProblem.of(scenario)
+        if problem.start == problem.goal:
+            return PlanResult(Status.SOLVED, problem.walk_points(np.zeros(0, dtype=np.int64)),
+                              message="start and goal share a cell")
+        rules = problem.memo(self.table_key("walk_rules"), lambda: self.walk_rules(problem))
+        trail = Pheromone(problem.graph.n_edges, self.initial_trail(problem))
+        engine = self.walk_engine(problem)
+        state = self.init_state(problem, rules, trail, engine, rng)
+        assert isinstance(state, DsacoState) and state.node_height is not None and state.turn_angle is not None
+        adjacency = engine.adjacency(rules)
+        allowed = problem.memo(self.table_key("allowed_moves"), lambda: AllowedMoves.of(rules.turn, adjacency[0]))
+        ants = self.ants_per_iteration(budget)
+        rng_state = rng.bit_generator.state
+        seeds = np.array([int(rng.integers(2**31 - 1)) for _ in ants], dtype=np.int64)
+        schedule = (seeds, np.array([q0_schedule(k, self.iterations, self.q0_initial) for k in range(len(ants))]),
+                    np.array([p_schedule(k + 1, self.p, self.gamma_p) for k in range(len(ants))]), ants)
+        g = problem.graph
+        fitness = (g.indices, g.offset_id, g.length, state.node_height, state.turn_angle,
+                   float(problem.scenario.cell_size), self.f1, self.f2, self.f3)
+        run = ColonyRun.start(g.n_nodes, trail.scale)
+        arrays = ((engine.indices, engine.offset_id, adjacency[0], adjacency[1], adjacency[2], adjacency[3],
+                   adjacency[4]), allowed, problem.horizontal_offsets, rules.turn, fitness,
+                  (trail.x, trail.lo, trail.hi, self.rho),
+                  (rules.tau_exp, self.q, problem.start, problem.goal, rules.backtrack, rules.max_steps), schedule, run)
+        started = time.perf_counter()
+        for stop_at in ([len(ants)] if progress is None else range(1, len(ants) + 1)):
+            run_colony(*arrays, stop_at=stop_at)
+            if progress is not None:
+                progress(int(run.counters[0]), int(run.counters[1]), float(run.best_cost[0]))
+            if run.counters[4]:
+                break
+        walk_time = time.perf_counter() - started
+        iterations, evaluations = int(run.counters[0]), int(run.counters[1])
+        message = ""
+        if run.counters[4]:  # stopped early: leave the rng as the generic loop would
+            rng.bit_generator.state = rng_state
+            for _ in range(iterations):
+                rng.integers(2**31 - 1)
+            message = "an ant searched the start's whole component: the goal is unreachable"
+        extras = {"ant_steps": int(run.counters[2]), "walk_time_s": walk_time}
+        if not math.isfinite(run.best_cost[0]):
+            return PlanResult(Status.FAILED, iterations=iterations, evaluations=evaluations,
+                              message=message or "no ant reached the goal within the budget", extras=extras)
+        return PlanResult(Status.SOLVED, problem.walk_points(run.best_edges[: run.counters[3]]),
+                          iterations=iterations, evaluations=evaluations, message=message, extras=extras)
+
+    def ants_per_iteration(self, budget: Budget) -> np.ndarray:
+        """Ants of every iteration the budget allows (without a time limit): ``n_ants``, fewer in the last
+        iteration when the evaluation budget runs out there; ``iterations`` of them when the budget is unlimited."""
+        count = budget.iterations if budget.iterations is not None else (
+            self.iterations if budget.evaluations is None else -(-budget.evaluations // self.n_ants))
+        ants = np.full(count, self.n_ants, dtype=np.int64)
+        if budget.evaluations is not None:
+            ants = np.minimum(ants, budget.evaluations - self.n_ants * np.arange(count))
+            ants = ants[ants > 0]
+        return ants

@@ -1,0 +1,357 @@
+"""DSACO's whole colony in one compiled call: walks, fitness and best-ant update of many iterations at once.
+
+The generic loop (:meth:`AntColonyPlanner.plan`) crosses from Python into
+compiled code three times per iteration and its walk kernel scans every edge
+of a node, asking the turn table about each. On ``dsaco.complex`` that is 42
+edges per step, most of them refused by the 60° turn limit. This module runs
+the same colony with two changes that leave every result bit-identical:
+
+- **allowed-move lists** per (node, incoming heading): the positions of the
+  node's edges that the turn limit lets through, in their original order,
+  built the first time an ant stands on that node with that heading and kept
+  per scenario and configuration (:class:`AllowedMoves`). A step scans only
+  those, so no edge is refused by the turn table inside the walk;
+- **one call for many iterations**: the walks, the fitness (eq. 20, by
+  :func:`pathzoo_aco.dsaco._walk_fitness`), the best-so-far walk, evaporation
+  and the iteration-best deposit (eqs. 16-18) run in compiled code; the
+  per-iteration numbers that come from Python (the seeds drawn from the
+  planner's ``rng``, ``q0`` of eq. 15, ``p`` of eq. 19, the ants of each
+  iteration) are computed beforehand by the same Python functions as the
+  generic loop uses.
+
+The walk follows :func:`pathzoo_aco.engine.walk._colony` operation for
+operation for the rules DSACO builds (product rule, ``q0``, turn table of
+zeros and ones, edge trails in ``[τmin, τmax]``, no local update, ants one
+after another): the same candidates in the same order, the same random draws,
+the same sums. ``tests/aco/test_dsaco_colony.py`` and
+``benchmarks/identity.py`` check that paths, costs, step and evaluation
+counts equal the generic loop's.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numba
+import numpy as np
+
+from pathzoo_aco.dsaco_fitness import walk_fitness
+
+__all__ = ["AllowedMoves", "ColonyRun", "run_colony", "REACHED", "EXHAUSTED"]
+
+REACHED, STUCK, STEP_CAP, EXHAUSTED = 0, 1, 2, 3
+"""Walk outcomes, as :mod:`pathzoo_aco.engine.walk` numbers them."""
+
+_NOT_BUILT = -1
+_RENORMALISE_BELOW = 1e-150
+"""As :data:`pathzoo_aco.engine.pheromone._RENORMALISE_BELOW`: fold the trail's scale back below this."""
+
+
+@dataclass(frozen=True, eq=False)
+class AllowedMoves:
+    """Per (node, heading class): the positions of the node's edges that the turn limit allows, filled lazily.
+
+    Heading classes are the distinct rows of the turn table; row ``K`` (no
+    previous move) is a class of its own unless it equals another row.
+
+    Attributes
+    ----------
+    move_class : ndarray of int64, shape (K + 1,)
+        Class of every previous move (index into ``class_row``).
+    class_row : ndarray of int64
+        A previous move (row of the turn table) that stands for each class.
+    count : ndarray of int16, shape (N, classes)
+        Length of each list; -1 until built.
+    pool : ndarray of uint8 or uint16
+        The lists: node ``c``'s list for class ``k`` starts at
+        ``adj_ptr[c] * classes + k * degree(c)`` and holds positions relative
+        to ``adj_ptr[c]``.
+    """
+
+    move_class: np.ndarray
+    class_row: np.ndarray
+    count: np.ndarray
+    pool: np.ndarray
+
+    @classmethod
+    def of(cls, turn: np.ndarray, adj_ptr: np.ndarray) -> "AllowedMoves":
+        """Empty lists for a turn table ``(K + 1, K)`` (or ``(0, 0)``: one class, every move) and an adjacency."""
+        n_nodes = len(adj_ptr) - 1
+        if turn.size == 0:
+            move_class = np.zeros(1, dtype=np.int64)
+            class_row = np.zeros(1, dtype=np.int64)
+        else:
+            _, first, inverse = np.unique(turn, axis=0, return_index=True, return_inverse=True)
+            move_class = inverse.reshape(-1).astype(np.int64)
+            class_row = first.astype(np.int64)
+        degree = int(np.diff(adj_ptr).max()) if n_nodes else 0
+        pool = np.empty(int(adj_ptr[-1]) * len(class_row), dtype=np.uint8 if degree <= 256 else np.uint16)
+        return cls(move_class, class_row, np.full((n_nodes, len(class_row)), _NOT_BUILT, dtype=np.int16), pool)
+
+
+@dataclass
+class ColonyRun:
+    """The state a run carries from one :func:`run_colony` call to the next (arrays changed in place).
+
+    Attributes
+    ----------
+    scale : ndarray, shape (1,)
+        The trail's global scale (:class:`~pathzoo_aco.engine.pheromone.Pheromone`).
+    best_cost : ndarray, shape (1,)
+        Fitness of the best walk so far.
+    best_edges : ndarray of int64
+        Its edges, ``best_edges[:counters[3]]``.
+    counters : ndarray of int64, shape (5,)
+        Next iteration, walks started, ant steps, length of the best walk, and
+        1 once an ant has searched the start's whole component (no turn rule).
+    stamps : ndarray of int32
+        Tabu stamps; walk ``w`` stamps its nodes with ``w``.
+    """
+
+    scale: np.ndarray
+    best_cost: np.ndarray
+    best_edges: np.ndarray
+    counters: np.ndarray
+    stamps: np.ndarray
+
+    @classmethod
+    def start(cls, n_nodes: int, scale: float) -> "ColonyRun":
+        """A run before its first iteration."""
+        return cls(np.array([scale]), np.array([np.inf]), np.zeros(max(n_nodes, 1), dtype=np.int64),
+                   np.zeros(5, dtype=np.int64), np.full(n_nodes, -1, dtype=np.int32))
+
+
+@numba.njit(cache=True)
+def _build_list(c, k, adj_ptr, adj_offset, turn, class_row, count, pool):
+    """Fill node ``c``'s list for heading class ``k``: its edge positions whose move the turn table allows."""
+    e0 = adj_ptr[c]
+    e1 = adj_ptr[c + 1]
+    base = e0 * count.shape[1] + k * (e1 - e0)
+    row = class_row[k]
+    use_turn = turn.shape[0] > 0
+    m = 0
+    for q in range(e0, e1):
+        if use_turn and turn[row, adj_offset[q]] <= 0.0:
+            continue
+        pool[base + m] = q - e0
+        m += 1
+    count[c, k] = m
+
+
+@numba.njit(cache=True)
+def _walk_ant(c, wid, indices, offset_id, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, horizontal, turn,
+              move_class, class_row, count, pool, x, scale, lo, hi, tau_exp, q0, start, goal, backtrack,
+              max_steps, stamp, stack_e, stack_prev, cand_e, cand_w):
+    """One ant from ``start``; returns ``(outcome, depth, steps)``, its edges in ``stack_e[:depth]``.
+
+    Step for step :func:`pathzoo_aco.engine.walk._colony` for one ant walking
+    alone, scanning the allowed-move list of (node, heading) instead of the
+    node's whole adjacency.
+    """
+    use_turn = turn.shape[0] > 0
+    no_prev = turn.shape[0] - 1 if use_turn else 0
+    n_classes = count.shape[1]
+    bounded = lo > 0.0 or hi < np.inf
+    lo_pow = lo**tau_exp
+    d = 0
+    pv = no_prev
+    n = 0
+    stamp[start] = wid
+    c = start
+    while True:
+        if c == goal:
+            return REACHED, d, n
+        if n >= max_steps:
+            return STEP_CAP, d, n
+        k = move_class[pv]
+        m = count[c, k]
+        if m == _NOT_BUILT:
+            _build_list(c, k, adj_ptr, adj_offset, turn, class_row, count, pool)
+            m = count[c, k]
+        e0 = adj_ptr[c]
+        base = e0 * n_classes + k * (adj_ptr[c + 1] - e0)
+        nc = 0
+        n_open = 0
+        total_w = 0.0
+        for i in range(m):
+            q = e0 + pool[base + i]
+            j = adj_node[q]
+            if stamp[j] == wid:
+                continue
+            if adj_edge is None:
+                e = q
+            else:
+                e = adj_edge[q]
+            t = scale * x[e]
+            if bounded:
+                t = min(max(t, lo), hi)
+            n_open += 1
+            if tau_exp == 1.0:
+                w = t * w_mul[q]
+            elif t <= lo:
+                w = lo_pow * w_mul[q]
+            else:
+                w = t**tau_exp * w_mul[q]
+            if w > 0.0:
+                cand_e[nc] = e
+                cand_w[nc] = w
+                total_w += w
+                nc += 1
+        if nc == 0 and n_open > 0:  # every trail weight underflowed: the heuristic alone
+            for i in range(m):
+                q = e0 + pool[base + i]
+                if stamp[adj_node[q]] == wid:
+                    continue
+                w = w_mul[q]
+                if w > 0.0:
+                    if adj_edge is None:
+                        cand_e[nc] = q
+                    else:
+                        cand_e[nc] = adj_edge[q]
+                    cand_w[nc] = w
+                    total_w += w
+                    nc += 1
+        if nc == 0:  # dead end
+            if not backtrack:
+                return STUCK, d, n
+            if d == 0:
+                return EXHAUSTED, d, n
+            d -= 1
+            c = indices[stack_e[d - 1]] if d > 0 else start
+            if use_turn:
+                pv = stack_prev[d - 1] if d > 0 else no_prev
+        else:
+            sel = cand_e[nc - 1]
+            if q0 > 0.0 and np.random.random() < q0:
+                best = -1.0
+                for i in range(nc):
+                    if cand_w[i] > best:
+                        best = cand_w[i]
+                        sel = cand_e[i]
+            else:
+                r = np.random.random() * total_w
+                acc = 0.0
+                for i in range(nc):
+                    acc += cand_w[i]
+                    if r < acc:
+                        sel = cand_e[i]
+                        break
+            c = indices[sel]
+            stamp[c] = wid
+            stack_e[d] = sel
+            if use_turn:
+                o = offset_id[sel]
+                if horizontal[o]:
+                    pv = o
+                stack_prev[d] = pv
+            d += 1
+        n += 1
+
+
+@numba.njit(cache=True)
+def _colony_run(indices, offset_id, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, horizontal, turn,
+                move_class, class_row, count, pool,
+                graph_indices, graph_offset_id, edge_length, height, turn_angle, cells, f1, f2, f3,
+                x, scale, lo, hi, rho, tau_exp, q, start, goal, backtrack, max_steps,
+                seeds, q0s, ps, ants, stop_at, best_cost, best_edges, counters, stamps):
+    """Iterations ``counters[0]`` to ``stop_at - 1`` (see :func:`run_colony`)."""
+    n_nodes = stamps.size
+    stack_e = np.zeros(n_nodes + 1, dtype=np.int64)
+    stack_prev = np.zeros(n_nodes + 1, dtype=np.int64)
+    kmax = 1
+    for c in range(adj_ptr.size - 1):
+        kmax = max(kmax, adj_ptr[c + 1] - adj_ptr[c])
+    cand_e = np.zeros(kmax, dtype=np.int64)
+    cand_w = np.zeros(kmax)
+    flat = np.zeros(1024, dtype=np.int64)
+    use_turn = turn.shape[0] > 0
+    it = counters[0]
+    while it < stop_at:
+        n_ants = ants[it]
+        np.random.seed(seeds[it])
+        offsets = np.zeros(n_ants + 1, dtype=np.int64)
+        reached = np.zeros(n_ants, dtype=np.bool_)
+        started = 0
+        exhausted = False
+        for a in range(n_ants):
+            wid = counters[1] + a  # walk ids never repeat within a run
+            flag, d, n = _walk_ant(start, wid, indices, offset_id, adj_ptr, adj_node, adj_edge, adj_offset, w_mul,
+                                   horizontal, turn, move_class, class_row, count, pool, x, scale[0], lo, hi,
+                                   tau_exp, q0s[it], start, goal, backtrack, max_steps, stamps, stack_e,
+                                   stack_prev, cand_e, cand_w)
+            started += 1
+            counters[2] += n
+            if flag == REACHED:
+                if offsets[a] + d > flat.size:
+                    grown = np.zeros(max(2 * flat.size, offsets[a] + d), dtype=np.int64)
+                    grown[: flat.size] = flat
+                    flat = grown
+                flat[offsets[a] : offsets[a] + d] = stack_e[:d]
+                reached[a] = True
+            offsets[a + 1] = offsets[a] + (d if flag == REACHED else 0)
+            if flag == EXHAUSTED and not use_turn:  # the goal is unreachable: the others never start
+                exhausted = True
+                offsets[a + 1 :] = offsets[a + 1]
+                break
+        counters[1] += started
+        it += 1
+        costs = walk_fitness(flat, offsets, reached, graph_indices, graph_offset_id, edge_length, height,
+                             turn_angle, start, cells, f1, f2, f3)
+        k = np.argmin(costs)
+        if np.isfinite(costs[k]) and costs[k] < best_cost[0]:
+            best_cost[0] = costs[k]
+            best_edges[: offsets[k + 1] - offsets[k]] = flat[offsets[k] : offsets[k + 1]]
+            counters[3] = offsets[k + 1] - offsets[k]
+        s = scale[0] * (1.0 - rho)  # eq. 16: evaporate everywhere (lazily, through the scale)
+        if s < _RENORMALISE_BELOW:
+            for i in range(x.size):
+                x[i] = min(max(s * x[i], lo), hi)
+            s = 1.0
+        scale[0] = s
+        if np.isfinite(costs[k]):  # eqs. 17-18: the iteration-best ant deposits, within the bounds
+            p = ps[it - 1]
+            amount = q / ((1.0 - p) * costs[k] + p * best_cost[0])
+            for i in range(offsets[k], offsets[k + 1]):
+                e = flat[i]
+                t = min(max(s * x[e], lo), hi) + amount
+                x[e] = min(max(t, lo), hi) / s
+        if exhausted:
+            counters[4] = 1
+            break
+    counters[0] = it
+
+
+def run_colony(adjacency: tuple, allowed: AllowedMoves, horizontal: np.ndarray, turn: np.ndarray,
+               fitness: tuple, trail: tuple, rule: tuple, schedule: tuple, run: ColonyRun, stop_at: int) -> None:
+    """Run iterations ``run.counters[0]`` to ``stop_at - 1`` (fewer if an ant proves the goal unreachable).
+
+    Parameters
+    ----------
+    adjacency : tuple
+        ``(indices, offset_id, adj_ptr, adj_node, adj_edge, adj_offset, weight_mul)``: the walk engine's
+        compact graph arrays and :meth:`~pathzoo_aco.engine.walk.WalkEngine.adjacency` of the rules.
+    allowed : AllowedMoves
+        The allowed-move lists of this adjacency and turn table (filled as needed).
+    horizontal, turn : ndarray
+        Per move, whether it changes the heading; the turn table (zeros and ones, or empty).
+    fitness : tuple
+        ``(graph indices, graph offset_id, edge length, node height, turn angle, cell size, f1, f2, f3)``.
+    trail : tuple
+        ``(x, lo, hi, rho)`` of the edge trail; its scale lives in ``run.scale``.
+    rule : tuple
+        ``(tau_exp, q, start, goal, backtrack, max_steps)``.
+    schedule : tuple
+        Per iteration: ``(seeds, q0, p, ants)``.
+    run : ColonyRun
+        Changed in place.
+    stop_at : int
+        Iteration to stop before.
+    """
+    indices, offset_id, adj_ptr, adj_node, adj_edge, adj_offset, w_mul = adjacency
+    x, lo, hi, rho = trail
+    tau_exp, q, start, goal, backtrack, max_steps = rule
+    seeds, q0s, ps, ants = schedule
+    _colony_run(indices, offset_id, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, horizontal, turn,
+                allowed.move_class, allowed.class_row, allowed.count, allowed.pool, *fitness,
+                x, run.scale, lo, hi, rho, tau_exp, q, start, goal, backtrack, max_steps,
+                seeds, q0s, ps, ants, stop_at, run.best_cost, run.best_edges, run.counters, run.stamps)
