@@ -46,7 +46,7 @@ from pathzoo.core.planner import Param, ProgressCallback
 from pathzoo.core.results import PlanResult
 from pathzoo.core.scenario import Scenario
 from pathzoo.core.status import Status
-from pathzoo_aco.dsaco_colony import AllowedMoves, ColonyRun, run_colony
+from pathzoo_aco.dsaco_colony import ColonyRun, MoveTable, run_colony
 from pathzoo_aco.dsaco_fitness import walk_fitness
 from pathzoo_aco.engine import (
     AntColonyPlanner,
@@ -313,24 +313,23 @@ class DSACO(AntColonyPlanner):
             return PlanResult(Status.SOLVED, problem.walk_points(np.zeros(0, dtype=np.int64)),
                               message="start and goal share a cell")
         rules = problem.memo(self.table_key("walk_rules"), lambda: self.walk_rules(problem))
-        trail = Pheromone(problem.graph.n_edges, self.initial_trail(problem))
         engine = self.walk_engine(problem)
+        table = problem.memo(self.table_key("move_table"), lambda: MoveTable.of(
+            engine.adjacency(rules), problem.graph.offsets, rules.turn))
+        trail = Pheromone(len(table.node), self.initial_trail(problem))  # in the table's storage order
         state = self.init_state(problem, rules, trail, engine, rng)
         assert isinstance(state, DsacoState) and state.node_height is not None and state.turn_angle is not None
-        adjacency = engine.adjacency(rules)
-        allowed = problem.memo(self.table_key("allowed_moves"), lambda: AllowedMoves.of(rules.turn, adjacency[0]))
         ants = self.ants_per_iteration(budget)
         rng_state = rng.bit_generator.state
         seeds = np.array([int(rng.integers(2**31 - 1)) for _ in ants], dtype=np.int64)
-        schedule = (seeds, np.array([q0_schedule(k, self.iterations, self.q0_initial) for k in range(len(ants))]),
-                    np.array([p_schedule(k + 1, self.p, self.gamma_p) for k in range(len(ants))]), ants)
+        iterations, q0_initial, p_initial, gamma_p = self.iterations, self.q0_initial, self.p, self.gamma_p
+        schedule = (seeds, np.array([q0_schedule(k, iterations, q0_initial) for k in range(len(ants))]),
+                    np.array([p_schedule(k + 1, p_initial, gamma_p) for k in range(len(ants))]), ants)
         g = problem.graph
         fitness = (g.indices, g.offset_id, g.length, state.node_height, state.turn_angle,
                    float(problem.scenario.cell_size), self.f1, self.f2, self.f3)
         run = ColonyRun.start(g.n_nodes, trail.scale)
-        arrays = ((engine.indices, engine.offset_id, adjacency[0], adjacency[1], adjacency[2], adjacency[3],
-                   adjacency[4]), allowed, problem.horizontal_offsets, rules.turn, fitness,
-                  (trail.x, trail.lo, trail.hi, self.rho),
+        arrays = (table, problem.horizontal_offsets, rules.turn, fitness, (trail.x, trail.lo, trail.hi, self.rho),
                   (rules.tau_exp, self.q, problem.start, problem.goal, rules.backtrack, rules.max_steps), schedule, run)
         started = time.perf_counter()
         for stop_at in ([len(ants)] if progress is None else range(1, len(ants) + 1)):

@@ -36,46 +36,87 @@ import numba
 import numpy as np
 
 from pathzoo_aco.dsaco_fitness import walk_fitness
+from pathzoo_aco.engine import EXHAUSTED, REACHED, STEP_CAP, STUCK
 
-__all__ = ["AllowedMoves", "ColonyRun", "run_colony", "REACHED", "EXHAUSTED"]
-
-REACHED, STUCK, STEP_CAP, EXHAUSTED = 0, 1, 2, 3
-"""Walk outcomes, as :mod:`pathzoo_aco.engine.walk` numbers them."""
+__all__ = ["MoveTable", "ColonyRun", "run_colony"]
 
 _NOT_BUILT = -1
 _RENORMALISE_BELOW = 1e-150
 """As :data:`pathzoo_aco.engine.pheromone._RENORMALISE_BELOW`: fold the trail's scale back below this."""
 
 
-@dataclass(frozen=True, eq=False)
-class AllowedMoves:
-    """Per (node, heading class): the positions of the node's edges that the turn limit allows, filled lazily.
+@numba.njit(cache=True)
+def _heading_layout(adj_ptr, adj_offset, rank):
+    """Per adjacency position, its place among its node's positions sorted by ``rank`` of their moves."""
+    k = rank.size
+    place = np.empty(adj_offset.size, dtype=np.int64)
+    slot = np.empty(k, dtype=np.int64)
+    for c in range(adj_ptr.size - 1):
+        slot[:] = -1
+        for q in range(adj_ptr[c], adj_ptr[c + 1]):
+            slot[rank[adj_offset[q]]] = q
+        m = 0
+        for r in range(k):
+            if slot[r] >= 0:
+                place[slot[r]] = adj_ptr[c] + m
+                m += 1
+    return place
 
-    Heading classes are the distinct rows of the turn table; row ``K`` (no
-    previous move) is a class of its own unless it equals another row.
+
+@dataclass(frozen=True, eq=False)
+class MoveTable:
+    """A node's moves stored by heading, and per (node, heading class) the moves the turn limit allows.
+
+    **Storage.** Each node's edges (the walk engine's adjacency of the rules)
+    are stored sorted by the heading of their move, so the moves one heading
+    class allows lie in one or two runs of memory rather than spread over the
+    node's whole block (the walk reads fewer cache lines per step). The trail
+    is kept in the same order. The order in which an ant *considers* the
+    moves is unchanged: the original one.
+
+    **Allowed lists.** Heading classes are the distinct rows of the turn table
+    (row ``K``, no previous move, included). The list of node ``c`` and class
+    ``k`` holds the storage places (relative to the node's first) of the
+    edges whose move the turn table allows, in the original order; it is
+    built the first time an ant stands on ``c`` with a heading of class ``k``.
 
     Attributes
     ----------
+    node, weight, edge, move : ndarray
+        Per storage place: target node, weight ``weight_mul``, graph edge id and move id.
+    place : ndarray of uint8 or uint16
+        Per original adjacency position: its storage place relative to its node's first.
+    adj_ptr, adj_offset : ndarray
+        The adjacency's CSR pointer and per-position moves (original order).
     move_class : ndarray of int64, shape (K + 1,)
-        Class of every previous move (index into ``class_row``).
+        Class of every previous move.
     class_row : ndarray of int64
-        A previous move (row of the turn table) that stands for each class.
+        A previous move (row of the turn table) standing for each class.
     count : ndarray of int16, shape (N, classes)
-        Length of each list; -1 until built.
-    pool : ndarray of uint8 or uint16
-        The lists: node ``c``'s list for class ``k`` starts at
-        ``adj_ptr[c] * classes + k * degree(c)`` and holds positions relative
-        to ``adj_ptr[c]``.
+        Length of each allowed list; -1 until built.
+    pool : ndarray like ``place``
+        The lists: node ``c``'s list of class ``k`` starts at
+        ``adj_ptr[c] * classes + k * degree(c)``.
     """
 
+    node: np.ndarray
+    weight: np.ndarray
+    edge: np.ndarray
+    move: np.ndarray
+    place: np.ndarray
+    adj_ptr: np.ndarray
+    adj_offset: np.ndarray
     move_class: np.ndarray
     class_row: np.ndarray
     count: np.ndarray
     pool: np.ndarray
 
     @classmethod
-    def of(cls, turn: np.ndarray, adj_ptr: np.ndarray) -> "AllowedMoves":
-        """Empty lists for a turn table ``(K + 1, K)`` (or ``(0, 0)``: one class, every move) and an adjacency."""
+    def of(cls, adjacency: tuple, offsets: np.ndarray, turn: np.ndarray) -> "MoveTable":
+        """The table of an adjacency ``(adj_ptr, adj_node, adj_edge or None, adj_offset, weight_mul, _)``
+        (:meth:`~pathzoo_aco.engine.walk.WalkEngine.adjacency`), the graph's move offsets and a turn table
+        ``(K + 1, K)`` of zeros and ones (or ``(0, 0)``: one class, every move allowed)."""
+        adj_ptr, adj_node, adj_edge, adj_offset, w_mul = adjacency[:5]
         n_nodes = len(adj_ptr) - 1
         if turn.size == 0:
             move_class = np.zeros(1, dtype=np.int64)
@@ -84,9 +125,21 @@ class AllowedMoves:
             _, first, inverse = np.unique(turn, axis=0, return_index=True, return_inverse=True)
             move_class = inverse.reshape(-1).astype(np.int64)
             class_row = first.astype(np.int64)
+        heading = np.arctan2(offsets[:, -2], offsets[:, -1])
+        vertical = (offsets[:, -2:] == 0).all(axis=1)
+        rank = np.empty(len(offsets), dtype=np.int64)
+        rank[np.lexsort((np.arange(len(offsets)), heading, vertical))] = np.arange(len(offsets))
+        where = _heading_layout(adj_ptr, adj_offset, rank)
         degree = int(np.diff(adj_ptr).max()) if n_nodes else 0
-        pool = np.empty(int(adj_ptr[-1]) * len(class_row), dtype=np.uint8 if degree <= 256 else np.uint16)
-        return cls(move_class, class_row, np.full((n_nodes, len(class_row)), _NOT_BUILT, dtype=np.int16), pool)
+        small = np.uint8 if degree <= 256 else np.uint16
+        edge = np.arange(len(adj_node), dtype=np.int64) if adj_edge is None else adj_edge.astype(np.int64)
+        order = np.empty_like(where)
+        order[where] = np.arange(len(where))
+        node_of_position = np.repeat(np.arange(n_nodes), np.diff(adj_ptr))
+        return cls(adj_node[order], w_mul[order], edge[order], adj_offset[order],
+                   (where - adj_ptr[node_of_position]).astype(small), adj_ptr, adj_offset, move_class, class_row,
+                   np.full((n_nodes, len(class_row)), _NOT_BUILT, dtype=np.int16),
+                   np.empty(int(adj_ptr[-1]) * len(class_row), dtype=small))
 
 
 @dataclass
@@ -122,8 +175,8 @@ class ColonyRun:
 
 
 @numba.njit(cache=True)
-def _build_list(c, k, adj_ptr, adj_offset, turn, class_row, count, pool):
-    """Fill node ``c``'s list for heading class ``k``: its edge positions whose move the turn table allows."""
+def _build_list(c, k, adj_ptr, adj_offset, place, turn, class_row, count, pool):
+    """Fill node ``c``'s list for heading class ``k``: the places of its edges whose move the turn table allows."""
     e0 = adj_ptr[c]
     e1 = adj_ptr[c + 1]
     base = e0 * count.shape[1] + k * (e1 - e0)
@@ -133,20 +186,20 @@ def _build_list(c, k, adj_ptr, adj_offset, turn, class_row, count, pool):
     for q in range(e0, e1):
         if use_turn and turn[row, adj_offset[q]] <= 0.0:
             continue
-        pool[base + m] = q - e0
+        pool[base + m] = place[q]
         m += 1
     count[c, k] = m
 
 
 @numba.njit(cache=True)
-def _walk_ant(c, wid, indices, offset_id, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, horizontal, turn,
-              move_class, class_row, count, pool, x, scale, lo, hi, tau_exp, q0, start, goal, backtrack,
-              max_steps, stamp, stack_e, stack_prev, cand_e, cand_w):
-    """One ant from ``start``; returns ``(outcome, depth, steps)``, its edges in ``stack_e[:depth]``.
+def _walk_ant(wid, node, weight, move, place, adj_ptr, adj_offset, horizontal, turn, move_class, class_row,
+              count, pool, x, scale, lo, hi, tau_exp, q0, start, goal, backtrack, max_steps, stamp, stack,
+              stack_prev, cand, cand_w):
+    """One ant from ``start``; returns ``(outcome, depth, steps)``, the storage places it took in ``stack[:depth]``.
 
     Step for step :func:`pathzoo_aco.engine.walk._colony` for one ant walking
-    alone, scanning the allowed-move list of (node, heading) instead of the
-    node's whole adjacency.
+    alone, reading the allowed list of (node, heading) instead of the node's
+    whole adjacency.
     """
     use_turn = turn.shape[0] > 0
     no_prev = turn.shape[0] - 1 if use_turn else 0
@@ -166,7 +219,7 @@ def _walk_ant(c, wid, indices, offset_id, adj_ptr, adj_node, adj_edge, adj_offse
         k = move_class[pv]
         m = count[c, k]
         if m == _NOT_BUILT:
-            _build_list(c, k, adj_ptr, adj_offset, turn, class_row, count, pool)
+            _build_list(c, k, adj_ptr, adj_offset, place, turn, class_row, count, pool)
             m = count[c, k]
         e0 = adj_ptr[c]
         base = e0 * n_classes + k * (adj_ptr[c + 1] - e0)
@@ -174,40 +227,32 @@ def _walk_ant(c, wid, indices, offset_id, adj_ptr, adj_node, adj_edge, adj_offse
         n_open = 0
         total_w = 0.0
         for i in range(m):
-            q = e0 + pool[base + i]
-            j = adj_node[q]
-            if stamp[j] == wid:
+            s = e0 + pool[base + i]
+            if stamp[node[s]] == wid:
                 continue
-            if adj_edge is None:
-                e = q
-            else:
-                e = adj_edge[q]
-            t = scale * x[e]
+            t = scale * x[s]
             if bounded:
                 t = min(max(t, lo), hi)
             n_open += 1
             if tau_exp == 1.0:
-                w = t * w_mul[q]
+                w = t * weight[s]
             elif t <= lo:
-                w = lo_pow * w_mul[q]
+                w = lo_pow * weight[s]
             else:
-                w = t**tau_exp * w_mul[q]
+                w = t**tau_exp * weight[s]
             if w > 0.0:
-                cand_e[nc] = e
+                cand[nc] = s
                 cand_w[nc] = w
                 total_w += w
                 nc += 1
         if nc == 0 and n_open > 0:  # every trail weight underflowed: the heuristic alone
             for i in range(m):
-                q = e0 + pool[base + i]
-                if stamp[adj_node[q]] == wid:
+                s = e0 + pool[base + i]
+                if stamp[node[s]] == wid:
                     continue
-                w = w_mul[q]
+                w = weight[s]
                 if w > 0.0:
-                    if adj_edge is None:
-                        cand_e[nc] = q
-                    else:
-                        cand_e[nc] = adj_edge[q]
+                    cand[nc] = s
                     cand_w[nc] = w
                     total_w += w
                     nc += 1
@@ -217,30 +262,30 @@ def _walk_ant(c, wid, indices, offset_id, adj_ptr, adj_node, adj_edge, adj_offse
             if d == 0:
                 return EXHAUSTED, d, n
             d -= 1
-            c = indices[stack_e[d - 1]] if d > 0 else start
+            c = node[stack[d - 1]] if d > 0 else start
             if use_turn:
                 pv = stack_prev[d - 1] if d > 0 else no_prev
         else:
-            sel = cand_e[nc - 1]
+            sel = cand[nc - 1]
             if q0 > 0.0 and np.random.random() < q0:
                 best = -1.0
                 for i in range(nc):
                     if cand_w[i] > best:
                         best = cand_w[i]
-                        sel = cand_e[i]
+                        sel = cand[i]
             else:
                 r = np.random.random() * total_w
                 acc = 0.0
                 for i in range(nc):
                     acc += cand_w[i]
                     if r < acc:
-                        sel = cand_e[i]
+                        sel = cand[i]
                         break
-            c = indices[sel]
+            c = node[sel]
             stamp[c] = wid
-            stack_e[d] = sel
+            stack[d] = sel
             if use_turn:
-                o = offset_id[sel]
+                o = move[sel]
                 if horizontal[o]:
                     pv = o
                 stack_prev[d] = pv
@@ -249,21 +294,21 @@ def _walk_ant(c, wid, indices, offset_id, adj_ptr, adj_node, adj_edge, adj_offse
 
 
 @numba.njit(cache=True)
-def _colony_run(indices, offset_id, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, horizontal, turn,
-                move_class, class_row, count, pool,
-                graph_indices, graph_offset_id, edge_length, height, turn_angle, cells, f1, f2, f3,
+def _colony_run(node, weight, edge, move, place, adj_ptr, adj_offset, move_class, class_row, count, pool,
+                horizontal, turn, graph_indices, graph_offset_id, edge_length, height, turn_angle, cells, f1, f2, f3,
                 x, scale, lo, hi, rho, tau_exp, q, start, goal, backtrack, max_steps,
                 seeds, q0s, ps, ants, stop_at, best_cost, best_edges, counters, stamps):
     """Iterations ``counters[0]`` to ``stop_at - 1`` (see :func:`run_colony`)."""
     n_nodes = stamps.size
-    stack_e = np.zeros(n_nodes + 1, dtype=np.int64)
+    stack = np.zeros(n_nodes + 1, dtype=np.int64)
     stack_prev = np.zeros(n_nodes + 1, dtype=np.int64)
     kmax = 1
     for c in range(adj_ptr.size - 1):
         kmax = max(kmax, adj_ptr[c + 1] - adj_ptr[c])
-    cand_e = np.zeros(kmax, dtype=np.int64)
+    cand = np.zeros(kmax, dtype=np.int64)
     cand_w = np.zeros(kmax)
-    flat = np.zeros(1024, dtype=np.int64)
+    flat = np.zeros(1024, dtype=np.int64)  # storage places of the iteration's walks
+    flat_edges = np.zeros(1024, dtype=np.int64)  # the same as graph edge ids
     use_turn = turn.shape[0] > 0
     it = counters[0]
     while it < stop_at:
@@ -275,18 +320,19 @@ def _colony_run(indices, offset_id, adj_ptr, adj_node, adj_edge, adj_offset, w_m
         exhausted = False
         for a in range(n_ants):
             wid = counters[1] + a  # walk ids never repeat within a run
-            flag, d, n = _walk_ant(start, wid, indices, offset_id, adj_ptr, adj_node, adj_edge, adj_offset, w_mul,
-                                   horizontal, turn, move_class, class_row, count, pool, x, scale[0], lo, hi,
-                                   tau_exp, q0s[it], start, goal, backtrack, max_steps, stamps, stack_e,
-                                   stack_prev, cand_e, cand_w)
+            flag, d, n = _walk_ant(wid, node, weight, move, place, adj_ptr, adj_offset, horizontal, turn,
+                                   move_class, class_row, count, pool, x, scale[0], lo, hi, tau_exp, q0s[it], start,
+                                   goal, backtrack, max_steps, stamps, stack, stack_prev, cand, cand_w)
             started += 1
             counters[2] += n
             if flag == REACHED:
                 if offsets[a] + d > flat.size:
-                    grown = np.zeros(max(2 * flat.size, offsets[a] + d), dtype=np.int64)
+                    size = max(2 * flat.size, offsets[a] + d)
+                    grown = np.zeros(size, dtype=np.int64)
                     grown[: flat.size] = flat
                     flat = grown
-                flat[offsets[a] : offsets[a] + d] = stack_e[:d]
+                    flat_edges = np.zeros(size, dtype=np.int64)
+                flat[offsets[a] : offsets[a] + d] = stack[:d]
                 reached[a] = True
             offsets[a + 1] = offsets[a] + (d if flag == REACHED else 0)
             if flag == EXHAUSTED and not use_turn:  # the goal is unreachable: the others never start
@@ -295,12 +341,14 @@ def _colony_run(indices, offset_id, adj_ptr, adj_node, adj_edge, adj_offset, w_m
                 break
         counters[1] += started
         it += 1
-        costs = walk_fitness(flat, offsets, reached, graph_indices, graph_offset_id, edge_length, height,
+        for i in range(offsets[n_ants]):
+            flat_edges[i] = edge[flat[i]]
+        costs = walk_fitness(flat_edges, offsets, reached, graph_indices, graph_offset_id, edge_length, height,
                              turn_angle, start, cells, f1, f2, f3)
         k = np.argmin(costs)
         if np.isfinite(costs[k]) and costs[k] < best_cost[0]:
             best_cost[0] = costs[k]
-            best_edges[: offsets[k + 1] - offsets[k]] = flat[offsets[k] : offsets[k + 1]]
+            best_edges[: offsets[k + 1] - offsets[k]] = flat_edges[offsets[k] : offsets[k + 1]]
             counters[3] = offsets[k + 1] - offsets[k]
         s = scale[0] * (1.0 - rho)  # eq. 16: evaporate everywhere (lazily, through the scale)
         if s < _RENORMALISE_BELOW:
@@ -321,23 +369,21 @@ def _colony_run(indices, offset_id, adj_ptr, adj_node, adj_edge, adj_offset, w_m
     counters[0] = it
 
 
-def run_colony(adjacency: tuple, allowed: AllowedMoves, horizontal: np.ndarray, turn: np.ndarray,
-               fitness: tuple, trail: tuple, rule: tuple, schedule: tuple, run: ColonyRun, stop_at: int) -> None:
+def run_colony(table: MoveTable, horizontal: np.ndarray, turn: np.ndarray, fitness: tuple, trail: tuple,
+               rule: tuple, schedule: tuple, run: ColonyRun, stop_at: int) -> None:
     """Run iterations ``run.counters[0]`` to ``stop_at - 1`` (fewer if an ant proves the goal unreachable).
 
     Parameters
     ----------
-    adjacency : tuple
-        ``(indices, offset_id, adj_ptr, adj_node, adj_edge, adj_offset, weight_mul)``: the walk engine's
-        compact graph arrays and :meth:`~pathzoo_aco.engine.walk.WalkEngine.adjacency` of the rules.
-    allowed : AllowedMoves
-        The allowed-move lists of this adjacency and turn table (filled as needed).
+    table : MoveTable
+        The moves of the rules' adjacency and turn table (allowed lists filled as needed).
     horizontal, turn : ndarray
         Per move, whether it changes the heading; the turn table (zeros and ones, or empty).
     fitness : tuple
         ``(graph indices, graph offset_id, edge length, node height, turn angle, cell size, f1, f2, f3)``.
     trail : tuple
-        ``(x, lo, hi, rho)`` of the edge trail; its scale lives in ``run.scale``.
+        ``(x, lo, hi, rho)``: the trail in the table's storage order, its bounds and evaporation rate;
+        its scale lives in ``run.scale``.
     rule : tuple
         ``(tau_exp, q, start, goal, backtrack, max_steps)``.
     schedule : tuple
@@ -347,11 +393,11 @@ def run_colony(adjacency: tuple, allowed: AllowedMoves, horizontal: np.ndarray, 
     stop_at : int
         Iteration to stop before.
     """
-    indices, offset_id, adj_ptr, adj_node, adj_edge, adj_offset, w_mul = adjacency
+    t = table
     x, lo, hi, rho = trail
     tau_exp, q, start, goal, backtrack, max_steps = rule
     seeds, q0s, ps, ants = schedule
-    _colony_run(indices, offset_id, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, horizontal, turn,
-                allowed.move_class, allowed.class_row, allowed.count, allowed.pool, *fitness,
-                x, run.scale, lo, hi, rho, tau_exp, q, start, goal, backtrack, max_steps,
-                seeds, q0s, ps, ants, stop_at, run.best_cost, run.best_edges, run.counters, run.stamps)
+    _colony_run(t.node, t.weight, t.edge, t.move, t.place, t.adj_ptr, t.adj_offset, t.move_class, t.class_row,
+                t.count, t.pool, horizontal, turn, *fitness, x, run.scale, lo, hi, rho, tau_exp, q, start, goal,
+                backtrack, max_steps, seeds, q0s, ps, ants, stop_at, run.best_cost, run.best_edges, run.counters,
+                run.stamps)
