@@ -46,21 +46,31 @@ _RENORMALISE_BELOW = 1e-150
 
 
 @numba.njit(cache=True)
-def _heading_layout(adj_ptr, adj_offset, rank):
-    """Per adjacency position, its place among its node's positions sorted by ``rank`` of their moves."""
-    k = rank.size
-    place = np.empty(adj_offset.size, dtype=np.int64)
-    slot = np.empty(k, dtype=np.int64)
+def _heading_layout(adj_ptr, adj_node, adj_edge, adj_offset, w_mul, rank, node, weight, edge, move, place):
+    """Fill the storage arrays: each node's adjacency positions sorted by ``rank`` of their moves.
+
+    ``node``, ``weight``, ``edge``, ``move`` get the target, weight, graph
+    edge id and move of each storage place; ``place[q]`` the place of
+    adjacency position ``q`` relative to its node's first.
+    """
+    slot = np.empty(rank.size, dtype=np.int64)
     for c in range(adj_ptr.size - 1):
+        e0 = adj_ptr[c]
         slot[:] = -1
-        for q in range(adj_ptr[c], adj_ptr[c + 1]):
+        for q in range(e0, adj_ptr[c + 1]):
             slot[rank[adj_offset[q]]] = q
         m = 0
-        for r in range(k):
-            if slot[r] >= 0:
-                place[slot[r]] = adj_ptr[c] + m
-                m += 1
-    return place
+        for r in range(rank.size):
+            q = slot[r]
+            if q < 0:
+                continue
+            s = e0 + m
+            node[s] = adj_node[q]
+            weight[s] = w_mul[q]
+            edge[s] = q if adj_edge is None else adj_edge[q]
+            move[s] = adj_offset[q]
+            place[q] = m
+            m += 1
 
 
 @dataclass(frozen=True, eq=False)
@@ -129,17 +139,15 @@ class MoveTable:
         vertical = (offsets[:, -2:] == 0).all(axis=1)
         rank = np.empty(len(offsets), dtype=np.int64)
         rank[np.lexsort((np.arange(len(offsets)), heading, vertical))] = np.arange(len(offsets))
-        where = _heading_layout(adj_ptr, adj_offset, rank)
         degree = int(np.diff(adj_ptr).max()) if n_nodes else 0
         small = np.uint8 if degree <= 256 else np.uint16
-        edge = np.arange(len(adj_node), dtype=np.int64) if adj_edge is None else adj_edge.astype(np.int64)
-        order = np.empty_like(where)
-        order[where] = np.arange(len(where))
-        node_of_position = np.repeat(np.arange(n_nodes), np.diff(adj_ptr))
-        return cls(adj_node[order], w_mul[order], edge[order], adj_offset[order],
-                   (where - adj_ptr[node_of_position]).astype(small), adj_ptr, adj_offset, move_class, class_row,
+        size = len(adj_node)
+        node, weight, edge = np.empty_like(adj_node), np.empty_like(w_mul), np.empty(size, dtype=np.int64)
+        move, place = np.empty_like(adj_offset), np.empty(size, dtype=small)
+        _heading_layout(adj_ptr, adj_node, adj_edge, adj_offset, w_mul, rank, node, weight, edge, move, place)
+        return cls(node, weight, edge, move, place, adj_ptr, adj_offset, move_class, class_row,
                    np.full((n_nodes, len(class_row)), _NOT_BUILT, dtype=np.int16),
-                   np.empty(int(adj_ptr[-1]) * len(class_row), dtype=small))
+                   np.empty(size * len(class_row), dtype=small))
 
 
 @dataclass
