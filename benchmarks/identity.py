@@ -51,6 +51,8 @@ LONG = (  # planner, scenario id, parameters, iterations: whole runs (schedules,
     ("aco.dsaco", "dsaco.complex", {}, 500),
     ("aco.dsaco", "dsaco.complex", {"step_rule": "longitude"}, 500),
     ("aco.dsaco", "dsaco.simple", {"rho": 0.9}, 300),
+    ("aco.dsaco", "dsaco.complex", {"l_min": 1.01, "step_rule": "longitude"}, 100),
+    ("aco.dsaco", "dsaco.complex", {"l_max": 70.0, "step_rule": "longitude"}, 60),
 )
 
 

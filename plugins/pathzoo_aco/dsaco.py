@@ -48,7 +48,7 @@ from pathzoo.core.results import PlanResult
 from pathzoo.core.scenario import Scenario
 from pathzoo.core.status import Status
 from pathzoo_aco.dsaco_colony import ColonyRun, MoveTable, run_colony
-from pathzoo_aco.dsaco_fitness import walk_fitness
+from pathzoo_aco.dsaco_fitness import infeasible_walks, walk_fitness
 from pathzoo_aco.engine import (
     AntColonyPlanner,
     ColonyProblem,
@@ -61,7 +61,7 @@ from pathzoo_aco.engine import (
     deposit_walks,
 )
 
-__all__ = ["DSACO", "DsacoState", "q0_schedule", "p_schedule", "segment_lengths"]
+__all__ = ["DSACO", "DsacoState", "q0_schedule", "p_schedule"]
 
 
 def q0_schedule(k: int, k_max: int, q0_initial: float) -> float:
@@ -86,34 +86,6 @@ def _per_walk(per_position: np.ndarray, walks: Walks) -> np.ndarray:
     """Sum a value given per position of ``walks.flat`` over each walk (``inf`` for walks that failed)."""
     cum = np.concatenate([[0.0], np.cumsum(per_position)])
     return np.where(walks.reached, cum[walks.offsets[1:]] - cum[walks.offsets[:-1]], np.inf)
-
-
-def segment_lengths(moves: np.ndarray, steps: np.ndarray, offsets: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Straight segments of every walk: runs of consecutive steps with the same move (eq. 3).
-
-    Parameters
-    ----------
-    moves : ndarray of int
-        Move id (direction) of every step, walks concatenated.
-    steps : ndarray of float
-        Length of every step.
-    offsets : ndarray of int
-        Walk ``a`` is ``moves[offsets[a]:offsets[a + 1]]``.
-
-    Returns
-    -------
-    length : ndarray
-        Length of every segment, walks concatenated.
-    walk : ndarray of int
-        The walk each segment belongs to.
-    """
-    n = len(offsets) - 1
-    walk_of_step = np.repeat(np.arange(n), np.diff(offsets))
-    new = np.ones(len(moves), dtype=bool)
-    if len(moves) > 1:
-        new[1:] = (moves[1:] != moves[:-1]) | (walk_of_step[1:] != walk_of_step[:-1])
-    segment = np.cumsum(new) - 1
-    return np.bincount(segment, weights=steps, minlength=int(new.sum())), walk_of_step[new]
 
 
 @numba.njit(cache=True)
@@ -287,18 +259,13 @@ class DSACO(AntColonyPlanner):
 
     def infeasible_walks(self, state: ColonyState, walks: Walks) -> np.ndarray:
         """Eqs. 2-3 per walk: total length above ``l_max``, or a straight segment other than the last one
-        shorter than ``l_min`` (lengths in horizontal cells, like the fitness; a limit of 0 is off)."""
+        shorter than ``l_min`` (lengths in horizontal cells, like the fitness; a limit of 0 is off).
+
+        A straight segment is a run of consecutive steps with the same move
+        (:func:`pathzoo_aco.dsaco_fitness.infeasible_walks`)."""
         g = state.problem.graph
-        steps = g.length[walks.flat] / state.problem.scenario.cell_size
-        bad = np.zeros(len(walks.offsets) - 1, dtype=bool)
-        if self.l_max > 0.0:
-            bad |= _per_walk(steps, walks) > self.l_max * (1.0 + 1e-12)
-        if self.l_min > 0.0:
-            length, walk = segment_lengths(g.offset_id[walks.flat], steps, walks.offsets)
-            last = np.r_[walk[1:] != walk[:-1], True]  # a walk's final segment ends at the target, not at a turn
-            short = (length < self.l_min * (1.0 - 1e-12)) & ~last
-            bad[walk[short]] = True
-        return bad
+        return infeasible_walks(walks.flat, walks.offsets, walks.reached, g.length, g.offset_id,
+                                float(state.problem.scenario.cell_size), self.l_max, self.l_min)
 
     def update_trail(self, state: ColonyState, walks: Walks, costs: np.ndarray) -> None:
         """Eqs. 16-19: evaporate everywhere; the iteration-best ant lays ``Q / ((1-p) F_now + p F_global)``."""
@@ -316,12 +283,11 @@ class DSACO(AntColonyPlanner):
         """Run the colony in compiled code (:mod:`pathzoo_aco.dsaco_colony`); results equal the generic loop's.
 
         The generic :meth:`AntColonyPlanner.plan` runs instead under a time
-        budget (its walks stop mid-way when time runs out) and when eqs. 2-3
-        are on (``l_max`` or ``l_min``). Without a ``progress`` callback all
+        budget (its walks stop mid-way when time runs out). Without a ``progress`` callback all
         iterations run in one call; with one, one call per iteration, so each
         report comes when its iteration ends.
         """
-        if budget.time_s is not None or self.l_max > 0.0 or self.l_min > 0.0:
+        if budget.time_s is not None:
             return super().plan(scenario, budget=budget, rng=rng, progress=progress)
         self.check_supports(scenario)
         problem = ColonyProblem.of(scenario)
@@ -343,7 +309,7 @@ class DSACO(AntColonyPlanner):
                     np.array([p_schedule(k + 1, p_initial, gamma_p) for k in range(len(ants))]), ants)
         g = problem.graph
         fitness = (g.indices, g.offset_id, g.length, state.node_height, state.turn_angle,
-                   float(problem.scenario.cell_size), self.f1, self.f2, self.f3)
+                   float(problem.scenario.cell_size), self.f1, self.f2, self.f3, self.l_max, self.l_min)
         run = ColonyRun.start(g.n_nodes, trail.scale)
         arrays = (table, problem.horizontal_offsets, rules.turn, fitness, (trail.x, trail.lo, trail.hi, self.rho),
                   (rules.tau_exp, self.q, problem.start, problem.goal, rules.backtrack, rules.max_steps), schedule, run)

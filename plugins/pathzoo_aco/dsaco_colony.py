@@ -35,7 +35,7 @@ from dataclasses import dataclass
 import numba
 import numpy as np
 
-from pathzoo_aco.dsaco_fitness import walk_fitness
+from pathzoo_aco.dsaco_fitness import infeasible_walks, walk_fitness
 from pathzoo_aco.engine import EXHAUSTED, REACHED, STEP_CAP, STUCK
 
 __all__ = ["MoveTable", "ColonyRun", "run_colony"]
@@ -304,7 +304,7 @@ def _walk_ant(wid, node, weight, move, place, adj_ptr, adj_offset, horizontal, t
 @numba.njit(cache=True)
 def _colony_run(node, weight, edge, move, place, adj_ptr, adj_offset, move_class, class_row, count, pool,
                 horizontal, turn, graph_indices, graph_offset_id, edge_length, height, turn_angle, cells, f1, f2, f3,
-                x, scale, lo, hi, rho, tau_exp, q, start, goal, backtrack, max_steps,
+                l_max, l_min, x, scale, lo, hi, rho, tau_exp, q, start, goal, backtrack, max_steps,
                 seeds, q0s, ps, ants, stop_at, best_cost, best_edges, counters, stamps):
     """Iterations ``counters[0]`` to ``stop_at - 1`` (see :func:`run_colony`)."""
     n_nodes = stamps.size
@@ -353,6 +353,9 @@ def _colony_run(node, weight, edge, move, place, adj_ptr, adj_offset, move_class
             flat_edges[i] = edge[flat[i]]
         costs = walk_fitness(flat_edges, offsets, reached, graph_indices, graph_offset_id, edge_length, height,
                              turn_angle, start, cells, f1, f2, f3)
+        if l_max > 0.0 or l_min > 0.0:  # eqs. 2-3
+            costs[infeasible_walks(flat_edges, offsets, reached, edge_length, graph_offset_id, cells, l_max,
+                                   l_min)] = np.inf
         k = np.argmin(costs)
         if np.isfinite(costs[k]) and costs[k] < best_cost[0]:
             best_cost[0] = costs[k]
@@ -388,7 +391,8 @@ def run_colony(table: MoveTable, horizontal: np.ndarray, turn: np.ndarray, fitne
     horizontal, turn : ndarray
         Per move, whether it changes the heading; the turn table (zeros and ones, or empty).
     fitness : tuple
-        ``(graph indices, graph offset_id, edge length, node height, turn angle, cell size, f1, f2, f3)``.
+        ``(graph indices, graph offset_id, edge length, node height, turn angle, cell size, f1, f2, f3,
+        l_max, l_min)``.
     trail : tuple
         ``(x, lo, hi, rho)``: the trail in the table's storage order, its bounds and evaporation rate;
         its scale lives in ``run.scale``.

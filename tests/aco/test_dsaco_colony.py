@@ -46,6 +46,7 @@ def _same(a, b):
     ("dsaco.simple", {"alpha": 1.5, "q0_initial": 0.0, "rho": 0.9}, Budget(iterations=8)),
     ("dsaco.simple", {"dead_end": "die", "max_steps": 40}, Budget(iterations=6)),
     ("dsaco.simple", {"n_ants": 3}, Budget(evaluations=8)),  # the last iteration sends 2 ants
+    ("dsaco.simple", {"step_rule": "longitude", "l_min": 1.01, "l_max": 60.0}, Budget(iterations=8)),  # eqs. 2-3
     ("grid12", {"n_ants": 4}, Budget(iterations=10)),
     ("grid12-turn", {"n_ants": 4}, Budget(iterations=10)),
     ("grid12-wall", {"n_ants": 4}, Budget(iterations=10)),  # an ant proves the goal unreachable: early stop
@@ -71,18 +72,16 @@ def test_without_progress_one_call_gives_the_same_answer():
     _same(a, b)
 
 
-def test_time_budgets_and_flight_limits_take_the_generic_loop(monkeypatch):
+def test_time_budgets_take_the_generic_loop(monkeypatch):
     import pathzoo_aco.dsaco as dsaco
 
     def fail(*args, **kwargs):
         raise AssertionError("compiled colony used")
 
     monkeypatch.setattr(dsaco, "run_colony", fail)
-    scenario = _grid()
-    for params, budget in (({}, Budget(time_s=5.0, iterations=2)), ({"l_max": 40.0}, Budget(iterations=2))):
-        result = pathzoo.make_planner("aco.dsaco", **params).plan(scenario, budget=budget,
-                                                                   rng=np.random.default_rng(0))
-        assert result.solved
+    result = pathzoo.make_planner("aco.dsaco").plan(_grid(), budget=Budget(time_s=5.0, iterations=2),
+                                                    rng=np.random.default_rng(0))
+    assert result.solved
 
 
 def test_move_table_lists_the_allowed_moves_in_their_original_order():
