@@ -46,7 +46,8 @@ def _same(a, b):
     ("dsaco.simple", {"alpha": 1.5, "q0_initial": 0.0, "rho": 0.9}, Budget(iterations=8)),
     ("dsaco.simple", {"dead_end": "die", "max_steps": 40}, Budget(iterations=6)),
     ("dsaco.simple", {"n_ants": 3}, Budget(evaluations=8)),  # the last iteration sends 2 ants
-    ("dsaco.simple", {"step_rule": "longitude", "l_min": 1.01, "l_max": 60.0}, Budget(iterations=8)),  # eqs. 2-3
+    ("dsaco.simple", {"step_rule": "longitude", "l_max": 70.0}, Budget(iterations=8)),  # eq. 2, solved
+    ("dsaco.simple", {"step_rule": "longitude", "l_min": 1.01}, Budget(iterations=8)),  # eq. 3, nothing feasible
     ("grid12", {"n_ants": 4}, Budget(iterations=10)),
     ("grid12-turn", {"n_ants": 4}, Budget(iterations=10)),
     ("grid12-wall", {"n_ants": 4}, Budget(iterations=10)),  # an ant proves the goal unreachable: early stop
