@@ -167,6 +167,9 @@ class ColonyRun:
         1 once an ant has searched the start's whole component (no turn rule).
     stamps : ndarray of int32
         Tabu stamps; walk ``w`` stamps its nodes with ``w``.
+    stack, stack_prev, cand, cand_w : ndarray
+        Work space of the walks: the storage places and headings along the
+        walk, and the candidates of one step with their weights.
     """
 
     scale: np.ndarray
@@ -174,12 +177,19 @@ class ColonyRun:
     best_edges: np.ndarray
     counters: np.ndarray
     stamps: np.ndarray
+    stack: np.ndarray
+    stack_prev: np.ndarray
+    cand: np.ndarray
+    cand_w: np.ndarray
 
     @classmethod
-    def start(cls, n_nodes: int, scale: float) -> "ColonyRun":
-        """A run before its first iteration."""
+    def start(cls, n_nodes: int, max_degree: int, scale: float) -> "ColonyRun":
+        """A run before its first iteration, on ``n_nodes`` nodes with at most ``max_degree`` moves each."""
+        k = max(max_degree, 1)
         return cls(np.array([scale]), np.array([np.inf]), np.zeros(max(n_nodes, 1), dtype=np.int64),
-                   np.zeros(5, dtype=np.int64), np.full(n_nodes, -1, dtype=np.int32))
+                   np.zeros(5, dtype=np.int64), np.full(n_nodes, -1, dtype=np.int32),
+                   np.zeros(n_nodes + 1, dtype=np.int64), np.zeros(n_nodes + 1, dtype=np.int64),
+                   np.zeros(k, dtype=np.int64), np.zeros(k))
 
 
 @numba.njit(cache=True)
@@ -305,16 +315,9 @@ def _walk_ant(wid, node, weight, move, place, adj_ptr, adj_offset, horizontal, t
 def _colony_run(node, weight, edge, move, place, adj_ptr, adj_offset, move_class, class_row, count, pool,
                 horizontal, turn, graph_indices, graph_offset_id, edge_length, height, turn_angle, cells, f1, f2, f3,
                 l_max, l_min, x, scale, lo, hi, rho, tau_exp, q, start, goal, backtrack, max_steps,
-                seeds, q0s, ps, ants, stop_at, best_cost, best_edges, counters, stamps):
+                seeds, q0s, ps, ants, stop_at, best_cost, best_edges, counters, stamps, stack, stack_prev, cand,
+                cand_w):
     """Iterations ``counters[0]`` to ``stop_at - 1`` (see :func:`run_colony`)."""
-    n_nodes = stamps.size
-    stack = np.zeros(n_nodes + 1, dtype=np.int64)
-    stack_prev = np.zeros(n_nodes + 1, dtype=np.int64)
-    kmax = 1
-    for c in range(adj_ptr.size - 1):
-        kmax = max(kmax, adj_ptr[c + 1] - adj_ptr[c])
-    cand = np.zeros(kmax, dtype=np.int64)
-    cand_w = np.zeros(kmax)
     flat = np.zeros(1024, dtype=np.int64)  # storage places of the iteration's walks
     flat_edges = np.zeros(1024, dtype=np.int64)  # the same as graph edge ids
     use_turn = turn.shape[0] > 0
@@ -412,4 +415,4 @@ def run_colony(table: MoveTable, horizontal: np.ndarray, turn: np.ndarray, fitne
     _colony_run(t.node, t.weight, t.edge, t.move, t.place, t.adj_ptr, t.adj_offset, t.move_class, t.class_row,
                 t.count, t.pool, horizontal, turn, *fitness, x, run.scale, lo, hi, rho, tau_exp, q, start, goal,
                 backtrack, max_steps, seeds, q0s, ps, ants, stop_at, run.best_cost, run.best_edges, run.counters,
-                run.stamps)
+                run.stamps, run.stack, run.stack_prev, run.cand, run.cand_w)
