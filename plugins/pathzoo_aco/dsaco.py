@@ -36,7 +36,7 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass, replace
-from typing import Any, Mapping
+from typing import Any, Callable, Mapping
 
 import numba
 import numpy as np
@@ -88,20 +88,23 @@ def _per_walk(per_position: np.ndarray, walks: Walks) -> np.ndarray:
     return np.where(walks.reached, cum[walks.offsets[1:]] - cum[walks.offsets[:-1]], np.inf)
 
 
-@numba.njit(cache=True)
-def _edge_heuristic(indices, offset_id, length, m_node, root_node, admitted, move_factor, cells):
-    """Eqs. 11-13 per edge in one pass: ``S_j M_j / (ℓ/cells + root_j)`` times the step rule's factor.
+def _eta(m: np.ndarray, root: np.ndarray, admitted: np.ndarray, length: np.ndarray, cells: float) -> np.ndarray:
+    """Eqs. 11-13 for broadcastable node terms ``M``, ``sqrt(1 + d²)``, ``S`` and step lengths (m)."""
+    return np.where(admitted, m * (1.0 / (length / cells + root)), 0.0)
 
-    The same operations, in the same order, as the array expression
-    ``where(admitted[j], m[j] * (1 / (ℓ/cells + root[j])), 0) * factor`` (the
-    factor, 1 or 0, is exact), so the values are bit-identical to it.
+
+@numba.njit(cache=True)
+def _gather(rows, offset_id, table, length_class, move_factor, refused):
+    """Per edge ``e``: ``table[rows[e], length_class[move(e)]]``, or ``refused`` where the move's factor is 0.
+
+    The step rule's factor is 1 or 0, so ``η · 1 = η`` and ``η · 0 = 0``
+    exactly: gathering instead of multiplying changes no value.
     """
-    eta = np.empty(indices.size)
-    for e in range(indices.size):
-        j = indices[e]
-        v = m_node[j] * (1.0 / (length[e] / cells + root_node[j])) if admitted[j] else 0.0
-        eta[e] = v * move_factor[offset_id[e]]
-    return eta
+    out = np.empty(rows.size)
+    for e in range(rows.size):
+        o = offset_id[e]
+        out[e] = table[rows[e], length_class[o]] if move_factor[o] != 0.0 else refused
+    return out
 
 
 @dataclass
@@ -159,6 +162,23 @@ class DSACO(AntColonyPlanner):
         ``D_ij = 1 / (ℓ_ij + sqrt(1 + d_jB²))`` with ``ℓ`` the step and
         ``d_jB`` the straight distance from ``j`` to the target, all in cells.
         """
+        return self._per_edge(problem, lambda table: table, 0.0)
+
+    def heuristic_power(self, problem: ColonyProblem) -> np.ndarray:
+        """``η^β`` per edge: :meth:`search_heuristic` raised to ``beta``, with ``np.power`` as
+        :meth:`WalkRules.product` applies it, but evaluated once per (target node, step length) rather than
+        once per edge (the same values: ``η`` depends on nothing else)."""
+        return self._per_edge(problem, lambda table: np.power(table, self.beta),
+                              float(np.power(np.zeros(1), self.beta)[0]))
+
+    def _per_edge(self, problem: ColonyProblem, of_eta: Callable[[np.ndarray], np.ndarray],
+                  refused: float, by_node: bool = True) -> np.ndarray:
+        """``of_eta(η)`` per edge, and ``refused`` on the edges the step rule refuses (where ``η = 0``).
+
+        ``η`` is computed per target node and distinct step length when every
+        move's edges have one length (grids: always) and ``by_node``, else per
+        edge (the same values, checked by the tests).
+        """
         s = problem.scenario
         g = problem.graph
         h = self.node_height(problem)
@@ -166,10 +186,19 @@ class DSACO(AntColonyPlanner):
         if s.elevation is not None:
             ground = np.broadcast_to(s.elevation, s.shape).reshape(-1)
             admitted = problem.node_xyz[:, 2] >= np.nan_to_num(ground, nan=np.inf) + self.h_c
-        cells = s.cell_size
-        return _edge_heuristic(g.indices, g.offset_id, g.length, 1.0 / (1.0 + h),
-                               np.sqrt(1.0 + (problem.goal_distance / cells) ** 2), admitted,
-                               self.move_factor(problem), cells)
+        m = 1.0 / (1.0 + h)
+        root = np.sqrt(1.0 + (problem.goal_distance / s.cell_size) ** 2)
+        step = np.zeros(len(g.offsets))
+        step[g.offset_id] = g.length
+        if by_node and np.array_equal(g.length, step[g.offset_id]):
+            lengths, length_class = np.unique(step, return_inverse=True)
+            table = _eta(m[:, None], root[:, None], admitted[:, None], lengths[None, :], s.cell_size)
+            return _gather(g.indices, g.offset_id, of_eta(table), length_class.reshape(-1),
+                           self.move_factor(problem), refused)
+        j = g.indices
+        table = _eta(m[j], root[j], admitted[j], g.length, s.cell_size).reshape(-1, 1)
+        return _gather(np.arange(g.n_edges), g.offset_id, of_eta(table), np.zeros(len(g.offsets), dtype=np.int64),
+                       self.move_factor(problem), refused)
 
     def allowed_moves(self, problem: ColonyProblem) -> np.ndarray:
         """1 for the edges the step rule allows, 0 for the others (all 1 under ``step_rule="graph"``)."""
@@ -195,8 +224,8 @@ class DSACO(AntColonyPlanner):
 
     def walk_rules(self, problem: ColonyProblem) -> WalkRules:
         """Eq. 14: ``τ^α η^β`` with the deterministic choice of probability ``q0`` (set per iteration)."""
-        return WalkRules.product(self.alpha, self.heuristic(problem), self.beta, q0=self.q0_initial,
-                                 **self.walk_options(problem))
+        return WalkRules(tau_exp=float(self.alpha), weight_mul=self.heuristic_power(problem), q0=self.q0_initial,
+                         **self.walk_options(problem))
 
     def before_iteration(self, state: ColonyState) -> WalkRules:
         """Eq. 15: the iteration's ``q0`` (the schedule spans the ``iterations`` parameter)."""

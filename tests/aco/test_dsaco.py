@@ -81,6 +81,19 @@ def test_search_heuristic_s_m_d_on_a_hand_example():
     assert eta[_edge(problem, (1, 0, 0), (1, 1, 1))] == 0.0
 
 
+@pytest.mark.parametrize("step_rule", ["graph", "longitude"])
+def test_heuristic_per_node_and_step_length_equals_the_per_edge_one(step_rule):
+    planner = pathzoo.make_planner("aco.dsaco", step_rule=step_rule, beta=2.5)
+    problem = ColonyProblem(pathzoo.load_scenario("dsaco.simple"))
+    for of_eta, refused in ((lambda t: t, 0.0), (lambda t: np.power(t, 2.5), 0.0)):
+        by_node = planner._per_edge(problem, of_eta, refused)
+        by_edge = planner._per_edge(problem, of_eta, refused, by_node=False)
+        assert np.array_equal(by_node.view(np.int64), by_edge.view(np.int64))  # bit for bit
+    eta = planner.search_heuristic(problem)
+    assert np.array_equal(planner.heuristic_power(problem), np.power(eta, 2.5))
+    assert (eta > 0).any() and (step_rule == "graph" or (eta == 0).any())
+
+
 def test_longitude_rule_advances_one_column_per_step():
     scenario = pathzoo.load_scenario("dsaco.complex")
     planner = pathzoo.make_planner("aco.dsaco", step_rule="longitude")
