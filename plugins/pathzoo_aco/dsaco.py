@@ -25,6 +25,11 @@ Mechanism, with the paper's equations:
   segment heights and summed turning angles -- is what "best" means
   (:meth:`DSACO.walk_costs`).
 
+:meth:`DSACO.plan` runs the colony in compiled code
+(:mod:`pathzoo_aco.dsaco_colony`) with the same results as the generic loop;
+under a time budget the generic loop runs (``extras["walk_time_s"]`` is then
+the walks' time, otherwise the compiled colony's).
+
 Lengths and heights are measured in horizontal cells (the paper's
 kilometres on its 1 km grid). Table 4: m = 10, n = 500, Q = 100, α = 1,
 β = 8, ρ = 0.2, τmax = 0.9, τmin = 0.03, p = 1. See

@@ -4,16 +4,20 @@ The generic loop (:meth:`AntColonyPlanner.plan`) crosses from Python into
 compiled code three times per iteration and its walk kernel scans every edge
 of a node, asking the turn table about each. On ``dsaco.complex`` that is 42
 edges per step, most of them refused by the 60° turn limit. This module runs
-the same colony with two changes that leave every result bit-identical:
+the same colony with three changes that leave every result bit-identical:
 
 - **allowed-move lists** per (node, incoming heading): the positions of the
   node's edges that the turn limit lets through, in their original order,
   built the first time an ant stands on that node with that heading and kept
-  per scenario and configuration (:class:`AllowedMoves`). A step scans only
+  per scenario and configuration (:class:`MoveTable`). A step scans only
   those, so no edge is refused by the turn table inside the walk;
-- **one call for many iterations**: the walks, the fitness (eq. 20, by
-  :func:`pathzoo_aco.dsaco._walk_fitness`), the best-so-far walk, evaporation
-  and the iteration-best deposit (eqs. 16-18) run in compiled code; the
+- **moves stored by heading**: each node's edges (target, weight, trail) are
+  stored sorted by heading, so the moves one heading allows are read from one
+  or two runs of memory (:class:`MoveTable`);
+- **one call for many iterations**: the walks, the fitness (eq. 20) and the
+  flight constraints (eqs. 2-3) by the kernels of
+  :mod:`pathzoo_aco.dsaco_fitness`, the best-so-far walk, evaporation and
+  the iteration-best deposit (eqs. 16-18) run in compiled code; the
   per-iteration numbers that come from Python (the seeds drawn from the
   planner's ``rng``, ``q0`` of eq. 15, ``p`` of eq. 19, the ants of each
   iteration) are computed beforehand by the same Python functions as the
