@@ -44,7 +44,6 @@ from pathzoo_aco.engine import EXHAUSTED, REACHED, STEP_CAP, STUCK
 
 __all__ = ["MoveTable", "ColonyRun", "run_colony"]
 
-_NOT_BUILT = -1
 _RENORMALISE_BELOW = 1e-150
 """As :data:`pathzoo_aco.engine.pheromone._RENORMALISE_BELOW`: fold the trail's scale back below this."""
 
@@ -106,11 +105,12 @@ class MoveTable:
         Class of every previous move.
     class_row : ndarray of int64
         A previous move (row of the turn table) standing for each class.
-    count : ndarray of int16, shape (N, classes)
-        Length of each allowed list; -1 until built.
     pool : ndarray like ``place``
-        The lists: node ``c``'s list of class ``k`` starts at
-        ``adj_ptr[c] * classes + k * degree(c)``.
+        The lists, each after a header: node ``c``'s list of class ``k`` has
+        its header at ``(adj_ptr[c] + c) * classes + k * (degree(c) + 1)``:
+        0 until the list is built (the array is allocated zeroed, so its pages
+        cost memory only once a list on them is built), then the list's
+        length plus 1. Header and list share a cache line.
     """
 
     node: np.ndarray
@@ -122,7 +122,6 @@ class MoveTable:
     adj_offset: np.ndarray
     move_class: np.ndarray
     class_row: np.ndarray
-    count: np.ndarray
     pool: np.ndarray
 
     @classmethod
@@ -144,14 +143,13 @@ class MoveTable:
         rank = np.empty(len(offsets), dtype=np.int64)
         rank[np.lexsort((np.arange(len(offsets)), heading, vertical))] = np.arange(len(offsets))
         degree = int(np.diff(adj_ptr).max()) if n_nodes else 0
-        small = np.uint8 if degree <= 256 else np.uint16
+        small = np.uint8 if degree < 255 else np.uint16 if degree < 65535 else np.uint32
         size = len(adj_node)
         node, weight, edge = np.empty_like(adj_node), np.empty_like(w_mul), np.empty(size, dtype=np.int64)
         move, place = np.empty_like(adj_offset), np.empty(size, dtype=small)
         _heading_layout(adj_ptr, adj_node, adj_edge, adj_offset, w_mul, rank, node, weight, edge, move, place)
         return cls(node, weight, edge, move, place, adj_ptr, adj_offset, move_class, class_row,
-                   np.full((n_nodes, len(class_row)), _NOT_BUILT, dtype=np.int16),
-                   np.empty(size * len(class_row), dtype=small))
+                   np.zeros((size + n_nodes) * len(class_row), dtype=small))
 
 
 @dataclass
@@ -197,25 +195,23 @@ class ColonyRun:
 
 
 @numba.njit(cache=True)
-def _build_list(c, k, adj_ptr, adj_offset, place, turn, class_row, count, pool):
-    """Fill node ``c``'s list for heading class ``k``: the places of its edges whose move the turn table allows."""
-    e0 = adj_ptr[c]
-    e1 = adj_ptr[c + 1]
-    base = e0 * count.shape[1] + k * (e1 - e0)
+def _build_list(c, k, base, adj_ptr, adj_offset, place, turn, class_row, pool):
+    """Fill node ``c``'s list for heading class ``k`` (header at ``base``): the places of its edges whose move
+    the turn table allows, in their original order."""
     row = class_row[k]
     use_turn = turn.shape[0] > 0
     m = 0
-    for q in range(e0, e1):
+    for q in range(adj_ptr[c], adj_ptr[c + 1]):
         if use_turn and turn[row, adj_offset[q]] <= 0.0:
             continue
-        pool[base + m] = place[q]
         m += 1
-    count[c, k] = m
+        pool[base + m] = place[q]
+    pool[base] = m + 1
 
 
 @numba.njit(cache=True)
 def _walk_ant(wid, node, weight, move, place, adj_ptr, adj_offset, horizontal, turn, move_class, class_row,
-              count, pool, x, scale, lo, hi, tau_exp, q0, start, goal, backtrack, max_steps, stamp, stack,
+              pool, x, scale, lo, hi, tau_exp, q0, start, goal, backtrack, max_steps, stamp, stack,
               stack_prev, cand, cand_w):
     """One ant from ``start``; returns ``(outcome, depth, steps)``, the storage places it took in ``stack[:depth]``.
 
@@ -225,7 +221,7 @@ def _walk_ant(wid, node, weight, move, place, adj_ptr, adj_offset, horizontal, t
     """
     use_turn = turn.shape[0] > 0
     no_prev = turn.shape[0] - 1 if use_turn else 0
-    n_classes = count.shape[1]
+    n_classes = class_row.size
     bounded = lo > 0.0 or hi < np.inf
     lo_pow = lo**tau_exp
     d = 0
@@ -239,12 +235,12 @@ def _walk_ant(wid, node, weight, move, place, adj_ptr, adj_offset, horizontal, t
         if n >= max_steps:
             return STEP_CAP, d, n
         k = move_class[pv]
-        m = count[c, k]
-        if m == _NOT_BUILT:
-            _build_list(c, k, adj_ptr, adj_offset, place, turn, class_row, count, pool)
-            m = count[c, k]
         e0 = adj_ptr[c]
-        base = e0 * n_classes + k * (adj_ptr[c + 1] - e0)
+        base = (e0 + c) * n_classes + k * (adj_ptr[c + 1] - e0 + 1)
+        if pool[base] == 0:
+            _build_list(c, k, base, adj_ptr, adj_offset, place, turn, class_row, pool)
+        m = pool[base] - 1
+        base += 1
         nc = 0
         n_open = 0
         total_w = 0.0
@@ -316,7 +312,7 @@ def _walk_ant(wid, node, weight, move, place, adj_ptr, adj_offset, horizontal, t
 
 
 @numba.njit(cache=True)
-def _colony_run(node, weight, edge, move, place, adj_ptr, adj_offset, move_class, class_row, count, pool,
+def _colony_run(node, weight, edge, move, place, adj_ptr, adj_offset, move_class, class_row, pool,
                 horizontal, turn, graph_indices, graph_offset_id, edge_length, height, turn_angle, cells, f1, f2, f3,
                 l_max, l_min, x, scale, lo, hi, rho, tau_exp, q, start, goal, backtrack, max_steps,
                 seeds, q0s, ps, ants, stop_at, best_cost, best_edges, counters, stamps, stack, stack_prev, cand,
@@ -336,7 +332,7 @@ def _colony_run(node, weight, edge, move, place, adj_ptr, adj_offset, move_class
         for a in range(n_ants):
             wid = counters[1] + a  # walk ids never repeat within a run
             flag, d, n = _walk_ant(wid, node, weight, move, place, adj_ptr, adj_offset, horizontal, turn,
-                                   move_class, class_row, count, pool, x, scale[0], lo, hi, tau_exp, q0s[it], start,
+                                   move_class, class_row, pool, x, scale[0], lo, hi, tau_exp, q0s[it], start,
                                    goal, backtrack, max_steps, stamps, stack, stack_prev, cand, cand_w)
             started += 1
             counters[2] += n
@@ -417,6 +413,6 @@ def run_colony(table: MoveTable, horizontal: np.ndarray, turn: np.ndarray, fitne
     tau_exp, q, start, goal, backtrack, max_steps = rule
     seeds, q0s, ps, ants = schedule
     _colony_run(t.node, t.weight, t.edge, t.move, t.place, t.adj_ptr, t.adj_offset, t.move_class, t.class_row,
-                t.count, t.pool, horizontal, turn, *fitness, x, run.scale, lo, hi, rho, tau_exp, q, start, goal,
+                t.pool, horizontal, turn, *fitness, x, run.scale, lo, hi, rho, tau_exp, q, start, goal,
                 backtrack, max_steps, seeds, q0s, ps, ants, stop_at, run.best_cost, run.best_edges, run.counters,
                 run.stamps, run.stack, run.stack_prev, run.cand, run.cand_w)

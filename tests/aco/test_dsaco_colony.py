@@ -103,9 +103,9 @@ def test_move_table_lists_the_allowed_moves_in_their_original_order():
         for prev in (len(rules.turn) - 1, int(table.move[e0])):
             wanted = [q for q in range(e0, e1) if rules.turn[prev, adj_offset[q]] > 0]
             k = table.move_class[prev]
-            _build_list(c, k, table.adj_ptr, table.adj_offset, table.place, rules.turn, table.class_row,
-                        table.count, table.pool)
-            base = e0 * table.count.shape[1] + k * (e1 - e0)
-            listed = e0 + table.pool[base : base + table.count[c, k]].astype(np.int64)
+            base = (e0 + c) * len(table.class_row) + k * (e1 - e0 + 1)
+            _build_list(c, k, base, table.adj_ptr, table.adj_offset, table.place, rules.turn, table.class_row,
+                        table.pool)
+            listed = e0 + table.pool[base + 1 : base + table.pool[base]].astype(np.int64)
             np.testing.assert_array_equal(table.edge[listed], adj_edge[wanted])
             np.testing.assert_array_equal(table.node[listed], adj_node[wanted])
