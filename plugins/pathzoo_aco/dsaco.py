@@ -344,7 +344,7 @@ class DSACO(AntColonyPlanner):
         g = problem.graph
         fitness = (g.indices, g.offset_id, g.length, state.node_height, state.turn_angle,
                    float(problem.scenario.cell_size), self.f1, self.f2, self.f3, self.l_max, self.l_min)
-        run = ColonyRun.start(g.n_nodes, int(np.diff(table.adj_ptr).max(initial=0)), trail.scale)
+        run = ColonyRun.start(g.n_nodes, int(np.diff(table.adj_ptr).max(initial=0)), trail.x, trail.scale)
         arrays = (table, problem.horizontal_offsets, rules.turn, fitness, (trail.x, trail.lo, trail.hi, self.rho),
                   (rules.tau_exp, self.q, problem.start, problem.goal, rules.backtrack, rules.max_steps), schedule, run)
         started = time.perf_counter()

@@ -172,6 +172,12 @@ class ColonyRun:
     stack, stack_prev, cand, cand_w : ndarray
         Work space of the walks: the storage places and headings along the
         walk, and the candidates of one step with their weights.
+    node_max : ndarray
+        Per node, at least the largest stored trail ``x`` of its edges. When
+        ``scale * node_max[c] <= τmin`` every trail leaving ``c`` reads as
+        exactly ``τmin`` (the clamp), so a step from ``c`` skips the trail.
+        Most nodes are there a few dozen iterations into a run: only the
+        iteration-best walk deposits.
     """
 
     scale: np.ndarray
@@ -183,15 +189,17 @@ class ColonyRun:
     stack_prev: np.ndarray
     cand: np.ndarray
     cand_w: np.ndarray
+    node_max: np.ndarray
 
     @classmethod
-    def start(cls, n_nodes: int, max_degree: int, scale: float) -> "ColonyRun":
-        """A run before its first iteration, on ``n_nodes`` nodes with at most ``max_degree`` moves each."""
+    def start(cls, n_nodes: int, max_degree: int, trail: np.ndarray, scale: float) -> "ColonyRun":
+        """A run before its first iteration, on ``n_nodes`` nodes with at most ``max_degree`` moves each,
+        with the stored ``trail`` and its scale."""
         k = max(max_degree, 1)
         return cls(np.array([scale]), np.array([np.inf]), np.zeros(max(n_nodes, 1), dtype=np.int64),
                    np.zeros(5, dtype=np.int64), np.full(n_nodes, -1, dtype=np.int32),
                    np.zeros(n_nodes + 1, dtype=np.int64), np.zeros(n_nodes + 1, dtype=np.int64),
-                   np.zeros(k, dtype=np.int64), np.zeros(k))
+                   np.zeros(k, dtype=np.int64), np.zeros(k), np.full(n_nodes, trail.max(initial=0.0)))
 
 
 @numba.njit(cache=True)
@@ -211,7 +219,7 @@ def _build_list(c, k, base, adj_ptr, adj_offset, place, turn, class_row, pool):
 
 @numba.njit(cache=True)
 def _walk_ant(wid, node, weight, move, place, adj_ptr, adj_offset, horizontal, turn, move_class, class_row,
-              pool, x, scale, lo, hi, tau_exp, q0, start, goal, backtrack, max_steps, stamp, stack,
+              pool, x, node_max, scale, lo, hi, tau_exp, q0, start, goal, backtrack, max_steps, stamp, stack,
               stack_prev, cand, cand_w):
     """One ant from ``start``; returns ``(outcome, depth, steps)``, the storage places it took in ``stack[:depth]``.
 
@@ -241,6 +249,7 @@ def _walk_ant(wid, node, weight, move, place, adj_ptr, adj_offset, horizontal, t
             _build_list(c, k, base, adj_ptr, adj_offset, place, turn, class_row, pool)
         m = pool[base] - 1
         base += 1
+        at_floor = scale * node_max[c] <= lo  # every trail from c reads as lo
         nc = 0
         n_open = 0
         total_w = 0.0
@@ -248,9 +257,12 @@ def _walk_ant(wid, node, weight, move, place, adj_ptr, adj_offset, horizontal, t
             s = e0 + pool[base + i]
             if stamp[node[s]] == wid:
                 continue
-            t = scale * x[s]
-            if bounded:
-                t = min(max(t, lo), hi)
+            if at_floor:
+                t = lo
+            else:
+                t = scale * x[s]
+                if bounded:
+                    t = min(max(t, lo), hi)
             n_open += 1
             if tau_exp == 1.0:
                 w = t * weight[s]
@@ -316,7 +328,7 @@ def _colony_run(node, weight, edge, move, place, adj_ptr, adj_offset, move_class
                 horizontal, turn, graph_indices, graph_offset_id, edge_length, height, turn_angle, cells, f1, f2, f3,
                 l_max, l_min, x, scale, lo, hi, rho, tau_exp, q, start, goal, backtrack, max_steps,
                 seeds, q0s, ps, ants, stop_at, best_cost, best_edges, counters, stamps, stack, stack_prev, cand,
-                cand_w):
+                cand_w, node_max):
     """Iterations ``counters[0]`` to ``stop_at - 1`` (see :func:`run_colony`)."""
     flat = np.zeros(1024, dtype=np.int64)  # storage places of the iteration's walks
     flat_edges = np.zeros(1024, dtype=np.int64)  # the same as graph edge ids
@@ -332,7 +344,7 @@ def _colony_run(node, weight, edge, move, place, adj_ptr, adj_offset, move_class
         for a in range(n_ants):
             wid = counters[1] + a  # walk ids never repeat within a run
             flag, d, n = _walk_ant(wid, node, weight, move, place, adj_ptr, adj_offset, horizontal, turn,
-                                   move_class, class_row, pool, x, scale[0], lo, hi, tau_exp, q0s[it], start,
+                                   move_class, class_row, pool, x, node_max, scale[0], lo, hi, tau_exp, q0s[it], start,
                                    goal, backtrack, max_steps, stamps, stack, stack_prev, cand, cand_w)
             started += 1
             counters[2] += n
@@ -368,15 +380,20 @@ def _colony_run(node, weight, edge, move, place, adj_ptr, adj_offset, move_class
         if s < _RENORMALISE_BELOW:
             for i in range(x.size):
                 x[i] = min(max(s * x[i], lo), hi)
+            for c in range(node_max.size):  # the clamp is monotonic: still at least each node's largest
+                node_max[c] = min(max(s * node_max[c], lo), hi)
             s = 1.0
         scale[0] = s
         if np.isfinite(costs[k]):  # eqs. 17-18: the iteration-best ant deposits, within the bounds
             p = ps[it - 1]
             amount = q / ((1.0 - p) * costs[k] + p * best_cost[0])
+            c = start
             for i in range(offsets[k], offsets[k + 1]):
                 e = flat[i]
                 t = min(max(s * x[e], lo), hi) + amount
                 x[e] = min(max(t, lo), hi) / s
+                node_max[c] = max(node_max[c], x[e])  # e leaves c
+                c = node[e]
         if exhausted:
             counters[4] = 1
             break
@@ -415,4 +432,4 @@ def run_colony(table: MoveTable, horizontal: np.ndarray, turn: np.ndarray, fitne
     _colony_run(t.node, t.weight, t.edge, t.move, t.place, t.adj_ptr, t.adj_offset, t.move_class, t.class_row,
                 t.pool, horizontal, turn, *fitness, x, run.scale, lo, hi, rho, tau_exp, q, start, goal,
                 backtrack, max_steps, seeds, q0s, ps, ants, stop_at, run.best_cost, run.best_edges, run.counters,
-                run.stamps, run.stack, run.stack_prev, run.cand, run.cand_w)
+                run.stamps, run.stack, run.stack_prev, run.cand, run.cand_w, run.node_max)
