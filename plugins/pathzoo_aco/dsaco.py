@@ -98,6 +98,10 @@ def _eta(m: np.ndarray, root: np.ndarray, admitted: np.ndarray, length: np.ndarr
     return np.where(admitted, m * (1.0 / (length / cells + root)), 0.0)
 
 
+_SCHEDULE_CHUNK = 4096
+"""Iterations whose seeds and schedules are computed at a time by :meth:`DSACO.plan`."""
+
+
 @numba.njit(cache=True)
 def _gather(rows, offset_id, table, length_class, move_factor, refused):
     """Per edge ``e``: ``table[rows[e], length_class[move(e)]]``, or ``refused`` where the move's factor is 0.
@@ -335,33 +339,35 @@ class DSACO(AntColonyPlanner):
         trail = Pheromone(len(table.node), self.initial_trail(problem))  # in the table's storage order
         state = self.init_state(problem, rules, trail, engine, rng)
         assert isinstance(state, DsacoState) and state.node_height is not None and state.turn_angle is not None
-        ants = self.ants_per_iteration(budget)
-        rng_state = rng.bit_generator.state
-        seeds = np.array([int(rng.integers(2**31 - 1)) for _ in ants], dtype=np.int64)
-        iterations, q0_initial, p_initial, gamma_p = self.iterations, self.q0_initial, self.p, self.gamma_p
-        schedule = (seeds, np.array([q0_schedule(k, iterations, q0_initial) for k in range(len(ants))]),
-                    np.array([p_schedule(k + 1, p_initial, gamma_p) for k in range(len(ants))]), ants)
         g = problem.graph
         fitness = (g.indices, g.offset_id, g.length, state.node_height, state.turn_angle,
                    float(problem.scenario.cell_size), self.f1, self.f2, self.f3, self.l_max, self.l_min)
         run = ColonyRun.start(g.n_nodes, int(np.diff(table.adj_ptr).max(initial=0)), trail.x, trail.scale)
         arrays = (table, problem.horizontal_offsets, rules.turn, fitness, (trail.x, trail.lo, trail.hi, self.rho),
-                  (rules.tau_exp, self.q, problem.start, problem.goal, rules.backtrack, rules.max_steps), schedule, run)
-        started = time.perf_counter()
-        for stop_at in ([len(ants)] if progress is None else range(1, len(ants) + 1)):
-            run_colony(*arrays, stop_at=stop_at)
-            if progress is not None:
-                progress(int(run.counters[0]), int(run.counters[1]), float(run.best_cost[0]))
-            if run.counters[4]:
+                  (rules.tau_exp, self.q, problem.start, problem.goal, rules.backtrack, rules.max_steps))
+        walk_time = 0.0
+        total = self.iteration_count(budget)
+        for first in range(0, total, _SCHEDULE_CHUNK):  # bounded memory for the schedule of any budget
+            ants = self.ants_per_iteration(budget, first, min(total, first + _SCHEDULE_CHUNK))
+            rng_state = rng.bit_generator.state
+            schedule = (np.array([int(rng.integers(2**31 - 1)) for _ in ants], dtype=np.int64),
+                        np.array([q0_schedule(first + k, self.iterations, self.q0_initial) for k in range(len(ants))]),
+                        np.array([p_schedule(first + k + 1, self.p, self.gamma_p) for k in range(len(ants))]), ants)
+            started = time.perf_counter()
+            for stop_at in ([first + len(ants)] if progress is None else range(first + 1, first + len(ants) + 1)):
+                run_colony(*arrays, schedule, run, first=first, stop_at=stop_at)
+                if progress is not None:
+                    progress(int(run.counters[0]), int(run.counters[1]), float(run.best_cost[0]))
+                if run.counters[4]:
+                    break
+            walk_time += time.perf_counter() - started
+            if run.counters[4]:  # stopped early: leave the rng as the generic loop would
+                rng.bit_generator.state = rng_state
+                for _ in range(int(run.counters[0]) - first):
+                    rng.integers(2**31 - 1)
                 break
-        walk_time = time.perf_counter() - started
         iterations, evaluations = int(run.counters[0]), int(run.counters[1])
-        message = ""
-        if run.counters[4]:  # stopped early: leave the rng as the generic loop would
-            rng.bit_generator.state = rng_state
-            for _ in range(iterations):
-                rng.integers(2**31 - 1)
-            message = "an ant searched the start's whole component: the goal is unreachable"
+        message = "an ant searched the start's whole component: the goal is unreachable" if run.counters[4] else ""
         extras = {"ant_steps": int(run.counters[2]), "walk_time_s": walk_time}
         if not math.isfinite(run.best_cost[0]):
             return PlanResult(Status.FAILED, iterations=iterations, evaluations=evaluations,
@@ -369,13 +375,18 @@ class DSACO(AntColonyPlanner):
         return PlanResult(Status.SOLVED, problem.walk_points(run.best_edges[: run.counters[3]]),
                           iterations=iterations, evaluations=evaluations, message=message, extras=extras)
 
-    def ants_per_iteration(self, budget: Budget) -> np.ndarray:
-        """Ants of every iteration the budget allows (without a time limit): ``n_ants``, fewer in the last
-        iteration when the evaluation budget runs out there; ``iterations`` of them when the budget is unlimited."""
-        count = budget.iterations if budget.iterations is not None else (
-            self.iterations if budget.evaluations is None else -(-budget.evaluations // self.n_ants))
-        ants = np.full(count, self.n_ants, dtype=np.int64)
+    def iteration_count(self, budget: Budget) -> int:
+        """Iterations the budget allows without a time limit: its iterations, as many as its evaluations fill
+        (``n_ants`` each), or the ``iterations`` parameter when the budget is unlimited."""
+        counts = [n for n in (budget.iterations,
+                              None if budget.evaluations is None else -(-budget.evaluations // self.n_ants))
+                  if n is not None]
+        return min(counts) if counts else self.iterations
+
+    def ants_per_iteration(self, budget: Budget, first: int, last: int) -> np.ndarray:
+        """Ants of iterations ``first`` to ``last - 1`` (0-based): ``n_ants``, fewer in the iteration where the
+        evaluation budget runs out."""
+        ants = np.full(last - first, self.n_ants, dtype=np.int64)
         if budget.evaluations is not None:
-            ants = np.minimum(ants, budget.evaluations - self.n_ants * np.arange(count))
-            ants = ants[ants > 0]
+            ants = np.minimum(ants, budget.evaluations - self.n_ants * np.arange(first, last))
         return ants

@@ -327,16 +327,17 @@ def _walk_ant(wid, node, weight, move, place, adj_ptr, adj_offset, horizontal, t
 def _colony_run(node, weight, edge, move, place, adj_ptr, adj_offset, move_class, class_row, pool,
                 horizontal, turn, graph_indices, graph_offset_id, edge_length, height, turn_angle, cells, f1, f2, f3,
                 l_max, l_min, x, scale, lo, hi, rho, tau_exp, q, start, goal, backtrack, max_steps,
-                seeds, q0s, ps, ants, stop_at, best_cost, best_edges, counters, stamps, stack, stack_prev, cand,
+                seeds, q0s, ps, ants, first, stop_at, best_cost, best_edges, counters, stamps, stack, stack_prev, cand,
                 cand_w, node_max):
-    """Iterations ``counters[0]`` to ``stop_at - 1`` (see :func:`run_colony`)."""
+    """Iterations ``counters[0]`` to ``stop_at - 1``; the schedule starts at iteration ``first``
+    (see :func:`run_colony`)."""
     flat = np.zeros(1024, dtype=np.int64)  # storage places of the iteration's walks
     flat_edges = np.zeros(1024, dtype=np.int64)  # the same as graph edge ids
     use_turn = turn.shape[0] > 0
     it = counters[0]
     while it < stop_at:
-        n_ants = ants[it]
-        np.random.seed(seeds[it])
+        n_ants = ants[it - first]
+        np.random.seed(seeds[it - first])
         offsets = np.zeros(n_ants + 1, dtype=np.int64)
         reached = np.zeros(n_ants, dtype=np.bool_)
         started = 0
@@ -344,8 +345,9 @@ def _colony_run(node, weight, edge, move, place, adj_ptr, adj_offset, move_class
         for a in range(n_ants):
             wid = counters[1] + a  # walk ids never repeat within a run
             flag, d, n = _walk_ant(wid, node, weight, move, place, adj_ptr, adj_offset, horizontal, turn,
-                                   move_class, class_row, pool, x, node_max, scale[0], lo, hi, tau_exp, q0s[it], start,
-                                   goal, backtrack, max_steps, stamps, stack, stack_prev, cand, cand_w)
+                                   move_class, class_row, pool, x, node_max, scale[0], lo, hi, tau_exp,
+                                   q0s[it - first], start, goal, backtrack, max_steps, stamps, stack, stack_prev,
+                                   cand, cand_w)
             started += 1
             counters[2] += n
             if flag == REACHED:
@@ -385,7 +387,7 @@ def _colony_run(node, weight, edge, move, place, adj_ptr, adj_offset, move_class
             s = 1.0
         scale[0] = s
         if np.isfinite(costs[k]):  # eqs. 17-18: the iteration-best ant deposits, within the bounds
-            p = ps[it - 1]
+            p = ps[it - 1 - first]
             amount = q / ((1.0 - p) * costs[k] + p * best_cost[0])
             c = start
             for i in range(offsets[k], offsets[k + 1]):
@@ -401,7 +403,7 @@ def _colony_run(node, weight, edge, move, place, adj_ptr, adj_offset, move_class
 
 
 def run_colony(table: MoveTable, horizontal: np.ndarray, turn: np.ndarray, fitness: tuple, trail: tuple,
-               rule: tuple, schedule: tuple, run: ColonyRun, stop_at: int) -> None:
+               rule: tuple, schedule: tuple, run: ColonyRun, first: int, stop_at: int) -> None:
     """Run iterations ``run.counters[0]`` to ``stop_at - 1`` (fewer if an ant proves the goal unreachable).
 
     Parameters
@@ -419,11 +421,13 @@ def run_colony(table: MoveTable, horizontal: np.ndarray, turn: np.ndarray, fitne
     rule : tuple
         ``(tau_exp, q, start, goal, backtrack, max_steps)``.
     schedule : tuple
-        Per iteration: ``(seeds, q0, p, ants)``.
+        Per iteration from ``first`` on: ``(seeds, q0, p, ants)``.
     run : ColonyRun
         Changed in place.
+    first : int
+        The iteration ``schedule`` starts with.
     stop_at : int
-        Iteration to stop before.
+        Iteration to stop before (at most ``first`` plus the schedule's length).
     """
     t = table
     x, lo, hi, rho = trail
@@ -431,5 +435,5 @@ def run_colony(table: MoveTable, horizontal: np.ndarray, turn: np.ndarray, fitne
     seeds, q0s, ps, ants = schedule
     _colony_run(t.node, t.weight, t.edge, t.move, t.place, t.adj_ptr, t.adj_offset, t.move_class, t.class_row,
                 t.pool, horizontal, turn, *fitness, x, run.scale, lo, hi, rho, tau_exp, q, start, goal,
-                backtrack, max_steps, seeds, q0s, ps, ants, stop_at, run.best_cost, run.best_edges, run.counters,
+                backtrack, max_steps, seeds, q0s, ps, ants, first, stop_at, run.best_cost, run.best_edges, run.counters,
                 run.stamps, run.stack, run.stack_prev, run.cand, run.cand_w, run.node_max)

@@ -65,6 +65,29 @@ def test_compiled_colony_equals_the_generic_loop(scenario_id, params, budget):
         assert fast.iterations == 1 and "unreachable" in fast.message
 
 
+@pytest.mark.parametrize("with_progress", [False, True])
+def test_schedules_computed_in_chunks_give_the_same_answer(monkeypatch, with_progress):
+    import pathzoo_aco.dsaco as dsaco
+
+    monkeypatch.setattr(dsaco, "_SCHEDULE_CHUNK", 3)
+    planner = pathzoo.make_planner("aco.dsaco", n_ants=4)
+    for scenario, budget in ((_grid(turn_deg=45.0), Budget(evaluations=30)), (_grid(wall=True), Budget(iterations=8))):
+        runs = []
+        for plan in (planner.plan, lambda *a, **kw: AntColonyPlanner.plan(planner, *a, **kw)):
+            rng = np.random.default_rng(5)
+            reports = []
+            runs.append((plan(scenario, budget=budget, rng=rng, progress=(lambda *r: reports.append(r)) if with_progress else None),
+                         reports, rng.bit_generator.state))
+        _same(runs[0][0], runs[1][0])
+        assert runs[0][1:] == runs[1][1:]  # the same reports, the rng left in the same state
+
+
+def test_a_huge_iteration_budget_with_few_evaluations_stays_small():
+    result = pathzoo.make_planner("aco.dsaco", n_ants=4).plan(_grid(), budget=Budget(iterations=10**12, evaluations=10),
+                                                              rng=np.random.default_rng(0))
+    assert result.iterations == 3 and result.evaluations == 10
+
+
 def test_without_progress_one_call_gives_the_same_answer():
     scenario = pathzoo.load_scenario("dsaco.simple")
     planner = pathzoo.make_planner("aco.dsaco", n_ants=5)
