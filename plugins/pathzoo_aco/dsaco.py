@@ -321,9 +321,10 @@ class DSACO(AntColonyPlanner):
         """Run the colony in compiled code (:mod:`pathzoo_aco.dsaco_colony`); results equal the generic loop's.
 
         The generic :meth:`AntColonyPlanner.plan` runs instead under a time
-        budget (its walks stop mid-way when time runs out). Without a ``progress`` callback all
-        iterations run in one call; with one, one call per iteration, so each
-        report comes when its iteration ends.
+        budget (its walks stop mid-way when time runs out). Without a
+        ``progress`` callback the iterations run in one call per
+        :data:`_SCHEDULE_CHUNK` of them; with one, one call per iteration, so
+        each report comes when its iteration ends.
         """
         if budget.time_s is not None:
             return super().plan(scenario, budget=budget, rng=rng, progress=progress)
