@@ -321,19 +321,21 @@ class DSACO(AntColonyPlanner):
         """Run the colony in compiled code (:mod:`pathzoo_aco.dsaco_colony`); results equal the generic loop's.
 
         The generic :meth:`AntColonyPlanner.plan` runs instead under a time
-        budget (its walks stop mid-way when time runs out). Without a
+        budget (its walks stop mid-way when time runs out) and for a turn table
+        with factors other than 0 and 1 (none is built today). Without a
         ``progress`` callback the iterations run in one call per
         :data:`_SCHEDULE_CHUNK` of them; with one, one call per iteration, so
         each report comes when its iteration ends.
         """
-        if budget.time_s is not None:
-            return super().plan(scenario, budget=budget, rng=rng, progress=progress)
         self.check_supports(scenario)
         problem = ColonyProblem.of(scenario)
+        rules = None if budget.time_s is not None else problem.memo(self.table_key("walk_rules"),
+                                                                    lambda: self.walk_rules(problem))
+        if rules is None or not np.isin(rules.turn, (0.0, 1.0)).all():  # the lists know allowed or not only
+            return super().plan(scenario, budget=budget, rng=rng, progress=progress)
         if problem.start == problem.goal:
             return PlanResult(Status.SOLVED, problem.walk_points(np.zeros(0, dtype=np.int64)),
                               message="start and goal share a cell")
-        rules = problem.memo(self.table_key("walk_rules"), lambda: self.walk_rules(problem))
         engine = self.walk_engine(problem)
         table = problem.memo(self.table_key("move_table"), lambda: MoveTable.of(
             engine.adjacency(rules), problem.graph.offsets, rules.turn))

@@ -96,7 +96,7 @@ def test_without_progress_one_call_gives_the_same_answer():
     _same(a, b)
 
 
-def test_time_budgets_take_the_generic_loop(monkeypatch):
+def test_time_budgets_and_graded_turn_factors_take_the_generic_loop(monkeypatch):
     import pathzoo_aco.dsaco as dsaco
 
     def fail(*args, **kwargs):
@@ -105,6 +105,14 @@ def test_time_budgets_take_the_generic_loop(monkeypatch):
     monkeypatch.setattr(dsaco, "run_colony", fail)
     result = pathzoo.make_planner("aco.dsaco").plan(_grid(), budget=Budget(time_s=5.0, iterations=2),
                                                     rng=np.random.default_rng(0))
+    assert result.solved
+
+    class Graded(type(pathzoo.make_planner("aco.dsaco"))):  # a turn table that weighs turns, not only forbids them
+        def walk_rules(self, problem):
+            rules = super().walk_rules(problem)
+            return dsaco.replace(rules, turn=np.where(rules.turn > 0, 0.5, 0.0))
+
+    result = Graded().plan(_grid(turn_deg=45.0), budget=Budget(iterations=2), rng=np.random.default_rng(0))
     assert result.solved
 
 
