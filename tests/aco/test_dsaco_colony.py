@@ -76,8 +76,8 @@ def test_schedules_computed_in_chunks_give_the_same_answer(monkeypatch, with_pro
         for plan in (planner.plan, lambda *a, **kw: AntColonyPlanner.plan(planner, *a, **kw)):
             rng = np.random.default_rng(5)
             reports = []
-            runs.append((plan(scenario, budget=budget, rng=rng, progress=(lambda *r: reports.append(r)) if with_progress else None),
-                         reports, rng.bit_generator.state))
+            report = (lambda *r: reports.append(r)) if with_progress else None
+            runs.append((plan(scenario, budget=budget, rng=rng, progress=report), reports, rng.bit_generator.state))
         _same(runs[0][0], runs[1][0])
         assert runs[0][1:] == runs[1][1:]  # the same reports, the rng left in the same state
 
