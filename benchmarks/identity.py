@@ -48,6 +48,18 @@ EXTRA = (  # planner, scenario id, parameters: non-default settings that take ot
     ("exact.astar", "movingai.8room_000.b194.1939", {}),
     ("exact.dijkstra", "movingai.8room_000.b194.1939", {}),
     ("exact.thetastar", "movingai.8room_000.b194.1939", {}),
+    ("aco.dsaco", "dsaco.simple", {"step_rule": "longitude", "n_ants": 3}),
+    ("aco.dsaco", "dsaco.complex", {"alpha": 1.5, "q0_initial": 0.0}),
+    ("aco.dsaco", "random60", {"dead_end": "die"}),
+    ("aco.dsaco", "dsaco.complex", {"l_max": 60.0, "l_min": 2.0}),
+    ("aco.dsaco", "dsaco.complex", {"max_steps": 30, "dead_end": "die"}),
+)
+LONG = (  # planner, scenario id, parameters, iterations: whole runs (schedules, evaporation, p decay)
+    ("aco.dsaco", "dsaco.complex", {}, 500),
+    ("aco.dsaco", "dsaco.complex", {"step_rule": "longitude"}, 500),
+    ("aco.dsaco", "dsaco.simple", {"rho": 0.9}, 300),
+    ("aco.dsaco", "dsaco.complex", {"l_min": 1.01, "step_rule": "longitude"}, 100),
+    ("aco.dsaco", "dsaco.complex", {"l_max": 70.0, "step_rule": "longitude"}, 60),
 )
 
 
@@ -91,6 +103,12 @@ def cases(only: set[str] | None):
         s = scenario(sid)
         for seed in SEEDS:
             yield f"{pid}|{sid}|{seed}|{json.dumps(params, sort_keys=True)}", pid, s, seed, 4, params
+    for pid, sid, params, iters in LONG:
+        if only and pid not in only:
+            continue
+        s = scenario(sid)
+        for seed in SEEDS:
+            yield f"{pid}|{sid}|{seed}|{iters}|{json.dumps(params, sort_keys=True)}", pid, s, seed, iters, params
 
 
 def main(argv: list[str] | None = None) -> int:

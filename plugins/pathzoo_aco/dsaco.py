@@ -25,6 +25,11 @@ Mechanism, with the paper's equations:
   segment heights and summed turning angles -- is what "best" means
   (:meth:`DSACO.walk_costs`).
 
+:meth:`DSACO.plan` runs the colony in compiled code
+(:mod:`pathzoo_aco.dsaco_colony`) with the same results as the generic loop;
+under a time budget the generic loop runs (``extras["walk_time_s"]`` is then
+the walks' time, otherwise the compiled colony's).
+
 Lengths and heights are measured in horizontal cells (the paper's
 kilometres on its 1 km grid). Table 4: m = 10, n = 500, Q = 100, α = 1,
 β = 8, ρ = 0.2, τmax = 0.9, τmin = 0.03, p = 1. See
@@ -34,14 +39,21 @@ kilometres on its 1 km grid). Table 4: m = 10, n = 500, Q = 100, α = 1,
 from __future__ import annotations
 
 import math
+import time
 from dataclasses import dataclass, replace
-from typing import Any, Mapping
+from typing import Any, Callable, Mapping
 
 import numba
 import numpy as np
 
+from pathzoo.core.budget import Budget
 from pathzoo.core.errors import InvalidParameterError
-from pathzoo.core.planner import Param
+from pathzoo.core.planner import Param, ProgressCallback
+from pathzoo.core.results import PlanResult
+from pathzoo.core.scenario import Scenario
+from pathzoo.core.status import Status
+from pathzoo_aco.dsaco_colony import ColonyRun, MoveTable, run_colony
+from pathzoo_aco.dsaco_fitness import infeasible_walks, walk_fitness
 from pathzoo_aco.engine import (
     AntColonyPlanner,
     ColonyProblem,
@@ -54,7 +66,7 @@ from pathzoo_aco.engine import (
     deposit_walks,
 )
 
-__all__ = ["DSACO", "DsacoState", "q0_schedule", "p_schedule", "segment_lengths"]
+__all__ = ["DSACO", "DsacoState", "q0_schedule", "p_schedule"]
 
 
 def q0_schedule(k: int, k_max: int, q0_initial: float) -> float:
@@ -81,61 +93,26 @@ def _per_walk(per_position: np.ndarray, walks: Walks) -> np.ndarray:
     return np.where(walks.reached, cum[walks.offsets[1:]] - cum[walks.offsets[:-1]], np.inf)
 
 
-def segment_lengths(moves: np.ndarray, steps: np.ndarray, offsets: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Straight segments of every walk: runs of consecutive steps with the same move (eq. 3).
+def _eta(m: np.ndarray, root: np.ndarray, admitted: np.ndarray, length: np.ndarray, cells: float) -> np.ndarray:
+    """Eqs. 11-13 for broadcastable node terms ``M``, ``sqrt(1 + d²)``, ``S`` and step lengths (m)."""
+    return np.where(admitted, m * (1.0 / (length / cells + root)), 0.0)
 
-    Parameters
-    ----------
-    moves : ndarray of int
-        Move id (direction) of every step, walks concatenated.
-    steps : ndarray of float
-        Length of every step.
-    offsets : ndarray of int
-        Walk ``a`` is ``moves[offsets[a]:offsets[a + 1]]``.
 
-    Returns
-    -------
-    length : ndarray
-        Length of every segment, walks concatenated.
-    walk : ndarray of int
-        The walk each segment belongs to.
-    """
-    n = len(offsets) - 1
-    walk_of_step = np.repeat(np.arange(n), np.diff(offsets))
-    new = np.ones(len(moves), dtype=bool)
-    if len(moves) > 1:
-        new[1:] = (moves[1:] != moves[:-1]) | (walk_of_step[1:] != walk_of_step[:-1])
-    segment = np.cumsum(new) - 1
-    return np.bincount(segment, weights=steps, minlength=int(new.sum())), walk_of_step[new]
+_SCHEDULE_CHUNK = 4096
+"""Iterations whose seeds and schedules are computed at a time by :meth:`DSACO.plan`."""
 
 
 @numba.njit(cache=True)
-def _walk_fitness(flat, offsets, reached, indices, offset_id, edge_length, height, turn_angle, start, cells,
-                  f1, f2, f3):
-    """Eq. 20 per walk in one pass: the same operations, in the same order, as :meth:`DSACO.fitness_terms`.
+def _gather(rows, offset_id, table, length_class, move_factor, refused):
+    """Per edge ``e``: ``table[rows[e], length_class[move(e)]]``, or ``refused`` where the move's factor is 0.
 
-    Per position: ``f1 ℓ/cells + f2 (h_i + h_j)/2 + f3 turn``; walks are
-    totalled as differences of one running sum over ``flat`` (as
-    :func:`_per_walk`), so the costs are bit-identical to the array version.
+    The step rule's factor is 1 or 0, so ``η · 1 = η`` and ``η · 0 = 0``
+    exactly: gathering instead of multiplying changes no value.
     """
-    n = offsets.size - 1
-    cum = np.empty(flat.size + 1)
-    cum[0] = 0.0
-    acc = 0.0
-    for a in range(n):
-        i = start  # the segment's first node and the walk's previous move
-        move = -1
-        for p in range(offsets[a], offsets[a + 1]):
-            e = flat[p]
-            j = indices[e]
-            turn = 0.0 if move < 0 else turn_angle[move, offset_id[e]]
-            acc += f1 * (edge_length[e] / cells) + f2 * (0.5 * (height[i] + height[j])) + f3 * turn
-            cum[p + 1] = acc
-            i = j
-            move = offset_id[e]
-    out = np.empty(n)
-    for a in range(n):
-        out[a] = cum[offsets[a + 1]] - cum[offsets[a]] if reached[a] else np.inf
+    out = np.empty(rows.size)
+    for e in range(rows.size):
+        o = offset_id[e]
+        out[e] = table[rows[e], length_class[o]] if move_factor[o] != 0.0 else refused
     return out
 
 
@@ -194,6 +171,23 @@ class DSACO(AntColonyPlanner):
         ``D_ij = 1 / (ℓ_ij + sqrt(1 + d_jB²))`` with ``ℓ`` the step and
         ``d_jB`` the straight distance from ``j`` to the target, all in cells.
         """
+        return self._per_edge(problem, lambda table: table, 0.0)
+
+    def heuristic_power(self, problem: ColonyProblem) -> np.ndarray:
+        """``η^β`` per edge: :meth:`search_heuristic` raised to ``beta``, with ``np.power`` as
+        :meth:`WalkRules.product` applies it, but evaluated once per (target node, step length) rather than
+        once per edge (the same values: ``η`` depends on nothing else)."""
+        return self._per_edge(problem, lambda table: np.power(table, self.beta),
+                              float(np.power(np.zeros(1), self.beta)[0]))
+
+    def _per_edge(self, problem: ColonyProblem, of_eta: Callable[[np.ndarray], np.ndarray],
+                  refused: float, by_node: bool = True) -> np.ndarray:
+        """``of_eta(η)`` per edge, and ``refused`` on the edges the step rule refuses (where ``η = 0``).
+
+        ``η`` is computed per target node and distinct step length when every
+        move's edges have one length (grids: always) and ``by_node``, else per
+        edge (the same values, checked by the tests).
+        """
         s = problem.scenario
         g = problem.graph
         h = self.node_height(problem)
@@ -201,17 +195,26 @@ class DSACO(AntColonyPlanner):
         if s.elevation is not None:
             ground = np.broadcast_to(s.elevation, s.shape).reshape(-1)
             admitted = problem.node_xyz[:, 2] >= np.nan_to_num(ground, nan=np.inf) + self.h_c
-        cells = s.cell_size
+        m = 1.0 / (1.0 + h)
+        root = np.sqrt(1.0 + (problem.goal_distance / s.cell_size) ** 2)
+        step = np.zeros(len(g.offsets))
+        step[g.offset_id] = g.length
+        if by_node and np.array_equal(g.length, step[g.offset_id]):
+            lengths, length_class = np.unique(step, return_inverse=True)
+            table = _eta(m[:, None], root[:, None], admitted[:, None], lengths[None, :], s.cell_size)
+            return _gather(g.indices, g.offset_id, of_eta(table), length_class.reshape(-1),
+                           self.move_factor(problem), refused)
         j = g.indices
-        m = (1.0 / (1.0 + h))[j]  # node terms first, then one gather per edge (same values)
-        d = 1.0 / (g.length / cells + np.sqrt(1.0 + (problem.goal_distance / cells) ** 2)[j])
-        eta = np.where(admitted[j], m * d, 0.0)
-        if self.step_rule == "graph":  # every move allowed: the factor would be 1 everywhere
-            return eta
-        return eta * self.allowed_moves(problem)
+        table = _eta(m[j], root[j], admitted[j], g.length, s.cell_size).reshape(-1, 1)
+        return _gather(np.arange(g.n_edges), g.offset_id, of_eta(table), np.zeros(len(g.offsets), dtype=np.int64),
+                       self.move_factor(problem), refused)
 
     def allowed_moves(self, problem: ColonyProblem) -> np.ndarray:
-        """1 for the edges the step rule allows, 0 for the others (all 1 under ``step_rule="graph"``).
+        """1 for the edges the step rule allows, 0 for the others (all 1 under ``step_rule="graph"``)."""
+        return self.move_factor(problem)[problem.graph.offset_id]
+
+    def move_factor(self, problem: ColonyProblem) -> np.ndarray:
+        """Per move of the neighbourhood: 1 if the step rule allows it, else 0.
 
         The longitude rule (section 2.1.2) keeps the moves that advance exactly
         one cell along ``x`` toward the target's column, with any lateral and
@@ -219,11 +222,10 @@ class DSACO(AntColonyPlanner):
         """
         g = problem.graph
         if self.step_rule == "graph":
-            return np.ones(g.n_edges)
+            return np.ones(len(g.offsets))
         width = g.shape[-1]
         direction = np.sign(problem.goal % width - problem.start % width)
-        forward = (g.offsets[:, -1] == direction) & (direction != 0)  # per move, then per edge
-        return forward[g.offset_id].astype(np.float64)
+        return ((g.offsets[:, -1] == direction) & (direction != 0)).astype(np.float64)
 
     def heuristic(self, problem: ColonyProblem) -> np.ndarray:
         """``η = Q_search = S · M · D`` (eqs. 11-13)."""
@@ -231,8 +233,8 @@ class DSACO(AntColonyPlanner):
 
     def walk_rules(self, problem: ColonyProblem) -> WalkRules:
         """Eq. 14: ``τ^α η^β`` with the deterministic choice of probability ``q0`` (set per iteration)."""
-        return WalkRules.product(self.alpha, self.heuristic(problem), self.beta, q0=self.q0_initial,
-                                 **self.walk_options(problem))
+        return WalkRules(tau_exp=float(self.alpha), weight_mul=self.heuristic_power(problem), q0=self.q0_initial,
+                         **self.walk_options(problem))
 
     def before_iteration(self, state: ColonyState) -> WalkRules:
         """Eq. 15: the iteration's ``q0`` (the schedule spans the ``iterations`` parameter)."""
@@ -286,7 +288,7 @@ class DSACO(AntColonyPlanner):
         """Eq. 20: ``Fitness = f1 D0 + f2 Dh + f3 DT`` (one compiled pass over the walks)."""
         assert isinstance(state, DsacoState) and state.node_height is not None and state.turn_angle is not None
         p = state.problem
-        costs = _walk_fitness(walks.flat, walks.offsets, walks.reached, p.graph.indices, p.graph.offset_id,
+        costs = walk_fitness(walks.flat, walks.offsets, walks.reached, p.graph.indices, p.graph.offset_id,
                               p.graph.length, state.node_height, state.turn_angle, p.start, p.scenario.cell_size,
                               self.f1, self.f2, self.f3)
         if self.l_max > 0.0 or self.l_min > 0.0:
@@ -295,18 +297,13 @@ class DSACO(AntColonyPlanner):
 
     def infeasible_walks(self, state: ColonyState, walks: Walks) -> np.ndarray:
         """Eqs. 2-3 per walk: total length above ``l_max``, or a straight segment other than the last one
-        shorter than ``l_min`` (lengths in horizontal cells, like the fitness; a limit of 0 is off)."""
+        shorter than ``l_min`` (lengths in horizontal cells, like the fitness; a limit of 0 is off).
+
+        A straight segment is a run of consecutive steps with the same move
+        (:func:`pathzoo_aco.dsaco_fitness.infeasible_walks`)."""
         g = state.problem.graph
-        steps = g.length[walks.flat] / state.problem.scenario.cell_size
-        bad = np.zeros(len(walks.offsets) - 1, dtype=bool)
-        if self.l_max > 0.0:
-            bad |= _per_walk(steps, walks) > self.l_max * (1.0 + 1e-12)
-        if self.l_min > 0.0:
-            length, walk = segment_lengths(g.offset_id[walks.flat], steps, walks.offsets)
-            last = np.r_[walk[1:] != walk[:-1], True]  # a walk's final segment ends at the target, not at a turn
-            short = (length < self.l_min * (1.0 - 1e-12)) & ~last
-            bad[walk[short]] = True
-        return bad
+        return infeasible_walks(walks.flat, walks.offsets, walks.reached, g.length, g.offset_id,
+                                float(state.problem.scenario.cell_size), self.l_max, self.l_min)
 
     def update_trail(self, state: ColonyState, walks: Walks, costs: np.ndarray) -> None:
         """Eqs. 16-19: evaporate everywhere; the iteration-best ant lays ``Q / ((1-p) F_now + p F_global)``."""
@@ -317,3 +314,82 @@ class DSACO(AntColonyPlanner):
         p = p_schedule(state.iteration, self.p, self.gamma_p)
         amount = self.q / ((1.0 - p) * float(costs[k]) + p * state.best_cost)
         deposit_walks(state.trail, state.problem.graph.indices, walks.flat, walks.offsets, [k], amount)
+
+    # ------------------------------------------------------------- the compiled colony
+    def plan(self, scenario: Scenario, *, budget: Budget, rng: np.random.Generator,
+             progress: ProgressCallback | None = None) -> PlanResult:
+        """Run the colony in compiled code (:mod:`pathzoo_aco.dsaco_colony`); results equal the generic loop's.
+
+        The generic :meth:`AntColonyPlanner.plan` runs instead under a time
+        budget (its walks stop mid-way when time runs out) and for a turn table
+        with factors other than 0 and 1 (none is built today). Without a
+        ``progress`` callback the iterations run in one call per
+        :data:`_SCHEDULE_CHUNK` of them; with one, one call per iteration, so
+        each report comes when its iteration ends.
+        """
+        self.check_supports(scenario)
+        problem = ColonyProblem.of(scenario)
+        rules = None if budget.time_s is not None else problem.memo(self.table_key("walk_rules"),
+                                                                    lambda: self.walk_rules(problem))
+        if rules is None or not np.isin(rules.turn, (0.0, 1.0)).all():  # the lists know allowed or not only
+            return super().plan(scenario, budget=budget, rng=rng, progress=progress)
+        if problem.start == problem.goal:
+            return PlanResult(Status.SOLVED, problem.walk_points(np.zeros(0, dtype=np.int64)),
+                              message="start and goal share a cell")
+        engine = self.walk_engine(problem)
+        table = problem.memo(self.table_key("move_table"), lambda: MoveTable.of(
+            engine.adjacency(rules), problem.graph.offsets, rules.turn))
+        trail = Pheromone(len(table.node), self.initial_trail(problem))  # in the table's storage order
+        state = self.init_state(problem, rules, trail, engine, rng)
+        assert isinstance(state, DsacoState) and state.node_height is not None and state.turn_angle is not None
+        g = problem.graph
+        fitness = (g.indices, g.offset_id, g.length, state.node_height, state.turn_angle,
+                   float(problem.scenario.cell_size), self.f1, self.f2, self.f3, self.l_max, self.l_min)
+        run = ColonyRun.start(g.n_nodes, int(np.diff(table.adj_ptr).max(initial=0)), trail.x, trail.scale)
+        arrays = (table, problem.horizontal_offsets, rules.turn, fitness, (trail.x, trail.lo, trail.hi, self.rho),
+                  (rules.tau_exp, self.q, problem.start, problem.goal, rules.backtrack, rules.max_steps))
+        walk_time = 0.0
+        total = self.iteration_count(budget)
+        for first in range(0, total, _SCHEDULE_CHUNK):  # bounded memory for the schedule of any budget
+            ants = self.ants_per_iteration(budget, first, min(total, first + _SCHEDULE_CHUNK))
+            rng_state = rng.bit_generator.state
+            schedule = (np.array([int(rng.integers(2**31 - 1)) for _ in ants], dtype=np.int64),
+                        np.array([q0_schedule(first + k, self.iterations, self.q0_initial) for k in range(len(ants))]),
+                        np.array([p_schedule(first + k + 1, self.p, self.gamma_p) for k in range(len(ants))]), ants)
+            started = time.perf_counter()
+            for stop_at in ([first + len(ants)] if progress is None else range(first + 1, first + len(ants) + 1)):
+                run_colony(*arrays, schedule, run, first=first, stop_at=stop_at)
+                if progress is not None:
+                    progress(int(run.counters[0]), int(run.counters[1]), float(run.best_cost[0]))
+                if run.counters[4]:
+                    break
+            walk_time += time.perf_counter() - started
+            if run.counters[4]:  # stopped early: leave the rng as the generic loop would
+                rng.bit_generator.state = rng_state
+                for _ in range(int(run.counters[0]) - first):
+                    rng.integers(2**31 - 1)
+                break
+        iterations, evaluations = int(run.counters[0]), int(run.counters[1])
+        message = "an ant searched the start's whole component: the goal is unreachable" if run.counters[4] else ""
+        extras = {"ant_steps": int(run.counters[2]), "walk_time_s": walk_time}
+        if not math.isfinite(run.best_cost[0]):
+            return PlanResult(Status.FAILED, iterations=iterations, evaluations=evaluations,
+                              message=message or "no ant reached the goal within the budget", extras=extras)
+        return PlanResult(Status.SOLVED, problem.walk_points(run.best_edges[: run.counters[3]]),
+                          iterations=iterations, evaluations=evaluations, message=message, extras=extras)
+
+    def iteration_count(self, budget: Budget) -> int:
+        """Iterations the budget allows without a time limit: its iterations, as many as its evaluations fill
+        (``n_ants`` each), or the ``iterations`` parameter when the budget is unlimited."""
+        counts = [n for n in (budget.iterations,
+                              None if budget.evaluations is None else -(-budget.evaluations // self.n_ants))
+                  if n is not None]
+        return min(counts) if counts else self.iterations
+
+    def ants_per_iteration(self, budget: Budget, first: int, last: int) -> np.ndarray:
+        """Ants of iterations ``first`` to ``last - 1`` (0-based): ``n_ants``, fewer in the iteration where the
+        evaluation budget runs out."""
+        ants = np.full(last - first, self.n_ants, dtype=np.int64)
+        if budget.evaluations is not None:
+            ants = np.minimum(ants, budget.evaluations - self.n_ants * np.arange(first, last))
+        return ants

@@ -81,6 +81,19 @@ def test_search_heuristic_s_m_d_on_a_hand_example():
     assert eta[_edge(problem, (1, 0, 0), (1, 1, 1))] == 0.0
 
 
+@pytest.mark.parametrize("step_rule", ["graph", "longitude"])
+def test_heuristic_per_node_and_step_length_equals_the_per_edge_one(step_rule):
+    planner = pathzoo.make_planner("aco.dsaco", step_rule=step_rule, beta=2.5)
+    problem = ColonyProblem(pathzoo.load_scenario("dsaco.simple"))
+    for of_eta, refused in ((lambda t: t, 0.0), (lambda t: np.power(t, 2.5), 0.0)):
+        by_node = planner._per_edge(problem, of_eta, refused)
+        by_edge = planner._per_edge(problem, of_eta, refused, by_node=False)
+        assert np.array_equal(by_node.view(np.int64), by_edge.view(np.int64))  # bit for bit
+    eta = planner.search_heuristic(problem)
+    assert np.array_equal(planner.heuristic_power(problem), np.power(eta, 2.5))
+    assert (eta > 0).any() and (step_rule == "graph" or (eta == 0).any())
+
+
 def test_longitude_rule_advances_one_column_per_step():
     scenario = pathzoo.load_scenario("dsaco.complex")
     planner = pathzoo.make_planner("aco.dsaco", step_rule="longitude")
@@ -158,14 +171,21 @@ def test_turn_limited_vehicle_is_respected():
 
 
 # ------------------------------------------------------------------ eqs. 2-3
-def test_segment_lengths_split_walks_at_every_change_of_move():
-    from pathzoo_aco.dsaco import segment_lengths
+def test_segments_split_at_every_change_of_move_and_the_last_is_exempt():
+    from pathzoo_aco.dsaco_fitness import infeasible_walks
 
-    moves = np.array([0, 0, 1, 1, 1, 2])
-    steps = np.array([1.0, 1.0, 1.5, 1.5, 1.5, 1.0])
-    length, walk = segment_lengths(moves, steps, np.array([0, 3, 3, 6]))  # the middle walk is empty
-    np.testing.assert_allclose(length, [2.0, 1.5, 3.0, 1.0])
-    np.testing.assert_array_equal(walk, [0, 0, 2, 2])
+    # three walks over edges 0-5 (edge = move id here): moves 0 0 1 | (failed) | 1 1 1 2; every step 1 cell
+    flat = np.array([0, 0, 1, 1, 1, 1, 2])
+    offsets = np.array([0, 3, 3, 7])
+    reached = np.array([True, False, True])
+    length, move = np.ones(3), np.arange(3)
+    # l_min 1.5: walk 0's first segment is 2 cells, its last (1 cell) is exempt; walk 2's segments are 3 and 1 (last)
+    np.testing.assert_array_equal(infeasible_walks(flat, offsets, reached, length, move, 1.0, 0.0, 1.5),
+                                  [False, False, False])
+    np.testing.assert_array_equal(infeasible_walks(flat, offsets, reached, length, move, 1.0, 0.0, 2.5),
+                                  [True, False, False])  # walk 0's 2-cell segment is short; walk 2's 3 is not
+    np.testing.assert_array_equal(infeasible_walks(flat, offsets, reached, length, move, 1.0, 3.5, 0.0),
+                                  [False, True, True])  # 3 and 4 cells against l_max; the failed walk counts
 
 
 @pytest.mark.parametrize(

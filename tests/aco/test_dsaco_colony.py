@@ -1,0 +1,142 @@
+"""aco.dsaco's compiled colony: the same answers as the generic colony loop, and its move table."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import pathzoo
+from pathzoo import Budget, Scenario, VehicleModel
+from pathzoo_aco.dsaco_colony import MoveTable, _build_list
+from pathzoo_aco.engine import AntColonyPlanner, ColonyProblem, WalkEngine
+
+
+def _grid(turn_deg: float = 180.0, wall: bool = False) -> Scenario:
+    """A 12 x 12 grid with a few blocks; ``wall`` cuts the goal off completely."""
+    occ = np.zeros((12, 12), dtype=bool)
+    occ[3:9, 5] = True
+    occ[6, 2:5] = True
+    if wall:
+        occ[:, 8] = True
+    return Scenario(id="grid12", kind="grid2d", occupancy=occ, cell_size=1.0, start=(0.5, 0.5), goal=(11.5, 10.5),
+                    vehicle=VehicleModel(max_turn_deg=turn_deg))
+
+
+def _both(planner, scenario, budget):
+    """(compiled run, generic run, their progress reports, the rng states after each)."""
+    reports = ([], [])
+    results, states = [], []
+    for k, plan in enumerate((planner.plan, lambda *a, **kw: AntColonyPlanner.plan(planner, *a, **kw))):
+        rng = np.random.default_rng(11)
+        results.append(plan(scenario, budget=budget, rng=rng, progress=lambda *r, k=k: reports[k].append(r)))
+        states.append(rng.bit_generator.state)
+    return results, reports, states
+
+
+def _same(a, b):
+    assert (a.status, a.iterations, a.evaluations, a.message) == (b.status, b.iterations, b.evaluations, b.message)
+    assert a.extras["ant_steps"] == b.extras["ant_steps"]
+    if a.solved:
+        np.testing.assert_array_equal(a.path, b.path)
+
+
+@pytest.mark.parametrize(("scenario_id", "params", "budget"), [
+    ("dsaco.simple", {}, Budget(iterations=12)),
+    ("dsaco.simple", {"step_rule": "longitude", "n_ants": 4}, Budget(iterations=15)),
+    ("dsaco.simple", {"alpha": 1.5, "q0_initial": 0.0, "rho": 0.9}, Budget(iterations=8)),
+    ("dsaco.simple", {"dead_end": "die", "max_steps": 40}, Budget(iterations=6)),
+    ("dsaco.simple", {"n_ants": 3}, Budget(evaluations=8)),  # the last iteration sends 2 ants
+    ("dsaco.simple", {"step_rule": "longitude", "l_max": 70.0}, Budget(iterations=8)),  # eq. 2, solved
+    ("dsaco.simple", {"step_rule": "longitude", "l_min": 1.01}, Budget(iterations=8)),  # eq. 3, nothing feasible
+    ("grid12", {"n_ants": 4}, Budget(iterations=10)),
+    ("grid12-turn", {"n_ants": 4}, Budget(iterations=10)),
+    ("grid12-wall", {"n_ants": 4}, Budget(iterations=10)),  # an ant proves the goal unreachable: early stop
+    ("grid12-wall", {"n_ants": 4, "dead_end": "die"}, Budget(iterations=3)),
+])
+def test_compiled_colony_equals_the_generic_loop(scenario_id, params, budget):
+    scenario = {"grid12": lambda: _grid(), "grid12-turn": lambda: _grid(turn_deg=45.0),
+                "grid12-wall": lambda: _grid(wall=True)}.get(scenario_id, lambda: pathzoo.load_scenario(scenario_id))()
+    planner = pathzoo.make_planner("aco.dsaco", **params)
+    (fast, slow), (fast_reports, slow_reports), (fast_rng, slow_rng) = _both(planner, scenario, budget)
+    _same(fast, slow)
+    assert fast_reports == slow_reports and len(fast_reports) == fast.iterations
+    assert fast_rng == slow_rng  # the planner's rng is left where the generic loop leaves it
+    if scenario_id == "grid12-wall" and params.get("dead_end") != "die":
+        assert fast.iterations == 1 and "unreachable" in fast.message
+
+
+@pytest.mark.parametrize("with_progress", [False, True])
+def test_schedules_computed_in_chunks_give_the_same_answer(monkeypatch, with_progress):
+    import pathzoo_aco.dsaco as dsaco
+
+    monkeypatch.setattr(dsaco, "_SCHEDULE_CHUNK", 3)
+    planner = pathzoo.make_planner("aco.dsaco", n_ants=4)
+    for scenario, budget in ((_grid(turn_deg=45.0), Budget(evaluations=30)), (_grid(wall=True), Budget(iterations=8))):
+        runs = []
+        for plan in (planner.plan, lambda *a, **kw: AntColonyPlanner.plan(planner, *a, **kw)):
+            rng = np.random.default_rng(5)
+            reports = []
+            report = (lambda *r: reports.append(r)) if with_progress else None
+            runs.append((plan(scenario, budget=budget, rng=rng, progress=report), reports, rng.bit_generator.state))
+        _same(runs[0][0], runs[1][0])
+        assert runs[0][1:] == runs[1][1:]  # the same reports, the rng left in the same state
+
+
+def test_a_huge_iteration_budget_with_few_evaluations_stays_small():
+    result = pathzoo.make_planner("aco.dsaco", n_ants=4).plan(_grid(), budget=Budget(iterations=10**12, evaluations=10),
+                                                              rng=np.random.default_rng(0))
+    assert result.iterations == 3 and result.evaluations == 10
+
+
+def test_without_progress_one_call_gives_the_same_answer():
+    scenario = pathzoo.load_scenario("dsaco.simple")
+    planner = pathzoo.make_planner("aco.dsaco", n_ants=5)
+    a = planner.plan(scenario, budget=Budget(iterations=20), rng=np.random.default_rng(3))
+    b = AntColonyPlanner.plan(planner, scenario, budget=Budget(iterations=20), rng=np.random.default_rng(3))
+    _same(a, b)
+
+
+def test_time_budgets_and_graded_turn_factors_take_the_generic_loop(monkeypatch):
+    import pathzoo_aco.dsaco as dsaco
+
+    def fail(*args, **kwargs):
+        raise AssertionError("compiled colony used")
+
+    monkeypatch.setattr(dsaco, "run_colony", fail)
+    result = pathzoo.make_planner("aco.dsaco").plan(_grid(), budget=Budget(time_s=5.0, iterations=2),
+                                                    rng=np.random.default_rng(0))
+    assert result.solved
+
+    class Graded(type(pathzoo.make_planner("aco.dsaco"))):  # a turn table that weighs turns, not only forbids them
+        def walk_rules(self, problem):
+            rules = super().walk_rules(problem)
+            return dsaco.replace(rules, turn=np.where(rules.turn > 0, 0.5, 0.0))
+
+    result = Graded().plan(_grid(turn_deg=45.0), budget=Budget(iterations=2), rng=np.random.default_rng(0))
+    assert result.solved
+
+
+def test_move_table_lists_the_allowed_moves_in_their_original_order():
+    scenario = pathzoo.load_scenario("dsaco.complex")
+    problem = ColonyProblem(scenario)
+    planner = pathzoo.make_planner("aco.dsaco", step_rule="longitude")
+    rules = planner.walk_rules(problem)
+    adjacency = WalkEngine(problem).adjacency(rules)
+    table = MoveTable.of(adjacency, problem.graph.offsets, rules.turn)
+    adj_ptr, adj_node, adj_edge, adj_offset = adjacency[:4]
+    heading = np.arctan2(problem.graph.offsets[:, -2], problem.graph.offsets[:, -1])
+    for c in (problem.start, problem.start + 7, int(np.flatnonzero(np.diff(adj_ptr) > 0)[-1])):
+        e0, e1 = adj_ptr[c], adj_ptr[c + 1]
+        stored = slice(e0, e1)
+        np.testing.assert_array_equal(np.sort(table.edge[stored]), np.sort(adj_edge[e0:e1]))  # a permutation
+        assert (np.diff(heading[table.move[stored]]) >= 0).all()  # stored by heading
+        np.testing.assert_array_equal(table.edge[e0 + table.place[e0:e1]], adj_edge[e0:e1])
+        for prev in (len(rules.turn) - 1, int(table.move[e0])):
+            wanted = [q for q in range(e0, e1) if rules.turn[prev, adj_offset[q]] > 0]
+            k = table.move_class[prev]
+            base = (e0 + c) * len(table.class_row) + k * (e1 - e0 + 1)
+            _build_list(c, k, base, table.adj_ptr, table.adj_offset, table.place, rules.turn, table.class_row,
+                        table.pool)
+            listed = e0 + table.pool[base + 1 : base + table.pool[base]].astype(np.int64)
+            np.testing.assert_array_equal(table.edge[listed], adj_edge[wanted])
+            np.testing.assert_array_equal(table.node[listed], adj_node[wanted])
