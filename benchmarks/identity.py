@@ -42,6 +42,13 @@ EXTRA = (  # planner, scenario id, parameters: non-default settings that take ot
     ("aco.mmas", "gant.fig7", {"n_ants": 3}),
     ("aco.dsaco", "dsaco.complex", {"step_rule": "longitude"}),
 )
+FULL = (  # planner, scenario id, iterations, parameters: longer runs, where pheromone shapes most walks
+    ("aco.fgdaco", "fgdaco.scenario1", 100, {}),
+    ("aco.fgdaco", "fgdaco.scenario3", 100, {}),
+    ("aco.fgdaco", "fgdaco.trap", 30, {}),
+    ("aco.fgdaco", "fgdaco.scenario2", 30, {"sensing_m": 25.0, "alpha": 1.0}),
+    ("aco.fgdaco", "fgdaco.scenario3", 30, {"n_ants": 3, "beta": 2.0}),
+)
 
 
 def scenario(sid: str) -> Scenario:
@@ -84,6 +91,12 @@ def cases(only: set[str] | None):
         s = scenario(sid)
         for seed in SEEDS:
             yield f"{pid}|{sid}|{seed}|{json.dumps(params, sort_keys=True)}", pid, s, seed, 4, params
+    for pid, sid, iters, params in FULL:
+        if only and pid not in only:
+            continue
+        s = scenario(sid)
+        for seed in SEEDS:
+            yield f"{pid}|{sid}|{seed}|{iters}|{json.dumps(params, sort_keys=True)}", pid, s, seed, iters, params
 
 
 def main(argv: list[str] | None = None) -> int:

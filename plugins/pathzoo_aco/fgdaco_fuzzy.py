@@ -58,6 +58,9 @@ __all__ = [
     "CompiledPriority",
     "compiled_priority",
     "priority_one",
+    "clipped_centroid",
+    "rule_ceilings",
+    "fired_strengths",
 ]
 
 UNIVERSE = np.linspace(0.0, 1.0, 201)
@@ -255,7 +258,12 @@ def priority_one(target, angle, obstacle, vertices, rules, cons, area_w, moment_
         s = min(mu[0, rules[r, 0]], mu[1, rules[r, 1]], mu[2, rules[r, 2]])
         if s > strength[rules[r, 3]]:
             strength[rules[r, 3]] = s
-    s0, s1, s2 = strength[0], strength[1], strength[2]
+    return clipped_centroid(strength[0], strength[1], strength[2], cons, area_w, moment_w)
+
+
+@numba.njit(cache=True, fastmath=True)
+def clipped_centroid(s0, s1, s2, cons, area_w, moment_w):
+    """Crisp priority from the firing strengths of the low, medium and high terms: clip, aggregate by max, centroid."""
     area = 0.0
     moment = 0.0
     for p in range(cons.shape[1]):
@@ -263,3 +271,41 @@ def priority_one(target, angle, obstacle, vertices, rules, cons, area_w, moment_
         area += y * area_w[p]
         moment += y * moment_w[p]
     return moment / max(area, 2.220446049250313e-16)
+
+
+@numba.njit(cache=True, fastmath=True)
+def rule_ceilings(target, angle, vertices, rules, out):
+    """How strongly each priority term can fire through each obstacle term, from a move's target and angle alone.
+
+    Fills ``out[term, k]`` (shape (3, 3)) with the largest
+    ``min(μ_target, μ_angle)`` over the rules with obstacle term ``k`` and
+    priority term ``term``. Since ``min`` and ``max`` only select values, the
+    firing strength of ``term`` for an obstacle input with memberships ``μ_k``
+    is exactly ``max(0, max_k min(out[term, k], μ_k))``
+    (:func:`fired_strengths`): the number :func:`priority_one` finds by going
+    through all 27 rules. ``vertices`` and ``rules`` are those of
+    :class:`CompiledPriority`.
+    """
+    out[:, :] = 0.0
+    for r in range(rules.shape[0]):
+        i, j, k, term = rules[r, 0], rules[r, 1], rules[r, 2], rules[r, 3]
+        s = min(_membership(target, vertices[0, i, 0], vertices[0, i, 1], vertices[0, i, 2]),
+                _membership(angle, vertices[1, j, 0], vertices[1, j, 1], vertices[1, j, 2]))
+        if s > out[term, k]:
+            out[term, k] = s
+
+
+@numba.njit(cache=True, fastmath=True)
+def fired_strengths(ceilings, obstacle, vertices):
+    """Firing strengths of the low, medium and high priority terms of a move whose :func:`rule_ceilings` are given.
+
+    ``clipped_centroid(*fired_strengths(ceilings[e], obstacle, vertices), ...)``
+    is exactly :func:`priority_one` of that move: only the obstacle input is
+    new, so the 27 rules reduce to nine ``min`` and three ``max``.
+    """
+    m0 = _membership(obstacle, vertices[2, 0, 0], vertices[2, 0, 1], vertices[2, 0, 2])
+    m1 = _membership(obstacle, vertices[2, 1, 0], vertices[2, 1, 1], vertices[2, 1, 2])
+    m2 = _membership(obstacle, vertices[2, 2, 0], vertices[2, 2, 1], vertices[2, 2, 2])
+    return (max(0.0, min(ceilings[0, 0], m0), min(ceilings[0, 1], m1), min(ceilings[0, 2], m2)),
+            max(0.0, min(ceilings[1, 0], m0), min(ceilings[1, 1], m1), min(ceilings[1, 2], m2)),
+            max(0.0, min(ceilings[2, 0], m0), min(ceilings[2, 1], m1), min(ceilings[2, 2], m2)))

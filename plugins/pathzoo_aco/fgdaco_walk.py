@@ -20,7 +20,13 @@ For a candidate edge ``i -> j`` left at ``t_i`` and reached at ``t_j``:
 - otherwise its weight is ``τ^α · priority^β`` where the priority is the
   planner's precomputed static one, unless a moving obstacle at ``t_j`` is
   nearer to ``j`` than every static obstacle: then the fuzzy inference is
-  run again with that distance (:func:`priority_one`).
+  run again with that distance. That is :func:`priority_one`'s number,
+  computed in two exact steps: the rules' ceilings from the edge's fixed
+  target and angle inputs (:func:`rule_ceilings`, once per edge), then the
+  firing strengths for the new obstacle input (:func:`fired_strengths`).
+  The centroid depends on those three strengths only, so each edge keeps
+  the last ones it saw and their priority (about half the centroids on
+  ``fgdaco.scenario3`` are repeats: a very near obstacle saturates the input).
 
 A walk whose tabu list and backtracking exhaust the start's component
 proves the goal unreachable only when no edge was refused for timing; such
@@ -38,7 +44,7 @@ import numpy as np
 from pathzoo_aco.engine import ABORTED, EXHAUSTED, REACHED, STEP_CAP, STUCK, ColonyProblem, Pheromone, WalkEngine
 from pathzoo_aco.engine import WalkRules, Walks
 from pathzoo_aco.engine.walk import _seed
-from pathzoo_aco.fgdaco_fuzzy import compiled_priority, priority_one
+from pathzoo_aco.fgdaco_fuzzy import clipped_centroid, compiled_priority, fired_strengths, rule_ceilings
 from pathzoo_aco.fgdaco_moving import obstacle_min_distance, obstacle_position, pack_obstacles
 
 __all__ = ["TimedWalkEngine"]
@@ -48,11 +54,11 @@ __all__ = ["TimedWalkEngine"]
 def _timed_walk(indptr, indices, offset_id, horizontal, turn, length,
                 x, scale, lo, hi, tau_exp, w_mul, beta,
                 start, goal, backtrack, max_steps, allowance, n_ants, walk_base,
-                stamp, stack_e, stack_prev, stack_t, stack_gap, cand_e, cand_w, gap, near_ids, ahead, mu, strength,
+                stamp, stack_e, stack_prev, stack_t, stack_gap, cand_e, cand_w, gap, near_ids, ahead,
                 flat, offsets, flags, steps_out,
                 width, cell, speed, t_head, tail,
                 ob_points, ob_cum, ob_count, ob_speed, ob_phase, ob_radius,
-                target_in, angle_in, clear_in, sensing,
+                target_in, angle_in, clear_in, sensing, ceilings, ceiling_known, seen_strength, seen_h,
                 vertices, rules, cons, area_w, moment_w):
     use_turn = turn.shape[0] > 0
     no_prev = turn.shape[0] - 1
@@ -150,10 +156,17 @@ def _timed_walk(indptr, indices, offset_id, horizontal, turn, length,
                 if not free:
                     timed_out = True
                     continue
-                if near < clear_in[j]:
-                    prio = priority_one(target_in[j], angle_in[e], near, vertices, rules, cons, area_w, moment_w,
-                                        mu, strength)
-                    h = prio**beta
+                if near < clear_in[j]:  # the fuzzy inference of priority_one, in two exact steps
+                    if not ceiling_known[e]:
+                        rule_ceilings(target_in[j], angle_in[e], vertices, rules, ceilings[e])
+                        ceiling_known[e] = True
+                    s0, s1, s2 = fired_strengths(ceilings[e], near, vertices)
+                    if s0 != seen_strength[e, 0] or s1 != seen_strength[e, 1] or s2 != seen_strength[e, 2]:
+                        seen_strength[e, 0] = s0
+                        seen_strength[e, 1] = s1
+                        seen_strength[e, 2] = s2
+                        seen_h[e] = clipped_centroid(s0, s1, s2, cons, area_w, moment_w)**beta
+                    h = seen_h[e]
                 else:
                     h = w_mul[e]
                 t = min(max(scale * x[e], lo), hi)
@@ -240,8 +253,10 @@ class _TimedBuffers:
     gap: np.ndarray
     near_ids: np.ndarray
     ahead: np.ndarray
-    mu: np.ndarray
-    strength: np.ndarray
+    ceilings: np.ndarray
+    ceiling_known: np.ndarray
+    seen_strength: np.ndarray
+    seen_h: np.ndarray
     flat: np.ndarray
     walk_base: int = 0
 
@@ -254,7 +269,9 @@ class _TimedBuffers:
                    stack_prev=np.zeros(depth, dtype=np.int64), stack_t=np.zeros(depth),
                    stack_gap=np.zeros((depth + 1, max(n_obstacles, 1))),
                    cand_e=np.zeros(degree, dtype=np.int64), cand_w=np.zeros(degree), gap=np.zeros(n_obstacles),
-                   near_ids=np.zeros(n_obstacles, dtype=np.int64), ahead=np.zeros((max(n_obstacles, 1), 2, 3)), mu=np.zeros((3, 3)), strength=np.zeros(3),
+                   near_ids=np.zeros(n_obstacles, dtype=np.int64), ahead=np.zeros((max(n_obstacles, 1), 2, 3)), ceilings=np.empty((g.n_edges, 3, 3)),
+                   ceiling_known=np.zeros(g.n_edges, dtype=np.bool_), seen_strength=np.full((g.n_edges, 3), np.nan),
+                   seen_h=np.zeros(g.n_edges),
                    flat=np.zeros(0, dtype=np.int64))
 
 
@@ -326,11 +343,11 @@ class TimedWalkEngine(WalkEngine):
             trail.x, trail.scale, trail.lo, trail.hi, rules.tau_exp, rules.weight_mul, self.beta,
             p.start, p.goal, rules.backtrack, rules.max_steps, allowance, n_ants, b.walk_base,
             b.stamp, b.stack_e, b.stack_prev, b.stack_t, b.stack_gap, b.cand_e, b.cand_w, b.gap, b.near_ids, b.ahead,
-            b.mu, b.strength,
             b.flat, offsets, flags, steps,
             g.shape[1], p.scenario.cell_size, p.scenario.vehicle.cruise_speed, self.t_head, self.tail,
             ob.points, ob.cum, ob.count, ob.speed, ob.phase, ob.radius,
-            self.target_in, self.angle_in, self.clear_in, self.sensing_m,
+            self.target_in, self.angle_in, self.clear_in, self.sensing_m, b.ceilings, b.ceiling_known, b.seen_strength,
+            b.seen_h,
             cp.vertices, cp.rules, cp.consequents, cp.area_w, cp.moment_w,
         )
         b.walk_base += n_ants

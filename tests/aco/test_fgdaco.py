@@ -23,10 +23,13 @@ from pathzoo_aco.fgdaco_fuzzy import (
     TERMS,
     UNIVERSE,
     centroid,
+    clipped_centroid,
     compiled_priority,
     consequents,
+    fired_strengths,
     fuzzy_priority,
     priority_one,
+    rule_ceilings,
     triangle,
 )
 from pathzoo_aco.fgdaco_moving import obstacle_min_distance, obstacle_position, pack_obstacles
@@ -99,6 +102,22 @@ def test_compiled_twin_equals_the_vectorised_inference():
     twin = [priority_one(*row, cp.vertices, cp.rules, cp.consequents, cp.area_w, cp.moment_w,
                          np.zeros((3, 3)), np.zeros(3)) for row in x]
     np.testing.assert_allclose(twin, fuzzy_priority(*x.T), atol=1e-12)
+
+
+def test_two_step_inference_of_the_walks_is_bit_identical_to_the_compiled_twin():
+    # rule ceilings per move, then the obstacle input: the walks' shortcut must give the very same float
+    rng = np.random.default_rng(8)
+    on_universe = np.round(rng.random((3000, 3)) * 200) / 200  # on vertices and kinks
+    x = np.vstack([rng.random((3000, 3)), on_universe, np.clip(on_universe + rng.normal(0, 1e-13, (3000, 3)), 0, 1),
+                   np.array(CRISP)])
+    cp = compiled_priority()
+    ceilings = np.empty((3, 3))
+    for t, a, o in x:
+        want = priority_one(t, a, o, cp.vertices, cp.rules, cp.consequents, cp.area_w, cp.moment_w,
+                            np.zeros((3, 3)), np.zeros(3))
+        rule_ceilings(t, a, cp.vertices, cp.rules, ceilings)
+        got = clipped_centroid(*fired_strengths(ceilings, o, cp.vertices), cp.consequents, cp.area_w, cp.moment_w)
+        assert got == want, (t, a, o)
 
 
 # ------------------------------------------------------------------ moving obstacles, compiled
