@@ -192,10 +192,23 @@ def defuzzify(strength: np.ndarray, cons: np.ndarray, universe: np.ndarray, chun
     time so the ``(chunk, U)`` aggregates stay small. Shared by FLACO's impedance.
     """
     out = np.empty(strength.shape[1])
+    aggregate = np.empty((min(chunk, out.size), universe.size))
     for lo in range(0, out.size, chunk):
-        aggregate = np.max(np.minimum(strength[:, lo : lo + chunk, None], cons[:, None, :]), axis=0)
-        out[lo : lo + chunk] = centroid(universe, aggregate)
+        rows = aggregate[: min(chunk, out.size - lo)]
+        _clip_and_aggregate(strength[:, lo : lo + chunk], cons, rows)
+        out[lo : lo + chunk] = centroid(universe, rows)
     return out
+
+
+@numba.njit(cache=True)
+def _clip_and_aggregate(strength, cons, out):
+    """``out[i, p] = max_t min(strength[t, i], cons[t, p])``: the clipped consequents' maximum (compiled; exact)."""
+    for i in range(out.shape[0]):
+        for p in range(out.shape[1]):
+            y = min(strength[0, i], cons[0, p])
+            for t in range(1, cons.shape[0]):
+                y = max(y, min(strength[t, i], cons[t, p]))
+            out[i, p] = y
 
 
 @dataclass(frozen=True, eq=False)
