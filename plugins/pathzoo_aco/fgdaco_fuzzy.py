@@ -204,11 +204,14 @@ def defuzzify(strength: np.ndarray, cons: np.ndarray, universe: np.ndarray, chun
 def _clip_and_aggregate(strength, cons, out):
     """``out[i, p] = max_t min(strength[t, i], cons[t, p])``: the clipped consequents' maximum (compiled; exact)."""
     for i in range(out.shape[0]):
-        for p in range(out.shape[1]):
-            y = min(strength[0, i], cons[0, p])
-            for t in range(1, cons.shape[0]):
-                y = max(y, min(strength[t, i], cons[t, p]))
-            out[i, p] = y
+        row = out[i]
+        s = strength[0, i]
+        for p in range(row.size):
+            row[p] = min(s, cons[0, p])
+        for t in range(1, cons.shape[0]):
+            s = strength[t, i]
+            for p in range(row.size):  # contiguous: vectorised
+                row[p] = max(row[p], min(s, cons[t, p]))
 
 
 @dataclass(frozen=True, eq=False)
