@@ -126,15 +126,17 @@ def memberships(supports: tuple[tuple[float, float], ...], values: np.ndarray) -
                      for k, s in enumerate(supports)])
 
 
-def centroid(universe: np.ndarray, mf: np.ndarray) -> np.ndarray:
+def centroid(universe: np.ndarray, mf: np.ndarray,
+             weights: tuple[np.ndarray, np.ndarray] | None = None) -> np.ndarray:
     """Centroid of each row of ``mf`` (shape ``(n, len(universe))``), as ``skfuzzy.defuzz(x, row, "centroid")``.
 
     The rows are piecewise linear between universe points, so each interval
     is a trapezoid with area ``dx (y1 + y2) / 2`` and moment about zero
     ``dx ((y1 + y2) x1 + dx (y1 + 2 y2) / 3) / 2``; both are linear in the
-    memberships, so a batch is two matrix products.
+    memberships, so a batch is two matrix products. ``weights`` are
+    ``_centroid_weights(universe)``, if already at hand.
     """
-    area_w, moment_w = _centroid_weights(universe)
+    area_w, moment_w = _centroid_weights(universe) if weights is None else weights
     return (mf @ moment_w) / np.fmax(mf @ area_w, np.finfo(float).eps)
 
 
@@ -178,9 +180,7 @@ def fuzzy_priority(target: np.ndarray, angle: np.ndarray, obstacle: np.ndarray, 
     """
     t, a, o = np.broadcast_arrays(*(np.asarray(v, dtype=np.float64) for v in (target, angle, obstacle)))
     mt, ma, mo = (memberships(INPUT_SUPPORTS[name], v.ravel()) for name, v in zip(INPUT_SUPPORTS, (t, a, o)))
-    strength = np.zeros((3, mt.shape[1]))
-    for (i, j, k), term in RULES.items():
-        np.maximum(strength[term], np.minimum(np.minimum(mt[i], ma[j]), mo[k]), out=strength[term])
+    strength = _fire_rules(mt, ma, mo, compiled_priority().rules)
     return defuzzify(strength, consequents(), UNIVERSE, chunk).reshape(t.shape)
 
 
@@ -192,12 +192,27 @@ def defuzzify(strength: np.ndarray, cons: np.ndarray, universe: np.ndarray, chun
     time so the ``(chunk, U)`` aggregates stay small. Shared by FLACO's impedance.
     """
     out = np.empty(strength.shape[1])
+    weights = _centroid_weights(universe)
     aggregate = np.empty((min(chunk, out.size), universe.size))
     for lo in range(0, out.size, chunk):
         rows = aggregate[: min(chunk, out.size - lo)]
         _clip_and_aggregate(strength[:, lo : lo + chunk], cons, rows)
-        out[lo : lo + chunk] = centroid(universe, rows)
+        out[lo : lo + chunk] = centroid(universe, rows, weights)
     return out
+
+
+@numba.njit(cache=True)
+def _fire_rules(mt, ma, mo, rules):
+    """Firing strength of each priority term per value: the largest ``min`` of the three memberships over its rules.
+
+    ``rules`` rows are ``(target term, angle term, obstacle term, priority term)``; ``min`` and ``max`` are exact.
+    """
+    strength = np.zeros((3, mt.shape[1]))
+    for r in range(rules.shape[0]):
+        i, j, k, term = rules[r, 0], rules[r, 1], rules[r, 2], rules[r, 3]
+        for n in range(mt.shape[1]):
+            strength[term, n] = max(strength[term, n], min(mt[i, n], ma[j, n], mo[k, n]))
+    return strength
 
 
 @numba.njit(cache=True)
