@@ -36,6 +36,10 @@ instead of being measured again. The bounds only decide which exact checks
 run; where a bound lets a check be skipped the check would have passed, so
 the walks are the same (``benchmarks/identity.py``).
 
+Per node and obstacle, :func:`route_clearance` (the distance to the
+obstacle's whole route, whatever the time) is a bound kept from the start:
+an obstacle whose route is out of reach from a node is not measured there.
+
 A walk whose tabu list and backtracking exhaust the start's component
 proves the goal unreachable only when no edge was refused for timing; such
 walks end :data:`STUCK` rather than :data:`EXHAUSTED`.
@@ -53,7 +57,7 @@ from pathzoo_aco.engine import ABORTED, EXHAUSTED, REACHED, STEP_CAP, STUCK, Col
 from pathzoo_aco.engine import WalkRules, Walks
 from pathzoo_aco.engine.walk import _seed
 from pathzoo_aco.fgdaco_fuzzy import clipped_centroid, compiled_priority, fired_strengths, rule_ceilings
-from pathzoo_aco.fgdaco_moving import obstacle_min_distance, obstacle_position, pack_obstacles
+from pathzoo_aco.fgdaco_moving import obstacle_min_distance, obstacle_position, pack_obstacles, route_clearance
 
 __all__ = ["TimedWalkEngine"]
 
@@ -71,7 +75,7 @@ def _timed_walk(indptr, indices, offset_id, horizontal, turn, length,
                 stamp, stack_e, stack_prev, stack_t, stack_gap, cand_e, cand_w, cand_n, gap, near_ids, ahead,
                 flat, offsets, flags, steps_out,
                 width, cell, speed, t_head, tail,
-                ob_points, ob_cum, ob_count, ob_speed, ob_phase, ob_radius,
+                ob_points, ob_cum, ob_count, ob_speed, ob_phase, ob_radius, route_gap,
                 target_in, angle_in, clear_in, sensing, ceilings, ceiling_known, seen_strength, seen_h,
                 vertices, rules, cons, area_w, moment_w):
     use_turn = turn.shape[0] > 0
@@ -125,7 +129,10 @@ def _timed_walk(indptr, indices, offset_id, horizontal, turn, length,
                 cy = (cur // width + 0.5) * cell
                 n_near = 0  # obstacles that may touch a move from here or come within sensing range of its end
                 for k in range(n_obs):
-                    if gap[k] < reach[k]:  # the bound says nothing: measure
+                    if gap[k] < reach[k]:  # the bound says nothing: measure, unless the whole route is out of reach
+                        if route_gap[cur, k] >= reach[k]:
+                            gap[k] = route_gap[cur, k]
+                            continue
                         ox, oy = obstacle_position(ob_points, ob_cum, ob_count, ob_speed, ob_phase, k, t_cur)
                         dx = cx - ox
                         dy = cy - oy
@@ -336,6 +343,7 @@ class TimedWalkEngine(WalkEngine):
         g = problem.graph
         self.buffers = _TimedBuffers.allocate(problem, len(s.moving_obstacles))
         self.obstacles = pack_obstacles(s.moving_obstacles)
+        self.route_gap = route_clearance(self.obstacles, s.point_of(np.arange(g.n_nodes)))
         self.graph_arrays = (g.indptr, g.indices.astype(np.int32), g.offset_id.astype(np.int32),
                              problem.horizontal_offsets)
         self.length = np.ascontiguousarray(g.length)
@@ -379,7 +387,7 @@ class TimedWalkEngine(WalkEngine):
             b.ahead,
             b.flat, offsets, flags, steps,
             g.shape[1], p.scenario.cell_size, p.scenario.vehicle.cruise_speed, self.t_head, self.tail,
-            ob.points, ob.cum, ob.count, ob.speed, ob.phase, ob.radius,
+            ob.points, ob.cum, ob.count, ob.speed, ob.phase, ob.radius, self.route_gap,
             self.target_in, self.angle_in, self.clear_in, self.sensing_m, b.ceilings, b.ceiling_known, b.seen_strength,
             b.seen_h,
             cp.vertices, cp.rules, cp.consequents, cp.area_w, cp.moment_w,

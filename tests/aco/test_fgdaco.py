@@ -32,7 +32,7 @@ from pathzoo_aco.fgdaco_fuzzy import (
     rule_ceilings,
     triangle,
 )
-from pathzoo_aco.fgdaco_moving import obstacle_min_distance, obstacle_position, pack_obstacles
+from pathzoo_aco.fgdaco_moving import obstacle_min_distance, obstacle_position, pack_obstacles, route_clearance
 
 from aco_maps import walled_grid
 
@@ -139,6 +139,15 @@ def test_compiled_obstacle_geometry_matches_moving_obstacle():
         assert obstacle_position(*arrays, k, t0) == pytest.approx(tuple(obstacles[k].position(t0)), abs=1e-9)
         expected = obstacles[k].min_distance(p0, p1, t0, t1)
         assert obstacle_min_distance(*arrays, k, *p0, *p1, t0, t1) == pytest.approx(expected, abs=1e-9)
+    # the clearance to a whole route bounds the distance to the disc at any time, and is reached on the route
+    points = rng.uniform(-5, 25, (300, 2))
+    bound = route_clearance(packed, points)
+    for k, ob in enumerate(obstacles):
+        period = ob.period_s if np.isfinite(ob.period_s) else 1.0
+        centres = ob.position(np.linspace(0.0, period, 20001))
+        gaps = np.linalg.norm(points[:, None, :] - centres[None, :, :], axis=2).min(axis=1) - ob.radius
+        assert (bound[:, k] <= gaps).all()
+        assert bound[:, k] == pytest.approx(gaps, abs=2e-3)  # sampled every ~1/20000 of the route
 
 
 # ------------------------------------------------------------------ gain and update
