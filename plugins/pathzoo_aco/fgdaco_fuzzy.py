@@ -308,7 +308,7 @@ def clipped_centroid(s0, s1, s2, cons, area_w, moment_w):
 def rule_ceilings(target, angle, vertices, rules, out):
     """How strongly each priority term can fire through each obstacle term, from a move's target and angle alone.
 
-    Fills ``out[term, k]`` (shape (3, 3)) with the largest
+    Fills ``out[term, k]`` (the first 3 x 3 entries of ``out``) with the largest
     ``min(μ_target, μ_angle)`` over the rules with obstacle term ``k`` and
     priority term ``term``. Since ``min`` and ``max`` only select values, the
     firing strength of ``term`` for an obstacle input with memberships ``μ_k``
@@ -317,7 +317,7 @@ def rule_ceilings(target, angle, vertices, rules, out):
     through all 27 rules. ``vertices`` and ``rules`` are those of
     :class:`CompiledPriority`.
     """
-    out[:, :] = 0.0
+    out[:3, :3] = 0.0
     for r in range(rules.shape[0]):
         i, j, k, term = rules[r, 0], rules[r, 1], rules[r, 2], rules[r, 3]
         s = min(_membership(target, vertices[0, i, 0], vertices[0, i, 1], vertices[0, i, 2]),

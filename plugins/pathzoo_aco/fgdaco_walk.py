@@ -25,7 +25,8 @@ For a candidate edge ``i -> j`` left at ``t_i`` and reached at ``t_j``:
   target and angle inputs (:func:`rule_ceilings`, once per edge), then the
   firing strengths for the new obstacle input (:func:`fired_strengths`).
   The centroid depends on those three strengths only, so each edge keeps
-  the last ones it saw and their priority (about half the centroids on
+  the last ones it saw and their priority, beside its ceilings in one 4 x 4
+  record (two cache lines: the walks wait on memory more than they compute) (about half the centroids on
   ``fgdaco.scenario3`` are repeats: a very near obstacle saturates the input).
 
 An ant that backs up to a node is there again at the same time, with the
@@ -76,7 +77,7 @@ def _timed_walk(indptr, indices, offset_id, horizontal, turn, length,
                 flat, offsets, flags, steps_out,
                 width, cell, speed, t_head, tail,
                 ob_points, ob_cum, ob_count, ob_speed, ob_phase, ob_radius, route_gap,
-                target_in, angle_in, clear_in, sensing, ceilings, ceiling_known, seen_strength, seen_h,
+                target_in, angle_in, clear_in, sensing, fuzzy_memo,
                 vertices, rules, cons, area_w, moment_w):
     use_turn = turn.shape[0] > 0
     no_prev = turn.shape[0] - 1
@@ -192,16 +193,18 @@ def _timed_walk(indptr, indices, offset_id, horizontal, turn, length,
                         timed_out = True
                         continue
                     if near < clear_in[j]:  # the fuzzy inference of priority_one, in two exact steps
-                        if not ceiling_known[e]:
-                            rule_ceilings(target_in[j], angle_in[e], vertices, rules, ceilings[e])
-                            ceiling_known[e] = True
-                        s0, s1, s2 = fired_strengths(ceilings[e], near, vertices)
-                        if s0 != seen_strength[e, 0] or s1 != seen_strength[e, 1] or s2 != seen_strength[e, 2]:
-                            seen_strength[e, 0] = s0
-                            seen_strength[e, 1] = s1
-                            seen_strength[e, 2] = s2
-                            seen_h[e] = clipped_centroid(s0, s1, s2, cons, area_w, moment_w)**beta
-                        h = seen_h[e]
+                        memo = fuzzy_memo[e]  # one edge's 4 x 4 record: two cache lines
+                        if memo[0, 3] == 0.0:  # first time: the ceilings; no strengths seen yet
+                            rule_ceilings(target_in[j], angle_in[e], vertices, rules, memo)
+                            memo[0, 3] = 1.0
+                            memo[3, :3] = np.nan
+                        s0, s1, s2 = fired_strengths(memo, near, vertices)
+                        if s0 != memo[3, 0] or s1 != memo[3, 1] or s2 != memo[3, 2]:
+                            memo[3, 0] = s0
+                            memo[3, 1] = s1
+                            memo[3, 2] = s2
+                            memo[3, 3] = clipped_centroid(s0, s1, s2, cons, area_w, moment_w)**beta
+                        h = memo[3, 3]
                     else:
                         h = w_mul[e]
                     t = min(max(scale * x[e], lo), hi)
@@ -291,10 +294,7 @@ class _TimedBuffers:
     gap: np.ndarray
     near_ids: np.ndarray
     ahead: np.ndarray
-    ceilings: np.ndarray
-    ceiling_known: np.ndarray
-    seen_strength: np.ndarray
-    seen_h: np.ndarray
+    fuzzy_memo: np.ndarray
     flat: np.ndarray
     walk_base: int = 0
 
@@ -309,9 +309,7 @@ class _TimedBuffers:
                    cand_e=np.zeros(depth * degree, dtype=np.int64), cand_w=np.zeros(depth * degree),
                    cand_n=np.zeros(depth, dtype=np.int64), gap=np.zeros(n_obstacles),
                    near_ids=np.zeros(n_obstacles, dtype=np.int64), ahead=np.zeros((max(n_obstacles, 1), 2, 3)),
-                   ceilings=np.empty((g.n_edges, 3, 3)),
-                   ceiling_known=np.zeros(g.n_edges, dtype=np.bool_), seen_strength=np.full((g.n_edges, 3), np.nan),
-                   seen_h=np.zeros(g.n_edges),
+                   fuzzy_memo=np.zeros((g.n_edges, 4, 4)),
                    flat=np.zeros(0, dtype=np.int64))
 
 
@@ -388,8 +386,7 @@ class TimedWalkEngine(WalkEngine):
             b.flat, offsets, flags, steps,
             g.shape[1], p.scenario.cell_size, p.scenario.vehicle.cruise_speed, self.t_head, self.tail,
             ob.points, ob.cum, ob.count, ob.speed, ob.phase, ob.radius, self.route_gap,
-            self.target_in, self.angle_in, self.clear_in, self.sensing_m, b.ceilings, b.ceiling_known, b.seen_strength,
-            b.seen_h,
+            self.target_in, self.angle_in, self.clear_in, self.sensing_m, b.fuzzy_memo,
             cp.vertices, cp.rules, cp.consequents, cp.area_w, cp.moment_w,
         )
         b.walk_base += n_ants
