@@ -25,9 +25,10 @@ For a candidate edge ``i -> j`` left at ``t_i`` and reached at ``t_j``:
   target and angle inputs (:func:`rule_ceilings`, once per edge), then the
   firing strengths for the new obstacle input (:func:`fired_strengths`).
   The centroid depends on those three strengths only, so each edge keeps
-  the last ones it saw and their priority, beside its ceilings in one 4 x 4
-  record (two cache lines: the walks wait on memory more than they compute) (about half the centroids on
-  ``fgdaco.scenario3`` are repeats: a very near obstacle saturates the input).
+  the last ones it saw and their priority (about half the centroids on
+  ``fgdaco.scenario3`` are repeats: a very near obstacle saturates the
+  input), beside its ceilings in one 4 x 4 record: two cache lines, since
+  the walks wait on memory more than they compute.
 
 An ant that backs up to a node is there again at the same time, with the
 same trails: the candidates and weights of its first visit are reused, less
