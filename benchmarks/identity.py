@@ -42,12 +42,12 @@ EXTRA = (  # planner, scenario id, parameters: non-default settings that take ot
     ("aco.mmas", "gant.fig7", {"n_ants": 3}),
     ("aco.dsaco", "dsaco.complex", {"step_rule": "longitude"}),
 )
-FULL = (  # planner, scenario id, iterations, parameters: longer runs, where pheromone shapes most walks
-    ("aco.fgdaco", "fgdaco.scenario1", 100, {}),
-    ("aco.fgdaco", "fgdaco.scenario3", 100, {}),
-    ("aco.fgdaco", "fgdaco.trap", 30, {}),
-    ("aco.fgdaco", "fgdaco.scenario2", 30, {"sensing_m": 25.0, "alpha": 1.0}),
-    ("aco.fgdaco", "fgdaco.scenario3", 30, {"n_ants": 3, "beta": 2.0}),
+LONG = (  # planner, scenario id, parameters, iterations: whole runs (schedules, evaporation, p decay)
+    ("aco.fgdaco", "fgdaco.scenario1", {}, 100),
+    ("aco.fgdaco", "fgdaco.scenario3", {}, 100),
+    ("aco.fgdaco", "fgdaco.trap", {}, 30),
+    ("aco.fgdaco", "fgdaco.scenario2", {"sensing_m": 25.0, "alpha": 1.0}, 30),
+    ("aco.fgdaco", "fgdaco.scenario3", {"n_ants": 3, "beta": 2.0}, 30),
 )
 
 
@@ -91,7 +91,7 @@ def cases(only: set[str] | None):
         s = scenario(sid)
         for seed in SEEDS:
             yield f"{pid}|{sid}|{seed}|{json.dumps(params, sort_keys=True)}", pid, s, seed, 4, params
-    for pid, sid, iters, params in FULL:
+    for pid, sid, params, iters in LONG:
         if only and pid not in only:
             continue
         s = scenario(sid)
