@@ -43,6 +43,11 @@ EXTRA = (  # planner, scenario id, parameters: non-default settings that take ot
     ("aco.dsaco", "dsaco.complex", {"step_rule": "longitude"}),
 )
 LONG = (  # planner, scenario id, parameters, iterations: whole runs (schedules, evaporation, p decay)
+    ("aco.dsaco", "dsaco.complex", {}, 500),
+    ("aco.dsaco", "dsaco.complex", {"step_rule": "longitude"}, 500),
+    ("aco.dsaco", "dsaco.simple", {"rho": 0.9}, 300),
+    ("aco.dsaco", "dsaco.complex", {"l_min": 1.01, "step_rule": "longitude"}, 100),
+    ("aco.dsaco", "dsaco.complex", {"l_max": 70.0, "step_rule": "longitude"}, 60),
     ("aco.fgdaco", "fgdaco.scenario1", {}, 100),
     ("aco.fgdaco", "fgdaco.scenario3", {}, 100),
     ("aco.fgdaco", "fgdaco.trap", {}, 30),
