@@ -28,7 +28,7 @@ from pathzoo import Budget, Scenario
 from pathzoo.generators import random_obstacles
 
 ACO = ("aco.as", "aco.mmas", "aco.acs", "aco.ggaco", "aco.gant", "aco.iaca", "aco.fgdaco", "aco.dsaco")
-EXACT = ("exact.astar", "exact.dijkstra")
+EXACT = ("exact.astar", "exact.dijkstra", "exact.thetastar")
 SCENARIOS = (  # scenario id, iterations per ACO run
     ("random60", 6), ("gant.fig7", 10), ("gant.acopso", 10), ("gant.simple.1", 2), ("iaca.offroad", 8),
     ("ggaco.hugo", 6), ("ggaco.frontrange", 3), ("fgdaco.scenario1", 6), ("fgdaco.scenario2", 4),
@@ -41,6 +41,18 @@ EXTRA = (  # planner, scenario id, parameters: non-default settings that take ot
     ("aco.as", "random60", {"dead_end": "die"}),
     ("aco.mmas", "gant.fig7", {"n_ants": 3}),
     ("aco.dsaco", "dsaco.complex", {"step_rule": "longitude"}),
+    ("exact.astar", "gant.simple.1", {"cost": "energy"}),
+    ("exact.dijkstra", "gant.fig7", {"cost": "energy"}),
+    ("exact.astar", "iaca.offroad", {"cost": "energy"}),
+    ("exact.astar", "movingai.8room_000.b99.989", {}),
+    ("exact.astar", "movingai.8room_000.b194.1939", {}),
+    ("exact.dijkstra", "movingai.8room_000.b194.1939", {}),
+    ("exact.thetastar", "movingai.8room_000.b194.1939", {}),
+    ("aco.dsaco", "dsaco.simple", {"step_rule": "longitude", "n_ants": 3}),
+    ("aco.dsaco", "dsaco.complex", {"alpha": 1.5, "q0_initial": 0.0}),
+    ("aco.dsaco", "random60", {"dead_end": "die"}),
+    ("aco.dsaco", "dsaco.complex", {"l_max": 60.0, "l_min": 2.0}),
+    ("aco.dsaco", "dsaco.complex", {"max_steps": 30, "dead_end": "die"}),
 )
 LONG = (  # planner, scenario id, parameters, iterations: whole runs (schedules, evaporation, p decay)
     ("aco.dsaco", "dsaco.complex", {}, 500),
