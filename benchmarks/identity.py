@@ -60,6 +60,11 @@ LONG = (  # planner, scenario id, parameters, iterations: whole runs (schedules,
     ("aco.dsaco", "dsaco.simple", {"rho": 0.9}, 300),
     ("aco.dsaco", "dsaco.complex", {"l_min": 1.01, "step_rule": "longitude"}, 100),
     ("aco.dsaco", "dsaco.complex", {"l_max": 70.0, "step_rule": "longitude"}, 60),
+    ("aco.fgdaco", "fgdaco.scenario1", {}, 100),
+    ("aco.fgdaco", "fgdaco.scenario3", {}, 100),
+    ("aco.fgdaco", "fgdaco.trap", {}, 30),
+    ("aco.fgdaco", "fgdaco.scenario2", {"sensing_m": 25.0, "alpha": 1.0}, 30),
+    ("aco.fgdaco", "fgdaco.scenario3", {"n_ants": 3, "beta": 2.0}, 30),
 )
 
 

@@ -58,6 +58,9 @@ __all__ = [
     "CompiledPriority",
     "compiled_priority",
     "priority_one",
+    "clipped_centroid",
+    "rule_ceilings",
+    "fired_strengths",
 ]
 
 UNIVERSE = np.linspace(0.0, 1.0, 201)
@@ -123,15 +126,17 @@ def memberships(supports: tuple[tuple[float, float], ...], values: np.ndarray) -
                      for k, s in enumerate(supports)])
 
 
-def centroid(universe: np.ndarray, mf: np.ndarray) -> np.ndarray:
+def centroid(universe: np.ndarray, mf: np.ndarray,
+             weights: tuple[np.ndarray, np.ndarray] | None = None) -> np.ndarray:
     """Centroid of each row of ``mf`` (shape ``(n, len(universe))``), as ``skfuzzy.defuzz(x, row, "centroid")``.
 
     The rows are piecewise linear between universe points, so each interval
     is a trapezoid with area ``dx (y1 + y2) / 2`` and moment about zero
     ``dx ((y1 + y2) x1 + dx (y1 + 2 y2) / 3) / 2``; both are linear in the
-    memberships, so a batch is two matrix products.
+    memberships, so a batch is two matrix products. ``weights`` are
+    ``_centroid_weights(universe)``, if already at hand.
     """
-    area_w, moment_w = _centroid_weights(universe)
+    area_w, moment_w = _centroid_weights(universe) if weights is None else weights
     return (mf @ moment_w) / np.fmax(mf @ area_w, np.finfo(float).eps)
 
 
@@ -175,9 +180,7 @@ def fuzzy_priority(target: np.ndarray, angle: np.ndarray, obstacle: np.ndarray, 
     """
     t, a, o = np.broadcast_arrays(*(np.asarray(v, dtype=np.float64) for v in (target, angle, obstacle)))
     mt, ma, mo = (memberships(INPUT_SUPPORTS[name], v.ravel()) for name, v in zip(INPUT_SUPPORTS, (t, a, o)))
-    strength = np.zeros((3, mt.shape[1]))
-    for (i, j, k), term in RULES.items():
-        np.maximum(strength[term], np.minimum(np.minimum(mt[i], ma[j]), mo[k]), out=strength[term])
+    strength = _fire_rules(mt, ma, mo, compiled_priority().rules)
     return defuzzify(strength, consequents(), UNIVERSE, chunk).reshape(t.shape)
 
 
@@ -189,10 +192,41 @@ def defuzzify(strength: np.ndarray, cons: np.ndarray, universe: np.ndarray, chun
     time so the ``(chunk, U)`` aggregates stay small. Shared by FLACO's impedance.
     """
     out = np.empty(strength.shape[1])
+    weights = _centroid_weights(universe)
+    aggregate = np.empty((min(chunk, out.size), universe.size))
     for lo in range(0, out.size, chunk):
-        aggregate = np.max(np.minimum(strength[:, lo : lo + chunk, None], cons[:, None, :]), axis=0)
-        out[lo : lo + chunk] = centroid(universe, aggregate)
+        rows = aggregate[: min(chunk, out.size - lo)]
+        _clip_and_aggregate(strength[:, lo : lo + chunk], cons, rows)
+        out[lo : lo + chunk] = centroid(universe, rows, weights)
     return out
+
+
+@numba.njit(cache=True)
+def _fire_rules(mt, ma, mo, rules):
+    """Firing strength of each priority term per value: the largest ``min`` of the three memberships over its rules.
+
+    ``rules`` rows are ``(target term, angle term, obstacle term, priority term)``; ``min`` and ``max`` are exact.
+    """
+    strength = np.zeros((3, mt.shape[1]))
+    for r in range(rules.shape[0]):
+        i, j, k, term = rules[r, 0], rules[r, 1], rules[r, 2], rules[r, 3]
+        for n in range(mt.shape[1]):
+            strength[term, n] = max(strength[term, n], min(mt[i, n], ma[j, n], mo[k, n]))
+    return strength
+
+
+@numba.njit(cache=True)
+def _clip_and_aggregate(strength, cons, out):
+    """``out[i, p] = max_t min(strength[t, i], cons[t, p])``: the clipped consequents' maximum (compiled; exact)."""
+    for i in range(out.shape[0]):
+        row = out[i]
+        s = strength[0, i]
+        for p in range(row.size):
+            row[p] = min(s, cons[0, p])
+        for t in range(1, cons.shape[0]):
+            s = strength[t, i]
+            for p in range(row.size):  # contiguous: vectorised
+                row[p] = max(row[p], min(s, cons[t, p]))
 
 
 @dataclass(frozen=True, eq=False)
@@ -255,7 +289,12 @@ def priority_one(target, angle, obstacle, vertices, rules, cons, area_w, moment_
         s = min(mu[0, rules[r, 0]], mu[1, rules[r, 1]], mu[2, rules[r, 2]])
         if s > strength[rules[r, 3]]:
             strength[rules[r, 3]] = s
-    s0, s1, s2 = strength[0], strength[1], strength[2]
+    return clipped_centroid(strength[0], strength[1], strength[2], cons, area_w, moment_w)
+
+
+@numba.njit(cache=True, fastmath=True)
+def clipped_centroid(s0, s1, s2, cons, area_w, moment_w):
+    """Crisp priority from the firing strengths of the low, medium and high terms: clip, aggregate by max, centroid."""
     area = 0.0
     moment = 0.0
     for p in range(cons.shape[1]):
@@ -263,3 +302,41 @@ def priority_one(target, angle, obstacle, vertices, rules, cons, area_w, moment_
         area += y * area_w[p]
         moment += y * moment_w[p]
     return moment / max(area, 2.220446049250313e-16)
+
+
+@numba.njit(cache=True, fastmath=True)
+def rule_ceilings(target, angle, vertices, rules, out):
+    """How strongly each priority term can fire through each obstacle term, from a move's target and angle alone.
+
+    Fills ``out[term, k]`` (the first 3 x 3 entries of ``out``) with the largest
+    ``min(μ_target, μ_angle)`` over the rules with obstacle term ``k`` and
+    priority term ``term``. Since ``min`` and ``max`` only select values, the
+    firing strength of ``term`` for an obstacle input with memberships ``μ_k``
+    is exactly ``max(0, max_k min(out[term, k], μ_k))``
+    (:func:`fired_strengths`): the number :func:`priority_one` finds by going
+    through all 27 rules. ``vertices`` and ``rules`` are those of
+    :class:`CompiledPriority`.
+    """
+    out[:3, :3] = 0.0
+    for r in range(rules.shape[0]):
+        i, j, k, term = rules[r, 0], rules[r, 1], rules[r, 2], rules[r, 3]
+        s = min(_membership(target, vertices[0, i, 0], vertices[0, i, 1], vertices[0, i, 2]),
+                _membership(angle, vertices[1, j, 0], vertices[1, j, 1], vertices[1, j, 2]))
+        if s > out[term, k]:
+            out[term, k] = s
+
+
+@numba.njit(cache=True, fastmath=True)
+def fired_strengths(ceilings, obstacle, vertices):
+    """Firing strengths of the low, medium and high priority terms of a move whose :func:`rule_ceilings` are given.
+
+    ``clipped_centroid(*fired_strengths(ceilings[e], obstacle, vertices), ...)``
+    is exactly :func:`priority_one` of that move: only the obstacle input is
+    new, so the 27 rules reduce to nine ``min`` and three ``max``.
+    """
+    m0 = _membership(obstacle, vertices[2, 0, 0], vertices[2, 0, 1], vertices[2, 0, 2])
+    m1 = _membership(obstacle, vertices[2, 1, 0], vertices[2, 1, 1], vertices[2, 1, 2])
+    m2 = _membership(obstacle, vertices[2, 2, 0], vertices[2, 2, 1], vertices[2, 2, 2])
+    return (max(0.0, min(ceilings[0, 0], m0), min(ceilings[0, 1], m1), min(ceilings[0, 2], m2)),
+            max(0.0, min(ceilings[1, 0], m0), min(ceilings[1, 1], m1), min(ceilings[1, 2], m2)),
+            max(0.0, min(ceilings[2, 0], m0), min(ceilings[2, 1], m1), min(ceilings[2, 2], m2)))

@@ -22,7 +22,7 @@ import numpy as np
 
 from pathzoo.core.moving import MovingObstacle
 
-__all__ = ["ObstacleArrays", "pack_obstacles", "obstacle_position", "obstacle_min_distance"]
+__all__ = ["ObstacleArrays", "pack_obstacles", "route_clearance", "obstacle_position", "obstacle_min_distance"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -68,6 +68,27 @@ def pack_obstacles(obstacles: Sequence[MovingObstacle]) -> ObstacleArrays:
         count[k] = len(route)
     as_array = lambda name: np.array([float(getattr(ob, name)) for ob in obstacles])  # noqa: E731
     return ObstacleArrays(points, cum, count, as_array("speed"), as_array("phase_s"), as_array("radius"))
+
+
+def route_clearance(obstacles: ObstacleArrays, points: np.ndarray) -> np.ndarray:
+    """A lower bound, whatever the time, on each point's distance to each obstacle's disc: ``(n_points, n)``.
+
+    The distance from the point to the obstacle's whole route, less its
+    radius, shrunk by 1e-12 relative so that rounding never puts it above
+    the distance to the disc at any moment.
+    """
+    points = np.asarray(points, dtype=np.float64)
+    out = np.empty((len(points), obstacles.n))
+    for k in range(obstacles.n):
+        route = obstacles.points[k, : obstacles.count[k]]
+        best = np.hypot(*(points - route[0]).T)
+        for a, b in zip(route[:-1], route[1:]):
+            ab = b - a
+            denom = float(ab @ ab)
+            u = np.clip((points - a) @ ab / denom, 0.0, 1.0) if denom > 0.0 else np.zeros(len(points))
+            best = np.minimum(best, np.hypot(*(points - a - u[:, None] * ab).T))
+        out[:, k] = best * (1.0 - 1e-12) - obstacles.radius[k]
+    return out
 
 
 @numba.njit(cache=True, inline="always")

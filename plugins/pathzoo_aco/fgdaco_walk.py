@@ -20,7 +20,27 @@ For a candidate edge ``i -> j`` left at ``t_i`` and reached at ``t_j``:
 - otherwise its weight is ``τ^α · priority^β`` where the priority is the
   planner's precomputed static one, unless a moving obstacle at ``t_j`` is
   nearer to ``j`` than every static obstacle: then the fuzzy inference is
-  run again with that distance (:func:`priority_one`).
+  run again with that distance. That is :func:`priority_one`'s number,
+  computed in two exact steps: the rules' ceilings from the edge's fixed
+  target and angle inputs (:func:`rule_ceilings`, once per edge), then the
+  firing strengths for the new obstacle input (:func:`fired_strengths`).
+  The centroid depends on those three strengths only, so each edge keeps
+  the last ones it saw and their priority (about half the centroids on
+  ``fgdaco.scenario3`` are repeats: a very near obstacle saturates the
+  input), beside its ceilings in one 4 x 4 record: two cache lines, since
+  the walks wait on memory more than they compute.
+
+An ant that backs up to a node is there again at the same time, with the
+same trails: the candidates and weights of its first visit are reused, less
+the nodes it has stamped since (the same list, in the same order, as
+weighing them again), and the obstacle bounds of that visit are restored
+instead of being measured again. The bounds only decide which exact checks
+run; where a bound lets a check be skipped the check would have passed, so
+the walks are the same (``benchmarks/identity.py``).
+
+Per node and obstacle, :func:`route_clearance` (the distance to the
+obstacle's whole route, whatever the time) is a bound kept from the start:
+an obstacle whose route is out of reach from a node is not measured there.
 
 A walk whose tabu list and backtracking exhaust the start's component
 proves the goal unreachable only when no edge was refused for timing; such
@@ -38,24 +58,31 @@ import numpy as np
 from pathzoo_aco.engine import ABORTED, EXHAUSTED, REACHED, STEP_CAP, STUCK, ColonyProblem, Pheromone, WalkEngine
 from pathzoo_aco.engine import WalkRules, Walks
 from pathzoo_aco.engine.walk import _seed
-from pathzoo_aco.fgdaco_fuzzy import compiled_priority, priority_one
-from pathzoo_aco.fgdaco_moving import obstacle_min_distance, obstacle_position, pack_obstacles
+from pathzoo_aco.fgdaco_fuzzy import clipped_centroid, compiled_priority, fired_strengths, rule_ceilings
+from pathzoo_aco.fgdaco_moving import obstacle_min_distance, obstacle_position, pack_obstacles, route_clearance
 
 __all__ = ["TimedWalkEngine"]
+
+UNDER = 1.0 - 1e-12
+"""Shrinks a measured distance that only serves as a bound, so that ``sqrt`` (faster than ``hypot``) stays below it.
+
+The rounding of either is below 1e-15 of the distance; the bound only decides which exact checks run.
+"""
 
 
 @numba.njit(cache=True)
 def _timed_walk(indptr, indices, offset_id, horizontal, turn, length,
                 x, scale, lo, hi, tau_exp, w_mul, beta,
                 start, goal, backtrack, max_steps, allowance, n_ants, walk_base,
-                stamp, stack_e, stack_prev, stack_t, stack_gap, cand_e, cand_w, gap, near_ids, ahead, mu, strength,
+                stamp, stack_e, stack_prev, stack_t, stack_gap, cand_e, cand_w, cand_n, gap, near_ids, ahead,
                 flat, offsets, flags, steps_out,
                 width, cell, speed, t_head, tail,
-                ob_points, ob_cum, ob_count, ob_speed, ob_phase, ob_radius,
-                target_in, angle_in, clear_in, sensing,
+                ob_points, ob_cum, ob_count, ob_speed, ob_phase, ob_radius, route_gap,
+                target_in, angle_in, clear_in, sensing, fuzzy_memo,
                 vertices, rules, cons, area_w, moment_w):
     use_turn = turn.shape[0] > 0
     no_prev = turn.shape[0] - 1
+    degree = cand_e.size // stack_e.size  # candidate slots per depth
     n_obs = ob_count.size
     lo_pow = lo**tau_exp
     max_len = 0.0
@@ -79,7 +106,7 @@ def _timed_walk(indptr, indices, offset_id, horizontal, turn, length,
         timed_out = False  # some edge was refused because of a moving obstacle
         stamp[start] = wid
         gap[:] = -np.inf  # lower bounds on each obstacle's distance (edge to centre of node) now: unknown
-        stack_gap[0, :] = np.nan  # exact distances measured at each depth (NaN: not measured there)
+        returned = False  # the ant has just backed up to ``cur``: same node, same time, same weights as before
         while cur != goal:
             if steps >= max_steps:
                 flag = STEP_CAP
@@ -87,87 +114,114 @@ def _timed_walk(indptr, indices, offset_id, horizontal, turn, length,
             if total >= allowance:
                 flag = ABORTED
                 break
-            cx = (cur % width + 0.5) * cell
-            cy = (cur // width + 0.5) * cell
-            n_near = 0  # obstacles that may touch a move from here or come within sensing range of its end
-            for k in range(n_obs):
-                if gap[k] < reach[k]:  # the bound says nothing: measure (or reuse this node's measurement)
-                    if math.isnan(stack_gap[depth, k]):
-                        ox, oy = obstacle_position(ob_points, ob_cum, ob_count, ob_speed, ob_phase, k, t_cur)
-                        stack_gap[depth, k] = math.hypot(cx - ox, cy - oy) - ob_radius[k]
-                    gap[k] = stack_gap[depth, k]
-                    if gap[k] < reach[k]:
-                        near_ids[n_near] = k
-                        ahead[n_near, 0, 0] = -1.0  # no arrival position of this obstacle computed yet
-                        ahead[n_near, 1, 0] = -1.0
-                        n_near += 1
+            base = depth * degree
             nc = 0
             total_w = 0.0
-            for e in range(indptr[cur], indptr[cur + 1]):
-                j = indices[e]
-                if stamp[j] == wid:
-                    continue
-                f = 1.0
-                if use_turn:
-                    f = turn[prev, offset_id[e]]
-                    if f <= 0.0:
+            if returned:  # the candidates of the first visit, less the nodes stamped since, in the same order
+                for c in range(cand_n[depth]):
+                    e = cand_e[base + c]
+                    if stamp[indices[e]] == wid:
                         continue
-                near = clear_in[j]
-                free = True
-                dt = 0.0
-                t_next = t_cur
-                if n_near > 0 or j == goal:  # the move's timing and end point matter only near obstacles
-                    dt = length[e] / speed
-                    t_next = t_cur + dt
-                jx = 0.0
-                jy = 0.0
-                if n_near > 0:
-                    jx = (j % width + 0.5) * cell
-                    jy = (j // width + 0.5) * cell
-                for q in range(n_near):
-                    k = near_ids[q]
-                    bound = gap[k] - length[e] - ob_speed[k] * dt  # least possible gap during the move
-                    if bound <= 0.0 and obstacle_min_distance(ob_points, ob_cum, ob_count, ob_speed, ob_phase, k,
-                                                              cx, cy, jx, jy, t_cur, t_next) < ob_radius[k]:
-                        free = False
-                        break
-                    if bound < near * sensing:  # moves of one length arrive together: reuse the position
-                        slot = 0 if ahead[q, 0, 0] == dt or ahead[q, 0, 0] < 0.0 else 1
-                        if ahead[q, slot, 0] != dt:
-                            ox, oy = obstacle_position(ob_points, ob_cum, ob_count, ob_speed, ob_phase, k, t_next)
-                            ahead[q, slot, 0] = dt
-                            ahead[q, slot, 1] = ox
-                            ahead[q, slot, 2] = oy
-                        ox = ahead[q, slot, 1]
-                        oy = ahead[q, slot, 2]
-                        near = min(near, max(math.hypot(jx - ox, jy - oy) - ob_radius[k], 0.0) / sensing)
-                if free and j == goal and tail[4] > 0.0:
-                    for k in range(n_obs):
-                        if obstacle_min_distance(ob_points, ob_cum, ob_count, ob_speed, ob_phase, k, tail[0], tail[1],
-                                                 tail[2], tail[3], t_next, t_next + tail[4]) < ob_radius[k]:
+                    cand_e[base + nc] = e
+                    cand_w[base + nc] = cand_w[base + c]
+                    total_w += cand_w[base + c]
+                    nc += 1
+            else:
+                cx = (cur % width + 0.5) * cell
+                cy = (cur // width + 0.5) * cell
+                n_near = 0  # obstacles that may touch a move from here or come within sensing range of its end
+                for k in range(n_obs):
+                    if gap[k] < reach[k]:  # the bound says nothing: measure, unless the whole route is out of reach
+                        if route_gap[cur, k] >= reach[k]:
+                            gap[k] = route_gap[cur, k]
+                            continue
+                        ox, oy = obstacle_position(ob_points, ob_cum, ob_count, ob_speed, ob_phase, k, t_cur)
+                        dx = cx - ox
+                        dy = cy - oy
+                        gap[k] = math.sqrt(dx * dx + dy * dy) * UNDER - ob_radius[k]
+                        if gap[k] < reach[k]:
+                            near_ids[n_near] = k
+                            ahead[n_near, 0, 0] = -1.0  # no arrival position of this obstacle computed yet
+                            ahead[n_near, 1, 0] = -1.0
+                            n_near += 1
+                stack_gap[depth, :] = gap  # restored if the ant backs up to here
+                for e in range(indptr[cur], indptr[cur + 1]):
+                    j = indices[e]
+                    if stamp[j] == wid:
+                        continue
+                    f = 1.0
+                    if use_turn:
+                        f = turn[prev, offset_id[e]]
+                        if f <= 0.0:
+                            continue
+                    near = clear_in[j]
+                    free = True
+                    dt = 0.0
+                    t_next = t_cur
+                    if n_near > 0 or j == goal:  # the move's timing and end point matter only near obstacles
+                        dt = length[e] / speed
+                        t_next = t_cur + dt
+                    jx = 0.0
+                    jy = 0.0
+                    if n_near > 0:
+                        jx = (j % width + 0.5) * cell
+                        jy = (j // width + 0.5) * cell
+                    for q in range(n_near):
+                        k = near_ids[q]
+                        bound = gap[k] - length[e] - ob_speed[k] * dt  # least possible gap during the move
+                        if bound <= 0.0 and obstacle_min_distance(ob_points, ob_cum, ob_count, ob_speed, ob_phase, k,
+                                                                  cx, cy, jx, jy, t_cur, t_next) < ob_radius[k]:
                             free = False
                             break
-                if not free:
-                    timed_out = True
-                    continue
-                if near < clear_in[j]:
-                    prio = priority_one(target_in[j], angle_in[e], near, vertices, rules, cons, area_w, moment_w,
-                                        mu, strength)
-                    h = prio**beta
-                else:
-                    h = w_mul[e]
-                t = min(max(scale * x[e], lo), hi)
-                if tau_exp == 1.0:
-                    w = t * h * f
-                elif t <= lo:  # trails resting on the floor share one power
-                    w = lo_pow * h * f
-                else:
-                    w = t**tau_exp * h * f
-                if w > 0.0:
-                    cand_e[nc] = e
-                    cand_w[nc] = w
-                    total_w += w
-                    nc += 1
+                        if bound < near * sensing:  # moves of one length arrive together: reuse the position
+                            slot = 0 if ahead[q, 0, 0] == dt or ahead[q, 0, 0] < 0.0 else 1
+                            if ahead[q, slot, 0] != dt:
+                                ox, oy = obstacle_position(ob_points, ob_cum, ob_count, ob_speed, ob_phase, k, t_next)
+                                ahead[q, slot, 0] = dt
+                                ahead[q, slot, 1] = ox
+                                ahead[q, slot, 2] = oy
+                            ox = ahead[q, slot, 1]
+                            oy = ahead[q, slot, 2]
+                            near = min(near, max(math.hypot(jx - ox, jy - oy) - ob_radius[k], 0.0) / sensing)
+                    if free and j == goal and tail[4] > 0.0:
+                        for k in range(n_obs):
+                            d = obstacle_min_distance(ob_points, ob_cum, ob_count, ob_speed, ob_phase, k, tail[0],
+                                                      tail[1], tail[2], tail[3], t_next, t_next + tail[4])
+                            if d < ob_radius[k]:
+                                free = False
+                                break
+                    if not free:
+                        timed_out = True
+                        continue
+                    if near < clear_in[j]:  # the fuzzy inference of priority_one, in two exact steps
+                        memo = fuzzy_memo[e]  # one edge's 4 x 4 record: two cache lines
+                        if memo[0, 3] == 0.0:  # first time: the ceilings; no strengths seen yet
+                            rule_ceilings(target_in[j], angle_in[e], vertices, rules, memo)
+                            memo[0, 3] = 1.0
+                            memo[3, :3] = np.nan
+                        s0, s1, s2 = fired_strengths(memo, near, vertices)
+                        if s0 != memo[3, 0] or s1 != memo[3, 1] or s2 != memo[3, 2]:
+                            memo[3, 0] = s0
+                            memo[3, 1] = s1
+                            memo[3, 2] = s2
+                            memo[3, 3] = clipped_centroid(s0, s1, s2, cons, area_w, moment_w)**beta
+                        h = memo[3, 3]
+                    else:
+                        h = w_mul[e]
+                    t = min(max(scale * x[e], lo), hi)
+                    if tau_exp == 1.0:
+                        w = t * h * f
+                    elif t <= lo:  # trails resting on the floor share one power
+                        w = lo_pow * h * f
+                    else:
+                        w = t**tau_exp * h * f
+                    if w > 0.0:
+                        cand_e[base + nc] = e
+                        cand_w[base + nc] = w
+                        total_w += w
+                        nc += 1
+            cand_n[depth] = nc
+            returned = False
             if nc == 0:  # dead end (at this time)
                 if not backtrack:
                     flag = STUCK
@@ -178,16 +232,17 @@ def _timed_walk(indptr, indices, offset_id, horizontal, turn, length,
                 depth -= 1
                 cur = indices[stack_e[depth - 1]] if depth > 0 else start
                 t_cur = stack_t[depth - 1] if depth > 0 else t_head
-                gap[:] = -np.inf
+                gap[:] = stack_gap[depth]
+                returned = True
                 if use_turn:
                     prev = stack_prev[depth - 1] if depth > 0 else no_prev
                 steps += 1
                 total += 1
                 continue
             r = np.random.random() * total_w
-            sel = cand_e[nc - 1]
+            sel = cand_e[base + nc - 1]
             acc = 0.0
-            for c in range(nc):
+            for c in range(base, base + nc):
                 acc += cand_w[c]
                 if r < acc:
                     sel = cand_e[c]
@@ -199,7 +254,6 @@ def _timed_walk(indptr, indices, offset_id, horizontal, turn, length,
             stamp[cur] = wid
             stack_e[depth] = sel
             stack_t[depth] = t_cur
-            stack_gap[depth + 1, :] = np.nan
             if use_turn:
                 o = offset_id[sel]
                 if horizontal[o]:
@@ -237,11 +291,11 @@ class _TimedBuffers:
     stack_gap: np.ndarray
     cand_e: np.ndarray
     cand_w: np.ndarray
+    cand_n: np.ndarray
     gap: np.ndarray
     near_ids: np.ndarray
     ahead: np.ndarray
-    mu: np.ndarray
-    strength: np.ndarray
+    fuzzy_memo: np.ndarray
     flat: np.ndarray
     walk_base: int = 0
 
@@ -252,9 +306,11 @@ class _TimedBuffers:
         degree = max(int(g.degree.max()) if g.n_nodes else 0, 1)
         return cls(stamp=np.full(g.n_nodes, -1, dtype=np.int32), stack_e=np.zeros(depth, dtype=np.int64),
                    stack_prev=np.zeros(depth, dtype=np.int64), stack_t=np.zeros(depth),
-                   stack_gap=np.zeros((depth + 1, max(n_obstacles, 1))),
-                   cand_e=np.zeros(degree, dtype=np.int64), cand_w=np.zeros(degree), gap=np.zeros(n_obstacles),
-                   near_ids=np.zeros(n_obstacles, dtype=np.int64), ahead=np.zeros((max(n_obstacles, 1), 2, 3)), mu=np.zeros((3, 3)), strength=np.zeros(3),
+                   stack_gap=np.zeros((depth, n_obstacles)),
+                   cand_e=np.zeros(depth * degree, dtype=np.int64), cand_w=np.zeros(depth * degree),
+                   cand_n=np.zeros(depth, dtype=np.int64), gap=np.zeros(n_obstacles),
+                   near_ids=np.zeros(n_obstacles, dtype=np.int64), ahead=np.zeros((max(n_obstacles, 1), 2, 3)),
+                   fuzzy_memo=np.zeros((g.n_edges, 4, 4)),
                    flat=np.zeros(0, dtype=np.int64))
 
 
@@ -286,6 +342,7 @@ class TimedWalkEngine(WalkEngine):
         g = problem.graph
         self.buffers = _TimedBuffers.allocate(problem, len(s.moving_obstacles))
         self.obstacles = pack_obstacles(s.moving_obstacles)
+        self.route_gap = route_clearance(self.obstacles, s.point_of(np.arange(g.n_nodes)))
         self.graph_arrays = (g.indptr, g.indices.astype(np.int32), g.offset_id.astype(np.int32),
                              problem.horizontal_offsets)
         self.length = np.ascontiguousarray(g.length)
@@ -325,12 +382,12 @@ class TimedWalkEngine(WalkEngine):
             *self.graph_arrays, rules.turn, self.length,
             trail.x, trail.scale, trail.lo, trail.hi, rules.tau_exp, rules.weight_mul, self.beta,
             p.start, p.goal, rules.backtrack, rules.max_steps, allowance, n_ants, b.walk_base,
-            b.stamp, b.stack_e, b.stack_prev, b.stack_t, b.stack_gap, b.cand_e, b.cand_w, b.gap, b.near_ids, b.ahead,
-            b.mu, b.strength,
+            b.stamp, b.stack_e, b.stack_prev, b.stack_t, b.stack_gap, b.cand_e, b.cand_w, b.cand_n, b.gap, b.near_ids,
+            b.ahead,
             b.flat, offsets, flags, steps,
             g.shape[1], p.scenario.cell_size, p.scenario.vehicle.cruise_speed, self.t_head, self.tail,
-            ob.points, ob.cum, ob.count, ob.speed, ob.phase, ob.radius,
-            self.target_in, self.angle_in, self.clear_in, self.sensing_m,
+            ob.points, ob.cum, ob.count, ob.speed, ob.phase, ob.radius, self.route_gap,
+            self.target_in, self.angle_in, self.clear_in, self.sensing_m, b.fuzzy_memo,
             cp.vertices, cp.rules, cp.consequents, cp.area_w, cp.moment_w,
         )
         b.walk_base += n_ants

@@ -23,13 +23,16 @@ from pathzoo_aco.fgdaco_fuzzy import (
     TERMS,
     UNIVERSE,
     centroid,
+    clipped_centroid,
     compiled_priority,
     consequents,
+    fired_strengths,
     fuzzy_priority,
     priority_one,
+    rule_ceilings,
     triangle,
 )
-from pathzoo_aco.fgdaco_moving import obstacle_min_distance, obstacle_position, pack_obstacles
+from pathzoo_aco.fgdaco_moving import obstacle_min_distance, obstacle_position, pack_obstacles, route_clearance
 
 from aco_maps import walled_grid
 
@@ -101,6 +104,22 @@ def test_compiled_twin_equals_the_vectorised_inference():
     np.testing.assert_allclose(twin, fuzzy_priority(*x.T), atol=1e-12)
 
 
+def test_two_step_inference_of_the_walks_is_bit_identical_to_the_compiled_twin():
+    # rule ceilings per move, then the obstacle input: the walks' shortcut must give the very same float
+    rng = np.random.default_rng(8)
+    on_universe = np.round(rng.random((3000, 3)) * 200) / 200  # on vertices and kinks
+    x = np.vstack([rng.random((3000, 3)), on_universe, np.clip(on_universe + rng.normal(0, 1e-13, (3000, 3)), 0, 1),
+                   np.array(CRISP)])
+    cp = compiled_priority()
+    ceilings = np.empty((3, 3))
+    for t, a, o in x:
+        want = priority_one(t, a, o, cp.vertices, cp.rules, cp.consequents, cp.area_w, cp.moment_w,
+                            np.zeros((3, 3)), np.zeros(3))
+        rule_ceilings(t, a, cp.vertices, cp.rules, ceilings)
+        got = clipped_centroid(*fired_strengths(ceilings, o, cp.vertices), cp.consequents, cp.area_w, cp.moment_w)
+        assert got == want, (t, a, o)
+
+
 # ------------------------------------------------------------------ moving obstacles, compiled
 def test_compiled_obstacle_geometry_matches_moving_obstacle():
     rng = np.random.default_rng(5)
@@ -120,6 +139,15 @@ def test_compiled_obstacle_geometry_matches_moving_obstacle():
         assert obstacle_position(*arrays, k, t0) == pytest.approx(tuple(obstacles[k].position(t0)), abs=1e-9)
         expected = obstacles[k].min_distance(p0, p1, t0, t1)
         assert obstacle_min_distance(*arrays, k, *p0, *p1, t0, t1) == pytest.approx(expected, abs=1e-9)
+    # the clearance to a whole route bounds the distance to the disc at any time, and is reached on the route
+    points = rng.uniform(-5, 25, (300, 2))
+    bound = route_clearance(packed, points)
+    for k, ob in enumerate(obstacles):
+        period = ob.period_s if np.isfinite(ob.period_s) else 1.0
+        centres = ob.position(np.linspace(0.0, period, 20001))
+        gaps = np.linalg.norm(points[:, None, :] - centres[None, :, :], axis=2).min(axis=1) - ob.radius
+        assert (bound[:, k] <= gaps).all()
+        assert bound[:, k] == pytest.approx(gaps, abs=2e-3)  # sampled every ~1/20000 of the route
 
 
 # ------------------------------------------------------------------ gain and update
