@@ -22,6 +22,7 @@ from __future__ import annotations
 import numpy as np
 
 from pathzoo.core.planner import Param
+from pathzoo.grid.graph_cache import release_pages
 from pathzoo_aco.engine import (
     AntColonyPlanner,
     ColonyProblem,
@@ -98,7 +99,8 @@ class GGACO(AntColonyPlanner):
         block of nodes (:meth:`ColonyProblem.node_blocks`) straight into the
         single-precision arrays the walks read, as :meth:`WalkRules.product`
         would build them whole, so no graph-sized double-precision temporary
-        is needed.
+        is needed, and the pages of a memory-mapped graph are let go block by
+        block (:func:`pathzoo.grid.graph_cache.release_pages`).
         """
         g = problem.graph
         mul = np.empty(g.n_edges, dtype=np.float32)
@@ -107,6 +109,7 @@ class GGACO(AntColonyPlanner):
             edges = slice(int(g.indptr[nodes.start]), int(g.indptr[nodes.stop]))
             mul[edges] = np.power(self.heuristic(problem, edges), self.beta) * self.neighbour_factor(problem, edges)
             gain[edges] = self.gain(problem, nodes)
+            release_pages(g, edges)  # a memory-mapped graph's pages of this block are not read again
         return WalkRules(tau_exp=float(self.alpha), weight_mul=mul, pre_add=gain, race=self.colony == "race",
                          **self.walk_options(problem))
 

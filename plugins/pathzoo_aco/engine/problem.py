@@ -13,6 +13,7 @@ import numpy as np
 
 from pathzoo.core.scenario import Scenario
 from pathzoo.grid.graph import GridGraph
+from pathzoo.grid.graph_cache import release_pages
 from pathzoo.grid.paths import centre_path
 
 __all__ = ["ColonyProblem"]
@@ -97,8 +98,19 @@ class ColonyProblem:
 
     @_kept
     def indices32(self) -> np.ndarray:
-        """``graph.indices`` as int32 (half the memory traffic of the int64 CSR array in the walks)."""
-        return self.graph.indices.astype(np.int32)
+        """``graph.indices`` as int32 (half the memory traffic of the int64 CSR array in the walks).
+
+        Copied block by block; a memory-mapped graph's pages are released
+        behind the copy (:func:`pathzoo.grid.graph_cache.release_pages`).
+        """
+        g = self.graph
+        out = np.empty(g.n_edges, dtype=np.int32)
+        block = 1 << 22
+        for lo in range(0, g.n_edges, block):
+            edges = slice(lo, min(lo + block, g.n_edges))
+            out[edges] = g.indices[edges]
+            release_pages(g, edges)
+        return out
 
     @_kept
     def offset_id_small(self) -> np.ndarray:
@@ -139,18 +151,31 @@ class ColonyProblem:
     @_kept
     def node_xyz(self) -> np.ndarray:
         """World coordinates of every node centre, shape (N, 3); on terrain ``z`` is the cell's elevation."""
+        return self.xyz_of(slice(0, self.n_nodes))
+
+    def xyz_of(self, nodes: slice) -> np.ndarray:
+        """:attr:`node_xyz` of a range of nodes (computed, not kept)."""
         s = self.scenario
-        pts = s.point_of(np.arange(self.n_nodes))
+        lo, hi, _ = nodes.indices(self.n_nodes)
+        pts = s.point_of(np.arange(lo, hi))
         if pts.shape[1] == 3:
             return pts
-        z = np.zeros((len(pts), 1)) if s.elevation is None else np.nan_to_num(s.elevation).reshape(-1, 1)
+        z = np.zeros((len(pts), 1)) if s.elevation is None else np.nan_to_num(s.elevation.ravel()[lo:hi]).reshape(-1, 1)
         return np.hstack([pts, z])
 
     @_kept
     def goal_distance(self) -> np.ndarray:
-        """Straight-line (3-D on terrain) distance in metres from every node centre to the goal's centre."""
-        xyz = self.node_xyz
-        return np.sqrt(((xyz - xyz[self.goal]) ** 2).sum(axis=1))
+        """Straight-line (3-D on terrain) distance in metres from every node centre to the goal's centre.
+
+        Computed block by block of nodes (no (N, 3) coordinate table is kept for it).
+        """
+        goal = self.xyz_of(slice(self.goal, self.goal + 1))
+        out = np.empty(self.n_nodes)
+        block = 1 << 20
+        for lo in range(0, self.n_nodes, block):
+            hi = min(lo + block, self.n_nodes)
+            out[lo:hi] = np.sqrt(((self.xyz_of(slice(lo, hi)) - goal) ** 2).sum(axis=1))
+        return out
 
     @property
     def tangent(self) -> np.ndarray:
