@@ -30,7 +30,7 @@ if TYPE_CHECKING:
     from pathzoo.core.scenario import Scenario
     from pathzoo.core.vehicle import VehicleModel
 
-__all__ = ["GridGraph", "build_graph", "neighbour_offsets"]
+__all__ = ["GridGraph", "build_graph", "move_values", "neighbour_offsets"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -159,16 +159,19 @@ def _move_cells(scenario: "Scenario", off: np.ndarray, free_padded: np.ndarray, 
         return cells
     elev = scenario.elevation.ravel()
     cells = cells[np.isfinite(elev[cells + _shift(off, shape)] - elev[cells])]
-    width = shape[1]
-    src = np.empty((len(cells), 2))
-    src[:, 0] = cells % width
-    src[:, 1] = cells // width
-    src += 0.5
-    dst = src + np.array([off[1], off[0]], dtype=np.float64)
-    grad_lo, grad_hi = segments_slope_range(scenario.elevation, src, dst)
-    del src, dst
-    with np.errstate(invalid="ignore"):
-        return cells[~slope_exceeds(grad_lo, grad_hi, float(scenario.cell_sizes[0]), vehicle)]
+    keep = np.empty(len(cells), dtype=bool)
+    block = 1 << 20  # the slope test's coordinates and ranges for a block of cells at a time (bounded memory)
+    for lo in range(0, len(cells), block):
+        part = cells[lo : lo + block]
+        src = np.empty((len(part), 2))
+        src[:, 0] = part % shape[1]
+        src[:, 1] = part // shape[1]
+        src += 0.5
+        dst = src + np.array([off[1], off[0]], dtype=np.float64)
+        grad_lo, grad_hi = segments_slope_range(scenario.elevation, src, dst)
+        with np.errstate(invalid="ignore"):
+            keep[lo : lo + len(part)] = ~slope_exceeds(grad_lo, grad_hi, float(scenario.cell_sizes[0]), vehicle)
+    return cells[keep]
 
 
 def _shift(off: np.ndarray, shape: tuple[int, ...]) -> int:
@@ -177,9 +180,14 @@ def _shift(off: np.ndarray, shape: tuple[int, ...]) -> int:
     return int(np.dot(off, strides))
 
 
-def _move_values(scenario: "Scenario", off: np.ndarray, cells: np.ndarray
-                 ) -> tuple[np.ndarray | float, np.ndarray | float]:
-    """3-D length and signed slope of one move from each of ``cells`` (one number for every cell off terrain)."""
+def move_values(scenario: "Scenario", off: np.ndarray, cells: np.ndarray
+                ) -> tuple[np.ndarray | float, np.ndarray | float]:
+    """3-D length and signed slope of one move from each of ``cells`` (one number for every cell off terrain).
+
+    The builder fills ``GridGraph.length`` and ``GridGraph.slope`` with it, so
+    for an edge of the graph it gives exactly the stored values. The move must
+    be allowed from every cell given (on terrain both heights are finite).
+    """
     step = off * scenario.cell_sizes[::-1]  # array-axis order
     horiz = float(np.hypot(step[-1], step[-2]))
     if len(off) == 3:
@@ -231,7 +239,7 @@ def build_graph(scenario: "Scenario") -> GridGraph:
         slots = filled[cells]
         filled[cells] += 1
         indices[slots] = cells + _shift(off, shape)
-        move_length, move_slope = _move_values(scenario, off, cells)
+        move_length, move_slope = move_values(scenario, off, cells)
         length[slots] = move_length
         slope[slots] = move_slope
         offset_id[slots] = j

@@ -224,7 +224,6 @@ class AntColonyPlanner(Planner):
                     state.best_cost = float(costs[k])
                     state.best_edges = walks.edges(k).copy()
             self.update_trail(state, walks, costs)
-            release_pages(problem.graph)  # the few pages the costs and deposits mapped in (docs/graph-cache.md)
             if progress is not None:
                 progress(state.iteration, state.evaluations, state.best_cost)
             if walks.exhausted and rules.turn.size == 0:

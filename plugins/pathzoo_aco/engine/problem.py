@@ -12,7 +12,7 @@ from typing import Any, Callable, Hashable, Iterator, TypeVar
 import numpy as np
 
 from pathzoo.core.scenario import Scenario
-from pathzoo.grid.graph import GridGraph
+from pathzoo.grid.graph import GridGraph, move_values
 from pathzoo.grid.graph_cache import release_pages
 from pathzoo.grid.paths import centre_path
 
@@ -188,10 +188,36 @@ class ColonyProblem:
 
     def tangent_of(self, edges: slice) -> np.ndarray:
         """:attr:`tangent` of a range of edges."""
-        slope = self.graph.slope[edges]
+        return self.tangent_from(self.graph.slope[edges])
+
+    def tangent_from(self, slope: np.ndarray) -> np.ndarray:
+        """:attr:`tangent` of edges of the given slopes."""
         if self.scenario.kind != "terrain":
             return np.zeros(len(slope))
         return np.abs(np.tan(slope))
+
+    def walk_geometry(self, flat: np.ndarray, offsets: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """3-D length and slope of every edge of walks from the start, equal to ``graph.length[flat]``, ``graph.slope[flat]``.
+
+        ``flat`` and ``offsets`` as in :class:`~pathzoo_aco.engine.walk.Walks`.
+        The values are computed at the walked cells by the graph builder's own
+        :func:`pathzoo.grid.graph.move_values` rather than read from the graph,
+        so the per-colony costs and deposits of a memory-mapped graph map none
+        of its pages back in (a few thousand edges spread over the map would
+        map most of them).
+        """
+        flat = np.asarray(flat, dtype=np.int64)
+        targets = self.indices32[flat]
+        sources = np.empty(len(flat), dtype=np.int64)
+        sources[1:] = targets[:-1]
+        sources[offsets[:-1][offsets[:-1] < offsets[1:]]] = self.start  # each walk's first edge leaves the start
+        moves = self.offset_id_small[flat]
+        length = np.empty(len(flat))
+        slope = np.empty(len(flat))
+        for move in np.unique(moves):
+            at = np.flatnonzero(moves == move)
+            length[at], slope[at] = move_values(self.scenario, self.graph.offsets[move], sources[at])
+        return length, slope
 
     def node_blocks(self, max_edges: int = 1 << 21) -> Iterator[slice]:
         """Consecutive ranges of nodes with about ``max_edges`` edges each (at least one node), covering all nodes.
@@ -242,5 +268,6 @@ class ColonyProblem:
         The exact start and goal replace the first and last centres when they
         coincide (to the validator's tolerance) and are added otherwise.
         """
-        nodes = np.concatenate([[self.start], self.graph.indices[np.asarray(edges, dtype=np.int64)]])
+        targets = self.indices32[np.asarray(edges, dtype=np.int64)]  # not the graph's: its pages may be mapped out
+        nodes = np.concatenate([np.array([self.start], dtype=np.int64), targets.astype(np.int64)])
         return centre_path(self.scenario, nodes)
