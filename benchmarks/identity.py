@@ -41,7 +41,7 @@ EXTRA = (  # planner, scenario id, parameters: non-default settings that take ot
     ("aco.as", "random60", {"dead_end": "die"}),
     ("aco.mmas", "gant.fig7", {"n_ants": 3}),
     ("aco.dsaco", "dsaco.complex", {"step_rule": "longitude"}),
-    ("aco.as", "random60", {"n_ants": 100}),  # 400 walks one by one: the byte tabu stamps wrap after 255
+    ("aco.as", "gant.fig7", {"n_ants": 100}),  # 400 walks one by one: the byte tabu stamps wrap after 255
     ("aco.gant", "gant.fig7", {"n_ants": 300}),  # more ants in a colony than byte stamps can tell apart
     ("aco.ggaco", "ggaco.case1", {"n_ants": 5}),  # a memory-mapped graph: pages released, walk geometry from cells
 )
