@@ -15,7 +15,8 @@ seed of a scenario in one worker). Numba is compiled beforehand.
 ``ggaco.case1`` runs in a child process (so its peak RSS is its own), twice:
 once with an empty graph cache (the graph is built and stored) and once with
 the cache filled (the graph is memory-mapped), each time ``plan()`` once with
-the paper's 1000 iterations x 20 ants.
+the paper's 1000 iterations x 20 ants; then two children at once on the
+cached graph (50 colonies each) give the memory of an extra worker.
 """
 
 from __future__ import annotations
