@@ -53,6 +53,9 @@ EXTRA = (  # planner, scenario id, parameters: non-default settings that take ot
     ("aco.dsaco", "random60", {"dead_end": "die"}),
     ("aco.dsaco", "dsaco.complex", {"l_max": 60.0, "l_min": 2.0}),
     ("aco.dsaco", "dsaco.complex", {"max_steps": 30, "dead_end": "die"}),
+    ("aco.as", "gant.fig7", {"n_ants": 100}),  # 400 walks one by one: the byte tabu stamps wrap after 255
+    ("aco.gant", "gant.fig7", {"n_ants": 300}),  # more ants in a colony than byte stamps can tell apart
+    ("aco.ggaco", "ggaco.case1", {"n_ants": 5}),  # a memory-mapped graph: pages released, walk geometry from cells
 )
 LONG = (  # planner, scenario id, parameters, iterations: whole runs (schedules, evaporation, p decay)
     ("aco.dsaco", "dsaco.complex", {}, 500),

@@ -24,13 +24,13 @@ import numpy as np
 import scipy.sparse as sp
 
 from pathzoo.grid.segments import touched_cells_2d, touched_cells_3d
-from pathzoo.grid.terrain import lattice_slope_range, slope_exceeds
+from pathzoo.grid.terrain import segments_slope_range, slope_exceeds
 
 if TYPE_CHECKING:
     from pathzoo.core.scenario import Scenario
     from pathzoo.core.vehicle import VehicleModel
 
-__all__ = ["GridGraph", "build_graph", "neighbour_offsets"]
+__all__ = ["GridGraph", "build_graph", "move_values", "neighbour_offsets"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -137,42 +137,67 @@ def _touched(offset: np.ndarray) -> np.ndarray:
     return touched_cells_3d(np.array([0.5, 0.5, 0.5]), np.array([0.5 + dx, 0.5 + dy, 0.5 + dz]))
 
 
-def _move_edges(scenario: "Scenario", off: np.ndarray, free_padded: np.ndarray, pad: int
-                ) -> tuple[np.ndarray, np.ndarray | float, np.ndarray | float]:
-    """For one move: which cells may make it (flat bool), and the 3-D length and slope of each such edge.
+def _move_cells(scenario: "Scenario", off: np.ndarray, free_padded: np.ndarray, pad: int) -> np.ndarray:
+    """Flat ids of the cells that may make one move: every touched cell free and, on terrain, the slope allowed.
 
-    Length and slope are flat arrays over all cells on terrain, else one number for every cell.
+    On terrain the slope test (:func:`pathzoo.grid.terrain.segments_slope_range`,
+    the validator's own rule and the costly part of the build) runs only for
+    the cells that pass the geometric test, with the same segment end points
+    :func:`pathzoo.grid.terrain.lattice_slope_range` would use for them.
     """
     shape = scenario.blocked.shape
-    ndim = len(shape)
     vehicle = scenario.vehicle
     ok = np.ones(shape, dtype=bool)
     for rel in _touched(off):
         ok &= free_padded[tuple(slice(pad + r, pad + r + s) for r, s in zip(rel, shape))]
+    cells = np.flatnonzero(ok)
+    if len(shape) == 3:
+        step = off * scenario.cell_sizes[::-1]
+        pitch = math.degrees(math.atan2(abs(float(step[0])), float(np.hypot(step[-1], step[-2]))))
+        return cells[:0] if pitch > vehicle.max_pitch_deg else cells
+    if scenario.elevation is None or scenario.kind != "terrain":
+        return cells
+    elev = scenario.elevation.ravel()
+    cells = cells[np.isfinite(elev[cells + _shift(off, shape)] - elev[cells])]
+    keep = np.empty(len(cells), dtype=bool)
+    block = 1 << 20  # the slope test's coordinates and ranges for a block of cells at a time (bounded memory)
+    for lo in range(0, len(cells), block):
+        part = cells[lo : lo + block]
+        src = np.empty((len(part), 2))
+        src[:, 0] = part % shape[1]
+        src[:, 1] = part // shape[1]
+        src += 0.5
+        dst = src + np.array([off[1], off[0]], dtype=np.float64)
+        grad_lo, grad_hi = segments_slope_range(scenario.elevation, src, dst)
+        with np.errstate(invalid="ignore"):
+            keep[lo : lo + len(part)] = ~slope_exceeds(grad_lo, grad_hi, float(scenario.cell_sizes[0]), vehicle)
+    return cells[keep]
+
+
+def _shift(off: np.ndarray, shape: tuple[int, ...]) -> int:
+    """Flat-id difference between a cell and its neighbour by move ``off`` (row-major)."""
+    strides = [int(np.prod(shape[i + 1 :])) for i in range(len(shape))]
+    return int(np.dot(off, strides))
+
+
+def move_values(scenario: "Scenario", off: np.ndarray, cells: np.ndarray
+                ) -> tuple[np.ndarray | float, np.ndarray | float]:
+    """3-D length and signed slope of one move from each of ``cells`` (one number for every cell off terrain).
+
+    The builder fills ``GridGraph.length`` and ``GridGraph.slope`` with it, so
+    for an edge of the graph it gives exactly the stored values. The move must
+    be allowed from every cell given (on terrain both heights are finite).
+    """
     step = off * scenario.cell_sizes[::-1]  # array-axis order
     horiz = float(np.hypot(step[-1], step[-2]))
-    if ndim == 3:
+    if len(off) == 3:
         vert = float(step[0])
-        pitch = math.degrees(math.atan2(abs(vert), horiz))
-        if pitch > vehicle.max_pitch_deg:
-            ok[:] = False
-        return ok.ravel(), math.sqrt(horiz**2 + vert**2), math.atan2(vert, horiz)
+        return math.sqrt(horiz**2 + vert**2), math.atan2(vert, horiz)
     if scenario.elevation is not None and scenario.kind == "terrain":
-        elev = scenario.elevation
-        target = np.full(shape, np.nan)
-        dr, dc = off
-        src = (slice(max(0, -dr), shape[0] - max(0, dr)), slice(max(0, -dc), shape[1] - max(0, dc)))
-        dst = (slice(max(0, dr), shape[0] - max(0, -dr)), slice(max(0, dc), shape[1] - max(0, -dc)))
-        target[src] = elev[dst]
-        dz = target - elev
-        theta = np.arctan2(dz, horiz)
-        # validity: the exact ground-slope range along the move, the validator's own rule
-        grad_lo, grad_hi = lattice_slope_range(elev, (int(dr), int(dc)))
-        with np.errstate(invalid="ignore"):
-            ok &= ~slope_exceeds(grad_lo, grad_hi, float(scenario.cell_sizes[0]), vehicle)
-        ok &= np.isfinite(dz)
-        return ok.ravel(), np.sqrt(horiz**2 + np.nan_to_num(dz) ** 2).ravel(), np.nan_to_num(theta).ravel()
-    return ok.ravel(), horiz, 0.0
+        elev = scenario.elevation.ravel()
+        dz = elev[cells + _shift(off, scenario.blocked.shape)] - elev[cells]  # finite: _move_cells checked it
+        return np.sqrt(horiz**2 + dz**2), np.arctan2(dz, horiz)
+    return horiz, 0.0
 
 
 def build_graph(scenario: "Scenario") -> GridGraph:
@@ -180,9 +205,10 @@ def build_graph(scenario: "Scenario") -> GridGraph:
 
     Runs once per scenario; :attr:`Scenario.graph` caches it (large graphs
     on disk, :mod:`pathzoo.grid.graph_cache`). A first pass over the moves
-    finds the edges, a second fills the CSR arrays in place, so the only
-    graph-sized arrays are the results (a 2569 x 1919 terrain peaks at about
-    half the memory of building an (cells x moves) table of every value).
+    finds each move's cells (the slope test, the costly part, once per
+    candidate edge) and keeps them as one boolean per cell and move; a
+    second fills the CSR arrays in place, computing lengths and slopes for
+    the edges only. No (cells x moves) table of values is ever held.
     """
     blocked = scenario.blocked
     shape = blocked.shape
@@ -192,12 +218,14 @@ def build_graph(scenario: "Scenario") -> GridGraph:
     free_padded = np.pad(~blocked, pad, constant_values=False)
     n = blocked.size
     k = len(offsets)
-    valid = np.zeros((n, k), dtype=bool)
+    valid = np.zeros((k, n), dtype=bool)  # move-major: each move's row is contiguous
     for j, off in enumerate(offsets):
-        valid[:, j] = _move_edges(scenario, off, free_padded, pad)[0]
-    degree = valid.sum(axis=1)
+        valid[j, _move_cells(scenario, off, free_padded, pad)] = True
+    del free_padded
+    degree = valid.sum(axis=0)
     indptr = np.zeros(n + 1, dtype=np.int64)
     np.cumsum(degree, out=indptr[1:])
+    del degree
     n_edges = int(indptr[-1])
     indices = np.empty(n_edges, dtype=np.int64)
     length = np.empty(n_edges)
@@ -205,16 +233,15 @@ def build_graph(scenario: "Scenario") -> GridGraph:
     offset_id = np.empty(n_edges, dtype=np.int16)
     # the target cell is always among the touched cells, so ``valid`` already
     # excludes moves that leave the grid and a flat shift gives the target id
-    strides = np.array([int(np.prod(shape[i + 1 :])) for i in range(ndim)], dtype=np.int64)
     filled = indptr[:-1].copy()  # next free edge slot of every node: edges are in move order within a node
     for j, off in enumerate(offsets):
-        ok, move_length, move_slope = _move_edges(scenario, off, free_padded, pad)
-        cells = np.flatnonzero(ok)
+        cells = np.flatnonzero(valid[j])
         slots = filled[cells]
         filled[cells] += 1
-        indices[slots] = cells + int(off @ strides)
-        length[slots] = move_length[cells] if isinstance(move_length, np.ndarray) else move_length
-        slope[slots] = move_slope[cells] if isinstance(move_slope, np.ndarray) else move_slope
+        indices[slots] = cells + _shift(off, shape)
+        move_length, move_slope = move_values(scenario, off, cells)
+        length[slots] = move_length
+        slope[slots] = move_slope
         offset_id[slots] = j
     graph = GridGraph(
         shape=tuple(shape),

@@ -26,6 +26,7 @@ See ``docs/graph-cache.md``.
 from __future__ import annotations
 
 import hashlib
+import mmap
 import os
 import shutil
 import tempfile
@@ -38,7 +39,7 @@ if TYPE_CHECKING:
     from pathzoo.core.scenario import Scenario
     from pathzoo.grid.graph import GridGraph
 
-__all__ = ["MIN_CELLS", "cache_dir", "cached_graph", "graph_digest"]
+__all__ = ["MIN_CELLS", "cache_dir", "cached_graph", "graph_digest", "release_pages"]
 
 MIN_CELLS = 1_000_000
 """Graphs of fewer cells are built in memory (they take well under a second)."""
@@ -97,15 +98,20 @@ def _load(entry: Path, scenario: "Scenario") -> "GridGraph | None":
     return GridGraph(shape=tuple(scenario.shape), vehicle=scenario.vehicle, **arrays)
 
 
-def _store(entry: Path, graph: "GridGraph") -> None:
-    entry.parent.mkdir(parents=True, exist_ok=True)
-    tmp = Path(tempfile.mkdtemp(prefix=f".{entry.name}-", dir=entry.parent))
+def _store(entry: Path, graph: "GridGraph") -> bool:
+    """Write the entry; True when it is in place (written here or, concurrently, by another process)."""
+    try:
+        entry.parent.mkdir(parents=True, exist_ok=True)
+        tmp = Path(tempfile.mkdtemp(prefix=f".{entry.name}-", dir=entry.parent))
+    except OSError:
+        return False
     try:
         for name in _ARRAYS:
             np.save(tmp / f"{name}.npy", getattr(graph, name), allow_pickle=False)
         os.rename(tmp, entry)
     except OSError:  # another process stored it first, or the disk is full: keep the in-memory graph
         shutil.rmtree(tmp, ignore_errors=True)
+    return entry.is_dir()
 
 
 def cached_graph(scenario: "Scenario") -> "GridGraph":
@@ -121,5 +127,45 @@ def cached_graph(scenario: "Scenario") -> "GridGraph":
             return graph
         shutil.rmtree(entry, ignore_errors=True)  # damaged: store it again
     graph = build_graph(scenario)
-    _store(entry, graph)
+    if _store(entry, graph):
+        # the stored copy, memory-mapped: the built arrays are freed, and pages are shared with other workers
+        return _load(entry, scenario) or graph
     return graph
+
+
+def release_pages(graph: "GridGraph", edges: slice | None = None) -> None:
+    """Let go of this process's resident copies of a memory-mapped graph's pages (no-op for in-memory graphs).
+
+    The pages stay in the operating system's page cache, so a later read
+    maps them back in without reading the disk; meanwhile they no longer
+    count in this process's resident memory. Call it after a pass over the
+    graph (a planner's set-up) that later work does not repeat.
+
+    Parameters
+    ----------
+    graph : GridGraph
+        The graph (from :func:`cached_graph`).
+    edges : slice, optional
+        Release only the pages wholly inside this range of edges of the
+        per-edge arrays (``indices``, ``length``, ``slope``, ``offset_id``);
+        by default every array, whole.
+    """
+    names = _ARRAYS if edges is None else ("indices", "length", "slope", "offset_id")
+    for name in names:
+        arr = getattr(graph, name)
+        mapped = arr
+        while isinstance(mapped, np.ndarray) and not isinstance(mapped, np.memmap):
+            mapped = mapped.base
+        if not isinstance(mapped, np.memmap) or getattr(mapped, "_mmap", None) is None:
+            continue
+        if edges is None:
+            mapped._mmap.madvise(mmap.MADV_DONTNEED)
+            continue
+        lo, hi, _ = edges.indices(len(arr))
+        base = mapped.ctypes.data - mapped.offset % mmap.ALLOCATIONGRANULARITY  # address of the mapping's start
+        first = arr.ctypes.data + lo * arr.itemsize - base
+        last = arr.ctypes.data + hi * arr.itemsize - base
+        first = -(-first // mmap.PAGESIZE) * mmap.PAGESIZE
+        last = last // mmap.PAGESIZE * mmap.PAGESIZE
+        if last > first:
+            mapped._mmap.madvise(mmap.MADV_DONTNEED, first, last - first)

@@ -123,7 +123,7 @@ class GreenAnt(AntColonyPlanner):
         if ok.size == 0:
             return
         g = state.problem.graph
-        travel_time = walks.totals(g.length)[ok] / state.problem.scenario.vehicle.cruise_speed
+        travel_time = costs[ok] / state.problem.scenario.vehicle.cruise_speed  # costs: the walks' lengths
         energy = np.maximum(walks.totals(state.link_energy)[ok], self.energy_floor_j)
         deposit_walks(state.trail, g.indices, walks.flat, walks.offsets, ok, 1.0 / travel_time + 1.0 / energy)
 

@@ -22,6 +22,7 @@ from __future__ import annotations
 import numpy as np
 
 from pathzoo.core.planner import Param
+from pathzoo.grid.graph_cache import release_pages
 from pathzoo_aco.engine import (
     AntColonyPlanner,
     ColonyProblem,
@@ -98,7 +99,8 @@ class GGACO(AntColonyPlanner):
         block of nodes (:meth:`ColonyProblem.node_blocks`) straight into the
         single-precision arrays the walks read, as :meth:`WalkRules.product`
         would build them whole, so no graph-sized double-precision temporary
-        is needed.
+        is needed, and the pages of a memory-mapped graph are let go block by
+        block (:func:`pathzoo.grid.graph_cache.release_pages`).
         """
         g = problem.graph
         mul = np.empty(g.n_edges, dtype=np.float32)
@@ -107,6 +109,7 @@ class GGACO(AntColonyPlanner):
             edges = slice(int(g.indptr[nodes.start]), int(g.indptr[nodes.stop]))
             mul[edges] = np.power(self.heuristic(problem, edges), self.beta) * self.neighbour_factor(problem, edges)
             gain[edges] = self.gain(problem, nodes)
+            release_pages(g, edges)  # a memory-mapped graph's pages of this block are not read again
         return WalkRules(tau_exp=float(self.alpha), weight_mul=mul, pre_add=gain, race=self.colony == "race",
                          **self.walk_options(problem))
 
@@ -128,21 +131,29 @@ class GGACO(AntColonyPlanner):
 
     def edge_deposit(self, problem: ColonyProblem, edges: np.ndarray | slice = slice(None)) -> np.ndarray:
         """Eq. 18 per edge: ``1 / d_ij + 1 / E_ij``, for the given edges (all by default)."""
-        energy = np.maximum(self.edge_energy(problem, edges), self.energy_floor_j)
-        return 1.0 / self.slope_distance(problem, edges) + 1.0 / energy
+        g = problem.graph
+        return self.deposit_of(problem, g.length[edges], g.slope[edges])
+
+    def deposit_of(self, problem: ColonyProblem, length: np.ndarray, slope: np.ndarray) -> np.ndarray:
+        """Eq. 18 for edges of the given 3-D lengths and slopes (eq. 17's ``d``, eq. 6's ``E``)."""
+        energy = np.maximum(problem.scenario.vehicle.segment_energy(length, slope), self.energy_floor_j)
+        return 1.0 / (length * (1.0 + problem.tangent_from(slope))) + 1.0 / energy
 
     def walk_costs(self, state: ColonyState, walks: Walks) -> np.ndarray:
         """Energy (J, eq. 6) or length (m, eq. 5) of each walk (computed for the walked edges only)."""
         if self.objective == "energy":
-            return walks.sums(self.edge_energy(state.problem, walks.flat))
+            length, slope = state.problem.walk_geometry(walks.flat, walks.offsets)
+            return walks.sums(state.problem.scenario.vehicle.segment_energy(length, slope))
         return walks.totals(state.problem.graph.length)
 
     def update_trail(self, state: ColonyState, walks: Walks, costs: np.ndarray) -> None:
         """Eqs. 13 and 18: ``τ <- (1 - ρ) τ + Σ_k (1 / d_ij + 1 / E_ij)`` over the edges each successful ant crossed.
 
-        The deposit is computed for the crossed edges only (no per-edge table is kept).
+        The deposit is computed for the crossed edges only (no per-edge table
+        is kept), from their cells (:meth:`ColonyProblem.walk_geometry`).
         """
         state.trail.evaporate(self.rho)
         ok = np.flatnonzero(walks.reached)
+        deposit = self.deposit_of(state.problem, *state.problem.walk_geometry(walks.flat, walks.offsets))
         deposit_walks(state.trail, state.problem.graph.indices, walks.flat, walks.offsets, ok, 0.0,
-                      per_step=self.edge_deposit(state.problem, walks.flat))
+                      per_step=deposit)

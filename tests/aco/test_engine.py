@@ -71,6 +71,19 @@ def test_lazy_trail_matches_eager_updates():
     assert trail.scale >= 1e-150
 
 
+def test_renormalisation_folds_the_scale_in_exactly_and_in_place():
+    rng = np.random.default_rng(3)
+    trail = Pheromone(1000, 1.0)
+    trail.x[:] = rng.uniform(0.0, 10.0, 1000)
+    trail.set_bounds(0.5e-150, 4e-150)
+    trail.scale = 1.5e-150
+    expected = np.clip(trail.scale * 0.5 * trail.x, trail.lo, trail.hi)  # the values after one more evaporation
+    before = trail.x
+    trail.evaporate(0.5)  # the scale falls below 1e-150: folded into x
+    assert trail.scale == 1.0 and trail.x is before  # the same array, rewritten
+    assert np.array_equal(trail.x, expected)  # bit for bit
+
+
 def test_deposit_keep_and_per_edge_amounts():
     trail = Pheromone(4, 2.0)
     deposit_walks(trail, np.arange(4), np.array([1, 3]), np.array([0, 2]), np.array([0]), 0.5, keep=0.9,

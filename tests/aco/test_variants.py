@@ -217,3 +217,17 @@ def test_ggaco_tables_built_block_by_block_equal_the_whole_graph_build(monkeypat
     assert np.array_equal(rules.weight_mul, whole.weight_mul) and np.array_equal(rules.pre_add, whole.pre_add)
     some = np.array([0, 5, 17, problem.graph.n_edges - 1])
     assert np.array_equal(planner.edge_deposit(problem, some), planner.edge_deposit(problem)[some])
+
+
+@pytest.mark.parametrize("make", [hill, open_grid])
+def test_walk_geometry_equals_the_graph_arrays_of_the_walked_edges(make):
+    scenario = make()
+    planner = pathzoo.make_planner("aco.ggaco", colony="complete", n_ants=6)
+    problem = ColonyProblem(scenario)
+    rules = planner.walk_rules(problem)
+    walks = WalkEngine(problem).walk(rules, Pheromone(problem.graph.n_edges, 0.0), 6, seed=4)
+    assert walks.reached.sum() >= 2 and walks.flat.size > 20
+    length, slope = problem.walk_geometry(walks.flat, walks.offsets)
+    g = problem.graph
+    assert np.array_equal(length, g.length[walks.flat]) and np.array_equal(slope, g.slope[walks.flat])
+    assert np.array_equal(planner.deposit_of(problem, length, slope), planner.edge_deposit(problem, walks.flat))

@@ -2,13 +2,15 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
 from pathzoo import Budget, Scenario, VehicleModel, make_planner
 from pathzoo.generators import fractal_terrain
 from pathzoo.grid.graph import build_graph
-from pathzoo.grid.graph_cache import cache_dir, cached_graph, graph_digest
+from pathzoo.grid.graph_cache import cache_dir, cached_graph, graph_digest, release_pages
 
 ARRAYS = ("indptr", "indices", "length", "slope", "offset_id", "offsets")
 
@@ -64,3 +66,31 @@ def test_damaged_entry_is_rebuilt(cache):
     graph = cached_graph(_terrain())
     assert np.array_equal(graph.length, build_graph(_terrain()).length)
     assert np.array_equal(cached_graph(_terrain()).length, graph.length)
+
+
+def _mapped_kb(path_part: str) -> int:
+    """Resident kB of this process's mappings of files whose path contains ``path_part`` (Linux)."""
+    total, current = 0, ""
+    for line in open("/proc/self/smaps"):
+        head = line.split()
+        if head and "-" in head[0] and len(head) >= 5 and not head[0].endswith(":"):
+            current = head[-1] if len(head) >= 6 else ""
+        elif line.startswith("Rss:") and path_part in current:
+            total += int(head[1])
+    return total
+
+
+def test_a_fresh_build_is_returned_memory_mapped_and_pages_can_be_released(cache):
+    built = cached_graph(_terrain())  # built, stored, and handed back as the stored (mapped) copy
+    assert isinstance(built.length.base, np.memmap)
+    fresh = build_graph(_terrain())
+    entry = str(cache_dir() / graph_digest(_terrain()))
+    float(built.length.sum() + built.slope.sum() + built.indices.sum())  # map every page in
+    before = _mapped_kb(entry) if Path("/proc/self/smaps").exists() else None
+    release_pages(built, slice(0, 10))  # a range smaller than a page releases nothing, harmlessly
+    release_pages(built)
+    if before is not None:
+        assert before > 0 and _mapped_kb(entry) == 0
+    for name in ARRAYS:  # still readable, same values
+        assert np.array_equal(getattr(built, name), getattr(fresh, name))
+    release_pages(fresh)  # in-memory graph: nothing to do

@@ -37,6 +37,7 @@ from pathzoo.core.planner import Param, Planner, ProgressCallback
 from pathzoo.core.results import PlanResult
 from pathzoo.core.scenario import Scenario
 from pathzoo.core.status import Status
+from pathzoo.grid.graph_cache import release_pages
 from pathzoo_aco.engine.pheromone import Pheromone
 from pathzoo_aco.engine.problem import ColonyProblem
 from pathzoo_aco.engine.rules import WalkRules
@@ -196,6 +197,7 @@ class AntColonyPlanner(Planner):
                           self.initial_trail(problem), on_nodes=self.pheromone_on == "nodes")
         engine = self.walk_engine(problem)
         state = self.init_state(problem, rules, trail, engine, rng)
+        release_pages(problem.graph)  # set-up read the whole graph; the walks read little of it (docs/graph-cache.md)
         limit = self.iterations if budget.unlimited else None
         walk_time = 0.0
         message = ""

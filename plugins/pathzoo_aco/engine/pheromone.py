@@ -65,8 +65,9 @@ class Pheromone:
     def evaporate(self, rho: float) -> None:
         """Multiply every entry by ``1 - rho`` (O(1))."""
         self.scale *= 1.0 - rho
-        if self.scale < _RENORMALISE_BELOW:
-            self.x[:] = self.values()
+        if self.scale < _RENORMALISE_BELOW:  # in place: no trail-sized temporaries (2 x 237 MB on ggaco.case1)
+            np.multiply(self.x, self.scale, out=self.x)
+            np.clip(self.x, self.lo, self.hi, out=self.x)
             self.scale = 1.0
 
 

@@ -12,7 +12,8 @@ from typing import Any, Callable, Hashable, Iterator, TypeVar
 import numpy as np
 
 from pathzoo.core.scenario import Scenario
-from pathzoo.grid.graph import GridGraph
+from pathzoo.grid.graph import GridGraph, move_values
+from pathzoo.grid.graph_cache import release_pages
 from pathzoo.grid.paths import centre_path
 
 __all__ = ["ColonyProblem"]
@@ -97,8 +98,19 @@ class ColonyProblem:
 
     @_kept
     def indices32(self) -> np.ndarray:
-        """``graph.indices`` as int32 (half the memory traffic of the int64 CSR array in the walks)."""
-        return self.graph.indices.astype(np.int32)
+        """``graph.indices`` as int32 (half the memory traffic of the int64 CSR array in the walks).
+
+        Copied block by block; a memory-mapped graph's pages are released
+        behind the copy (:func:`pathzoo.grid.graph_cache.release_pages`).
+        """
+        g = self.graph
+        out = np.empty(g.n_edges, dtype=np.int32)
+        block = 1 << 22
+        for lo in range(0, g.n_edges, block):
+            edges = slice(lo, min(lo + block, g.n_edges))
+            out[edges] = g.indices[edges]
+            release_pages(g, edges)
+        return out
 
     @_kept
     def offset_id_small(self) -> np.ndarray:
@@ -139,18 +151,31 @@ class ColonyProblem:
     @_kept
     def node_xyz(self) -> np.ndarray:
         """World coordinates of every node centre, shape (N, 3); on terrain ``z`` is the cell's elevation."""
+        return self.xyz_of(slice(0, self.n_nodes))
+
+    def xyz_of(self, nodes: slice) -> np.ndarray:
+        """:attr:`node_xyz` of a range of nodes (computed, not kept)."""
         s = self.scenario
-        pts = s.point_of(np.arange(self.n_nodes))
+        lo, hi, _ = nodes.indices(self.n_nodes)
+        pts = s.point_of(np.arange(lo, hi))
         if pts.shape[1] == 3:
             return pts
-        z = np.zeros((len(pts), 1)) if s.elevation is None else np.nan_to_num(s.elevation).reshape(-1, 1)
+        z = np.zeros((len(pts), 1)) if s.elevation is None else np.nan_to_num(s.elevation.ravel()[lo:hi]).reshape(-1, 1)
         return np.hstack([pts, z])
 
     @_kept
     def goal_distance(self) -> np.ndarray:
-        """Straight-line (3-D on terrain) distance in metres from every node centre to the goal's centre."""
-        xyz = self.node_xyz
-        return np.sqrt(((xyz - xyz[self.goal]) ** 2).sum(axis=1))
+        """Straight-line (3-D on terrain) distance in metres from every node centre to the goal's centre.
+
+        Computed block by block of nodes (no (N, 3) coordinate table is kept for it).
+        """
+        goal = self.xyz_of(slice(self.goal, self.goal + 1))
+        out = np.empty(self.n_nodes)
+        block = 1 << 20
+        for lo in range(0, self.n_nodes, block):
+            hi = min(lo + block, self.n_nodes)
+            out[lo:hi] = np.sqrt(((self.xyz_of(slice(lo, hi)) - goal) ** 2).sum(axis=1))
+        return out
 
     @property
     def tangent(self) -> np.ndarray:
@@ -163,10 +188,36 @@ class ColonyProblem:
 
     def tangent_of(self, edges: slice) -> np.ndarray:
         """:attr:`tangent` of a range of edges."""
-        slope = self.graph.slope[edges]
+        return self.tangent_from(self.graph.slope[edges])
+
+    def tangent_from(self, slope: np.ndarray) -> np.ndarray:
+        """:attr:`tangent` of edges of the given slopes."""
         if self.scenario.kind != "terrain":
             return np.zeros(len(slope))
         return np.abs(np.tan(slope))
+
+    def walk_geometry(self, flat: np.ndarray, offsets: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """3-D length and slope of every edge of walks from the start, equal to ``graph.length[flat]``, ``graph.slope[flat]``.
+
+        ``flat`` and ``offsets`` as in :class:`~pathzoo_aco.engine.walk.Walks`.
+        The values are computed at the walked cells by the graph builder's own
+        :func:`pathzoo.grid.graph.move_values` rather than read from the graph,
+        so the per-colony costs and deposits of a memory-mapped graph map none
+        of its pages back in (a few thousand edges spread over the map would
+        map most of them).
+        """
+        flat = np.asarray(flat, dtype=np.int64)
+        targets = self.indices32[flat]
+        sources = np.empty(len(flat), dtype=np.int64)
+        sources[1:] = targets[:-1]
+        sources[offsets[:-1][offsets[:-1] < offsets[1:]]] = self.start  # each walk's first edge leaves the start
+        moves = self.offset_id_small[flat]
+        length = np.empty(len(flat))
+        slope = np.empty(len(flat))
+        for move in np.unique(moves):
+            at = np.flatnonzero(moves == move)
+            length[at], slope[at] = move_values(self.scenario, self.graph.offsets[move], sources[at])
+        return length, slope
 
     def node_blocks(self, max_edges: int = 1 << 21) -> Iterator[slice]:
         """Consecutive ranges of nodes with about ``max_edges`` edges each (at least one node), covering all nodes.
@@ -217,5 +268,6 @@ class ColonyProblem:
         The exact start and goal replace the first and last centres when they
         coincide (to the validator's tolerance) and are added otherwise.
         """
-        nodes = np.concatenate([[self.start], self.graph.indices[np.asarray(edges, dtype=np.int64)]])
+        targets = self.indices32[np.asarray(edges, dtype=np.int64)]  # not the graph's: its pages may be mapped out
+        nodes = np.concatenate([np.array([self.start], dtype=np.int64), targets.astype(np.int64)])
         return centre_path(self.scenario, nodes)

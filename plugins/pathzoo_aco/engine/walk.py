@@ -347,6 +347,20 @@ def _walk_sums(values, flat, offsets, by_edge):
     return out
 
 
+def _grown(stacks: np.ndarray, depth: np.ndarray) -> np.ndarray:
+    """Racing ants' stacks with rows twice as long; only each ant's live entries (``:depth``) are copied.
+
+    The new array comes zeroed from the operating system, so the rows' unused
+    tails take no memory: the stacks cost what the ants' walks hold, not
+    ``n_ants`` times the deepest walk (0.4 GB when one ant of
+    ``ggaco.case1`` went two million edges deep).
+    """
+    grown = np.zeros((stacks.shape[0], 2 * stacks.shape[1]), dtype=stacks.dtype)
+    for a, d in enumerate(depth.tolist()):
+        grown[a, :d] = stacks[a, :d]
+    return grown
+
+
 class WalkEngine:
     """Runs colonies of walks on one problem, reusing its buffers between iterations.
 
@@ -359,8 +373,8 @@ class WalkEngine:
     def __init__(self, problem: ColonyProblem) -> None:
         g = problem.graph
         self.problem = problem
-        self.stamps = np.full((1, g.n_nodes), -1, dtype=np.int32)  # tabu stamps of ants walking one by one
-        self.walk_base = 0
+        self.stamps = np.zeros((1, g.n_nodes), dtype=np.uint8)  # tabu stamps of ants walking one by one (1..255)
+        self.walk_base = 1
         self.race_stamps = np.zeros((0, g.n_nodes), dtype=np.uint8)  # one row per racing ant, stamped 1..255
         self.race_colony = 1
         self.stack_e = np.zeros((1, problem.n_free + 1), dtype=np.int64)
@@ -430,15 +444,20 @@ class WalkEngine:
             many steps have been taken in this call.
         """
         p = self.problem
-        if self.walk_base + n_ants >= 2**31 - 1:  # the int32 walk stamps would overflow: start afresh
-            self.stamps[:] = -1
-            self.walk_base = 0
+        if not rules.race:  # a byte per node (a quarter of the cache footprint of int32), int32 for > 255 ants
+            dtype = np.uint8 if n_ants <= 255 else np.int32
+            if self.stamps.dtype != dtype:
+                self.stamps = np.zeros_like(self.stamps, dtype=dtype)
+                self.walk_base = 1
+            if self.walk_base + n_ants > np.iinfo(dtype).max + 1:  # the walk ids would overflow: start afresh
+                self.stamps[:] = 0
+                self.walk_base = 1
         if rules.race and len(self.race_stamps) < n_ants:
             self.race_stamps = np.zeros((n_ants, p.n_nodes), dtype=np.uint8)
             self.race_colony = 1
-        if rules.race:
-            stacks = np.zeros((n_ants, 256), dtype=np.int64)
-            prevs = np.zeros_like(stacks)
+        if rules.race:  # a stack row per ant, grown when one outgrows it: int32 edge ids, headings only if turns count
+            stacks = np.zeros((n_ants, 256), dtype=np.int32 if p.graph.n_edges < 2**31 else np.int64)
+            prevs = np.zeros((n_ants, 256 if rules.turn.size else 1), dtype=np.int64)
         else:
             stacks, prevs = self.stack_e, self.stack_prev
         cur = np.zeros(n_ants, dtype=np.int64)
@@ -465,9 +484,10 @@ class WalkEngine:
             if counters[3]:  # a finished walk needs room in ``flat``
                 need = int(offsets[counters[0]] + depth[counters[0]])
                 self.flat = np.concatenate([self.flat, np.zeros(max(self.flat.size, need), dtype=np.int64)])
-            else:  # a race walk outgrew the stacks
-                stacks = np.hstack([stacks, np.zeros_like(stacks)])
-                prevs = np.hstack([prevs, np.zeros_like(prevs)])
+            else:  # a race walk outgrew the stacks: every row doubles (the kernel resumes with the same ant)
+                stacks = _grown(stacks, depth)
+                if rules.turn.size:
+                    prevs = _grown(prevs, depth)
         if rules.race:  # a byte per node and ant: the stamps are cleared once every 255 colonies
             self.race_colony += 1
             if self.race_colony > 255:
@@ -479,7 +499,8 @@ class WalkEngine:
         if rules.race:
             lengths = np.where(flags == REACHED, depth, 0)
             offsets = np.concatenate([[0], np.cumsum(lengths)])
-            flat = np.concatenate([stacks[a, : lengths[a]] for a in range(n_ants)] + [np.zeros(0, np.int64)])
+            flat = np.concatenate([stacks[a, : lengths[a]] for a in range(n_ants)] + [np.zeros(0, np.int64)],
+                                  dtype=np.int64)
         else:
             flat = self.flat[: int(offsets[-1])].copy()
         return Walks(flat, offsets, flags, steps, int(counters[1]))
