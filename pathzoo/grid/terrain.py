@@ -184,13 +184,30 @@ def _snap(a: float) -> float:
 
 
 @numba.njit(cache=True)
+def _diagonal_step_inside(z: np.ndarray, m: int, k: int, sign: int) -> bool:
+    # whether the lattice step from column m to m + 1 on the line X - sign * Y = k has both centres in the grid
+    h, w = z.shape
+    r0 = (m - k) if sign == 1 else (k - m)
+    r1 = (m + 1 - k) if sign == 1 else (k - m - 1)
+    return 0 <= m and m + 1 <= w - 1 and 0 <= min(r0, r1) and max(r0, r1) <= h - 1
+
+
+@numba.njit(cache=True)
 def _lattice_diagonal_range(z: np.ndarray, xa: float, ya: float, xb: float, yb: float, sign: int) -> tuple[float, float]:
     # the papers' slope between diagonal neighbours: linear between consecutive centres on the line
     k = round(xa - sign * ya)
     lo_x, hi_x = _snap(min(xa, xb)), _snap(max(xa, xb))
     direction = 1.0 if xb > xa else -1.0
+    first = int(math.floor(lo_x))
+    stop = max(int(math.ceil(hi_x)), first + 1)
+    if not (_diagonal_step_inside(z, first, k, sign) and _diagonal_step_inside(z, stop - 1, k, sign)):
+        # a segment within the margin of a lattice node on the grid's edge (it snaps to the node):
+        # the step on its line that ends at the node, or none when the line leaves the grid both ways
+        if not _diagonal_step_inside(z, first - 1, k, sign):
+            return 0.0, 0.0
+        first, stop = first - 1, first
     g_lo, g_hi = math.inf, -math.inf
-    for m in range(int(math.floor(lo_x)), max(int(math.ceil(hi_x)), int(math.floor(lo_x)) + 1)):
+    for m in range(first, stop):
         r0 = (m - k) if sign == 1 else (k - m)
         r1 = (m + 1 - k) if sign == 1 else (k - m - 1)
         g = direction * (z[r1, m + 1] - z[r0, m]) / math.sqrt(2.0)
@@ -198,6 +215,29 @@ def _lattice_diagonal_range(z: np.ndarray, xa: float, ya: float, xb: float, yb: 
             return math.nan, math.nan
         g_lo, g_hi = min(g_lo, g), max(g_hi, g)
     return g_lo, g_hi
+
+
+@numba.njit(cache=True)
+def _crossings(a0: float, da: float, n: int) -> tuple[int, int, int]:
+    # the centre lines k = 0 .. n - 1 the run a0 -> a0 + da meets, in the order it meets them:
+    # (first k, k one past the last, step); an empty run when da == 0
+    if da == 0.0:
+        return 0, 0, 1
+    lo, hi = min(a0, a0 + da), max(a0, a0 + da)
+    first, last = max(0, int(math.ceil(lo))), min(n - 1, int(math.floor(hi)))
+    if last < first:
+        return 0, 0, 1
+    if da > 0.0:
+        return first, last + 1, 1
+    return last, first - 1, -1
+
+
+@numba.njit(cache=True)
+def _crossing_t(k: int, end: int, step: int, a0: float, da: float) -> float:
+    # the segment parameter of centre line k (t grows with each step), or 2 once the run is done
+    if k == end:
+        return 2.0
+    return (k - a0) / da
 
 
 @numba.njit(cache=True)
@@ -226,38 +266,46 @@ def segment_slope_range(z: np.ndarray, x0: float, y0: float, x1: float, y1: floa
     diagonal = _on_lattice_diagonal(X0, Y0, X0 + dX, Y0 + dY, w, h)
     if diagonal != 0:
         return _lattice_diagonal_range(z, X0, Y0, X0 + dX, Y0 + dY, diagonal)
-    # breakpoints: where the segment crosses a centre line X = k or Y = k
-    ts = [0.0, 1.0]
-    for a0, da, n in ((X0, dX, w), (Y0, dY, h)):
-        if da != 0.0:
-            lo, hi = min(a0, a0 + da), max(a0, a0 + da)
-            for k in range(max(0, int(math.ceil(lo))), min(n - 1, int(math.floor(hi))) + 1):
-                t = (k - a0) / da
-                if 0.0 < t < 1.0:
-                    ts.append(t)
-    ts.sort()
+    # breakpoints: where the segment crosses a centre line X = k or Y = k, visited in increasing t by
+    # merging the two axes' runs (each is monotonic in t), so no list is built and sorted
+    kx, kx_end, sx = _crossings(X0, dX, w)
+    ky, ky_end, sy = _crossings(Y0, dY, h)
     g_lo, g_hi = math.inf, -math.inf
-    for p in range(len(ts) - 1):
-        ta, tb = ts[p], ts[p + 1]
-        if tb <= ta:
+    ta = 0.0
+    while True:
+        tx = _crossing_t(kx, kx_end, sx, X0, dX)
+        ty = _crossing_t(ky, ky_end, sy, Y0, dY)
+        if tx <= ty:
+            tb = tx
+            kx += sx
+        else:
+            tb = ty
+            ky += sy
+        if tb >= 1.0:
+            tb = 1.0
+        elif tb <= 0.0:
             continue
-        tm = 0.5 * (ta + tb)
-        i, vary_x = _axis_cell(X0 + tm * dX, w)
-        j, vary_y = _axis_cell(Y0 + tm * dY, h)
-        twist = 0.0
-        if vary_x and vary_y:
-            twist = abs(z[j, i] + z[j + 1, i + 1] - z[j, i + 1] - z[j + 1, i])
-            if not math.isfinite(twist):
-                twist = 0.0
-        for t in (ta, tb):
-            u = _weight(X0 + t * dX - i) if vary_x else 0.0
-            v = _weight(Y0 + t * dY - j) if vary_y else 0.0
-            g = _grad(z, i, j, vary_x, vary_y, u, v, ex, ey)
-            if not math.isfinite(g):
-                return math.nan, math.nan
-            widen = 2.0 * _EPS * twist * (abs(ex) + abs(ey))
-            g_lo = min(g_lo, g - widen)
-            g_hi = max(g_hi, g + widen)
+        if tb > ta:
+            tm = 0.5 * (ta + tb)
+            i, vary_x = _axis_cell(X0 + tm * dX, w)
+            j, vary_y = _axis_cell(Y0 + tm * dY, h)
+            twist = 0.0
+            if vary_x and vary_y:
+                twist = abs(z[j, i] + z[j + 1, i + 1] - z[j, i + 1] - z[j + 1, i])
+                if not math.isfinite(twist):
+                    twist = 0.0
+            for t in (ta, tb):
+                u = _weight(X0 + t * dX - i) if vary_x else 0.0
+                v = _weight(Y0 + t * dY - j) if vary_y else 0.0
+                g = _grad(z, i, j, vary_x, vary_y, u, v, ex, ey)
+                if not math.isfinite(g):
+                    return math.nan, math.nan
+                widen = 2.0 * _EPS * twist * (abs(ex) + abs(ey))
+                g_lo = min(g_lo, g - widen)
+                g_hi = max(g_hi, g + widen)
+            ta = tb
+        if tb >= 1.0:
+            break
     return g_lo, g_hi
 
 

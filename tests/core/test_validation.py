@@ -174,6 +174,22 @@ def test_slope_range_is_exact_against_dense_sampling():
         assert grad.min() - lo < 1e-3 and hi - grad.max() < 1e-3  # and tight
 
 
+def test_slope_range_of_a_segment_snapping_to_an_edge_node_reads_only_the_grid():
+    """A segment within the margin of a lattice node on the last row or column is on a lattice diagonal; its range
+    comes from the diagonal step that ends at the node (it read heights past the grid, whatever memory held)."""
+    from pathzoo.grid.terrain import segment_slope_range
+
+    z = np.arange(6 * 7, dtype=float).reshape(6, 7) ** 1.5
+    h, w = z.shape
+    r2 = math.sqrt(2.0)
+    bottom = (z[h - 1, 3] - z[h - 2, 2]) / r2  # X - Y = k through (3, h-1), step from (2, h-2)
+    right = -(z[1, w - 2] - z[2, w - 1]) / r2  # X + Y = k through (w-1, 2), step from (w-2, 3), travelled towards +x
+    assert segment_slope_range(z, 3.5, h - 0.5, 3.5 + 1e-12, h - 0.5) == pytest.approx((bottom, bottom), rel=1e-12)
+    assert segment_slope_range(z, w - 0.5, 2.5, w - 0.5 + 1e-12, 2.5 - 1e-12) == pytest.approx((right, right), rel=1e-12)
+    # a corner node whose diagonal leaves the grid both ways: a point, no gradient
+    assert segment_slope_range(z, w - 0.5, 0.5, w - 0.5 + 1e-12, 0.5 - 1e-12) == (0.0, 0.0)
+
+
 def test_air_segment_within_the_margin_of_a_voxel_is_blocked():
     from pathzoo.grid.segments import segment_blocked_3d
 
