@@ -28,7 +28,7 @@ import warnings
 from multiprocessing.connection import Connection, wait
 from typing import TYPE_CHECKING, Any
 
-from pathzoo.harness.launch import NoMainContext, default_start_method
+from pathzoo.harness.launch import NoMainContext, default_start_method, die_with_harness, harness_alive
 from pathzoo.harness.worker import SETUP_TIMEOUT_S, describe_exception, ensure_plugins, load_cached, quiet_registry
 
 if TYPE_CHECKING:
@@ -46,10 +46,11 @@ JUDGE_TIMEOUT_S = 60.0
 _clock = time.perf_counter
 
 
-def _judge_main(conn: Connection) -> None:
+def _judge_main(conn: Connection, alive: Connection) -> None:
     """Loop of the judge process: load the scenario, say so, judge, send the record (or the error)."""
     from pathzoo.harness.judge import judge
 
+    die_with_harness(alive)
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     conn.send(("ready",))
     while True:
@@ -89,23 +90,33 @@ class JudgeWorker:
         self._ctx: Any = NoMainContext(start_method or default_start_method())
         self._process: BaseProcess | None = None
         self._conn: Connection | None = None
+        self._ready = False
 
     def __enter__(self) -> "JudgeWorker":
+        self._launch()  # it starts while the first runs execute
         return self
 
     def __exit__(self, *exc: object) -> None:
         self.close()
 
-    def _start(self) -> Connection:
+    def _launch(self) -> None:
+        """Start the judge process if there is none, without waiting for it."""
         if self._conn is None:
             parent, child = self._ctx.Pipe(duplex=True)
-            self._process = self._ctx.Process(target=_judge_main, args=(child,), name="pathzoo-judge")
+            self._process = self._ctx.Process(target=_judge_main, args=(child, harness_alive()), name="pathzoo-judge")
             self._process.start()
             child.close()
-            self._conn = parent
+            self._conn, self._ready = parent, False
+
+    def _start(self) -> Connection:
+        """The connection to a judge process that said it is ready."""
+        self._launch()
+        assert self._conn is not None
+        if not self._ready:
             if self._receive(SETUP_TIMEOUT_S) != ("ready",):
                 self._stop()
                 raise RuntimeError("the judge process failed to start")
+            self._ready = True
         return self._conn
 
     def _stop(self) -> None:

@@ -7,17 +7,40 @@ time in every child (and fails). Like loky and Dask's worker processes,
 prepared with; the child still gets the parent's ``sys.path`` and working
 directory. With ``forkserver`` (the default where available) the server
 imports pathzoo and every entry-point plugin once
-(:mod:`pathzoo.harness.executors.warmup`), so each new child costs a fork.
+(:mod:`pathzoo.harness.executors.warmup`), so each new child costs a fork;
+:func:`start_server` starts it early, so it imports while the harness is
+still reading the experiment.
+
+Children die with the harness (:func:`die_with_harness`): a ``kill -9`` of
+the harness process leaves no worker or judge behind. On Linux each child
+asks the kernel for ``SIGKILL`` when its parent dies
+(``prctl(PR_SET_PDEATHSIG)``; a forkserver child's parent is the server,
+which exits as soon as the harness is gone), and everywhere a watchdog thread
+ends the child when the read end of a pipe whose only writer is the harness
+reports end of file.
 """
 
 from __future__ import annotations
 
+import ctypes
 import multiprocessing as mp
+import os
+import signal
+import sys
 import threading
 from multiprocessing import popen_forkserver, popen_spawn_posix, spawn
+from multiprocessing.connection import Connection
 from typing import Any
 
-__all__ = ["NoMainContext", "ForkServerNoMainProcess", "SpawnNoMainProcess", "default_start_method"]
+__all__ = [
+    "NoMainContext",
+    "ForkServerNoMainProcess",
+    "SpawnNoMainProcess",
+    "default_start_method",
+    "start_server",
+    "harness_alive",
+    "die_with_harness",
+]
 
 _PRELOAD = ["pathzoo.harness.executors.warmup"]
 _launch_lock = threading.Lock()
@@ -26,6 +49,71 @@ _launch_lock = threading.Lock()
 def default_start_method() -> str:
     """``forkserver`` where the platform has it, else ``spawn``."""
     return "forkserver" if "forkserver" in mp.get_all_start_methods() else "spawn"
+
+
+def start_server(method: str | None = None) -> None:
+    """Start the ``forkserver`` now, without waiting for it (no-op for ``spawn``).
+
+    The server imports every plugin (:mod:`pathzoo.harness.executors.warmup`)
+    while the caller goes on, e.g. reading and checking the experiment on the
+    other core; the first worker then costs a fork instead of a cold start.
+    """
+    if (method or default_start_method()) != "forkserver":
+        return
+    NoMainContext("forkserver")  # sets the preload list of the server
+    from multiprocessing import forkserver
+
+    with _launch_lock:
+        original = spawn.get_preparation_data
+        spawn.get_preparation_data = _without_main(original)
+        try:
+            forkserver.ensure_running()
+        finally:
+            spawn.get_preparation_data = original
+
+
+_alive: tuple[Connection, Connection] | None = None
+
+
+def harness_alive() -> Connection:
+    """The read end of this process's life pipe, to hand to each child (see :func:`die_with_harness`).
+
+    The write end is kept by this process only and never written to or
+    closed, so a child's read end reports end of file exactly when this
+    process is gone.
+    """
+    global _alive
+    with _launch_lock:
+        if _alive is None:
+            _alive = mp.Pipe(duplex=False)
+        return _alive[0]
+
+
+_PR_SET_PDEATHSIG = 1
+
+
+def die_with_harness(alive: Connection) -> None:
+    """In a child: be killed when the harness dies (see the module docstring); call it first thing.
+
+    Parameters
+    ----------
+    alive : Connection
+        The child's copy of :func:`harness_alive`.
+    """
+    if sys.platform.startswith("linux"):
+        try:
+            ctypes.CDLL(None, use_errno=True).prctl(_PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
+        except (OSError, AttributeError):
+            pass
+
+    def watch() -> None:
+        try:
+            alive.poll(None)  # only end of file ever arrives
+        except (OSError, EOFError):
+            pass
+        os.kill(os.getpid(), signal.SIGKILL)
+
+    threading.Thread(target=watch, name="pathzoo-harness-watch", daemon=True).start()
 
 
 def _without_main(prepare: Any) -> Any:

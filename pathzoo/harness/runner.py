@@ -124,7 +124,7 @@ def _execute(
     times = RunTimes()
 
     def submit_more() -> None:
-        while len(in_flight) < executor.capacity:
+        while len(in_flight) < executor.capacity + executor.lookahead:
             task = next(queue, None)
             if task is None:
                 return

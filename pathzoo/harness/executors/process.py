@@ -51,7 +51,7 @@ from typing import TYPE_CHECKING, Any
 
 from pathzoo.core.errors import PathzooError
 from pathzoo.harness.executors.base import RunExecutor
-from pathzoo.harness.launch import NoMainContext, default_start_method
+from pathzoo.harness.launch import NoMainContext, default_start_method, die_with_harness, harness_alive
 from pathzoo.harness.tamper import ModuleFingerprint
 from pathzoo.harness.wire import MAX_OUTCOME_BYTES, decode_outcome, encode_outcome
 from pathzoo.harness.worker import SETUP_TIMEOUT_S, RunOutcome, execute_task, utc_now
@@ -81,8 +81,9 @@ def process_cpu_time(pid: int) -> float:
         return math.nan
 
 
-def _worker_main(conn: Connection) -> None:
+def _worker_main(conn: Connection, alive: Connection) -> None:
     """Loop of one worker process: receive a task, run it, send the outcome and whether the process is clean."""
+    die_with_harness(alive)
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     fingerprint = ModuleFingerprint().update()
     conn.send_bytes(b"R")
@@ -170,6 +171,7 @@ class ProcessExecutor(RunExecutor):
         self._workers: list[_Worker] = []
         self._closing = False
         self._wake_r, self._wake_w = self._ctx.Pipe(duplex=False)
+        self.lookahead = self.capacity
         self._thread = threading.Thread(target=self._monitor, name="pathzoo-process-executor", daemon=True)
         self._thread.start()
 
@@ -219,7 +221,7 @@ class ProcessExecutor(RunExecutor):
     # ------------------------------------------------------------- internals
     def _spawn(self) -> _Worker:
         parent, child = self._ctx.Pipe(duplex=True)
-        process = self._ctx.Process(target=_worker_main, args=(child,), name="pathzoo-worker")
+        process = self._ctx.Process(target=_worker_main, args=(child, harness_alive()), name="pathzoo-worker")
         process.start()
         child.close()
         worker = _Worker(process, parent)
@@ -336,6 +338,8 @@ class ProcessExecutor(RunExecutor):
 
     def _monitor(self) -> None:
         try:
+            while len(self._workers) < self.capacity:  # all at once: they start while the first task is prepared
+                self._spawn()
             while True:
                 with self._lock:
                     if self._closing:
