@@ -14,10 +14,14 @@ still reading the experiment.
 Children die with the harness (:func:`die_with_harness`): a ``kill -9`` of
 the harness process leaves no worker or judge behind. On Linux each child
 asks the kernel for ``SIGKILL`` when its parent dies
-(``prctl(PR_SET_PDEATHSIG)``; a forkserver child's parent is the server,
-which exits as soon as the harness is gone), and everywhere a watchdog thread
-ends the child when the read end of a pipe whose only writer is the harness
-reports end of file.
+(``prctl(PR_SET_PDEATHSIG)``). A forkserver child's parent is the server,
+which exits when its own life pipe from the harness reports end of file; each
+child inherits a write end of that pipe (so that it could fork through the
+server itself), which would keep the server, and so the child, alive after
+the harness's death, so the child closes it first. Everywhere, a watchdog
+thread also ends the child when the read end of a pipe whose only writer is
+the harness reports end of file (it cannot run while a planner holds the GIL
+in a long C call, which is why the kernel's signal comes first).
 """
 
 from __future__ import annotations
@@ -100,6 +104,12 @@ def die_with_harness(alive: Connection) -> None:
     alive : Connection
         The child's copy of :func:`harness_alive`.
     """
+    from multiprocessing import forkserver
+
+    server = forkserver._forkserver  # a forkserver child inherits the write end of the server's own life pipe:
+    if server._forkserver_alive_fd is not None:  # with it open, the server outlives the harness while we run
+        os.close(server._forkserver_alive_fd)
+        server._forkserver_alive_fd = None
     if sys.platform.startswith("linux"):
         try:
             ctypes.CDLL(None, use_errno=True).prctl(_PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)

@@ -3,9 +3,21 @@
 Workers are forked from that server, so each starts with the plugins already
 imported (and their numba functions loaded) instead of discovering them
 again: replacing a killed worker costs a fork, not a second of imports.
-Importing this module has that side effect on purpose; nothing else imports it.
+
+The server exits when the harness does (end of file on its life pipe). It
+then skips the interpreter's clean-up (``os._exit`` as the first exit
+handler): tearing down numba and every plugin takes seconds of CPU on a
+loaded machine, and the workers it forked die only once it is gone
+(:func:`pathzoo.harness.launch.die_with_harness`). Workers never run exit
+handlers (a forkserver child always leaves through ``os._exit``).
+
+Importing this module has these side effects on purpose; nothing else imports it.
 """
+
+import atexit
+import os
 
 from pathzoo.harness.worker import quiet_registry
 
 quiet_registry()
+atexit.register(os._exit, 0)
