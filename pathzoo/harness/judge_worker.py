@@ -28,7 +28,7 @@ import warnings
 from multiprocessing.connection import Connection, wait
 from typing import TYPE_CHECKING, Any
 
-from pathzoo.harness.launch import NoMainContext, default_start_method, die_with_harness, harness_alive
+from pathzoo.harness.launch import NoMainContext, default_start_method, die_with_harness, harness_alive, start_server
 from pathzoo.harness.worker import SETUP_TIMEOUT_S, describe_exception, ensure_plugins, load_cached, quiet_registry
 
 if TYPE_CHECKING:
@@ -88,6 +88,7 @@ class JudgeWorker:
     def __init__(self, judge_timeout_s: float = JUDGE_TIMEOUT_S, *, start_method: str | None = None) -> None:
         self.judge_timeout_s = float(judge_timeout_s)
         self._ctx: Any = NoMainContext(start_method or default_start_method())
+        start_server(start_method)
         self._process: BaseProcess | None = None
         self._conn: Connection | None = None
         self._ready = False

@@ -44,6 +44,7 @@ __all__ = [
     "start_server",
     "harness_alive",
     "die_with_harness",
+    "die_with_parent",
 ]
 
 _PRELOAD = ["pathzoo.harness.executors.warmup"]
@@ -56,11 +57,14 @@ def default_start_method() -> str:
 
 
 def start_server(method: str | None = None) -> None:
-    """Start the ``forkserver`` now, without waiting for it (no-op for ``spawn``).
+    """Start the ``forkserver`` now if it is not running, without waiting for it (no-op for ``spawn``).
 
     The server imports every plugin (:mod:`pathzoo.harness.executors.warmup`)
     while the caller goes on, e.g. reading and checking the experiment on the
     other core; the first worker then costs a fork instead of a cold start.
+    The server dies with the thread that started it (see
+    :func:`die_with_parent`), so call this from the main thread: the
+    executors and the judge do, from the thread that builds them.
     """
     if (method or default_start_method()) != "forkserver":
         return
@@ -96,6 +100,15 @@ def harness_alive() -> Connection:
 _PR_SET_PDEATHSIG = 1
 
 
+def die_with_parent() -> None:
+    """Ask the kernel for ``SIGKILL`` when the thread that started this process exits (Linux; elsewhere nothing)."""
+    if sys.platform.startswith("linux"):
+        try:
+            ctypes.CDLL(None, use_errno=True).prctl(_PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
+        except (OSError, AttributeError):
+            pass
+
+
 def die_with_harness(alive: Connection) -> None:
     """In a child: be killed when the harness dies (see the module docstring); call it first thing.
 
@@ -110,11 +123,7 @@ def die_with_harness(alive: Connection) -> None:
     if server._forkserver_alive_fd is not None:  # with it open, the server outlives the harness while we run
         os.close(server._forkserver_alive_fd)
         server._forkserver_alive_fd = None
-    if sys.platform.startswith("linux"):
-        try:
-            ctypes.CDLL(None, use_errno=True).prctl(_PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
-        except (OSError, AttributeError):
-            pass
+    die_with_parent()
 
     def watch() -> None:
         try:

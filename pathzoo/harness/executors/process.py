@@ -51,7 +51,7 @@ from typing import TYPE_CHECKING, Any
 
 from pathzoo.core.errors import PathzooError
 from pathzoo.harness.executors.base import RunExecutor
-from pathzoo.harness.launch import NoMainContext, default_start_method, die_with_harness, harness_alive
+from pathzoo.harness.launch import NoMainContext, default_start_method, die_with_harness, harness_alive, start_server
 from pathzoo.harness.tamper import ModuleFingerprint
 from pathzoo.harness.wire import MAX_OUTCOME_BYTES, decode_outcome, encode_outcome
 from pathzoo.harness.worker import SETUP_TIMEOUT_S, RunOutcome, execute_task, utc_now
@@ -166,6 +166,7 @@ class ProcessExecutor(RunExecutor):
     def __init__(self, jobs: int | None = None, *, start_method: str | None = None) -> None:
         self.capacity = int(jobs or os.cpu_count() or 1)
         self._ctx: Any = NoMainContext(start_method or default_start_method())
+        start_server(start_method)  # from this thread, not the monitor (the server dies with the thread that started it)
         self._lock = threading.Lock()
         self._pending: deque[tuple[RunTask, Future[RunOutcome]]] = deque()
         self._workers: list[_Worker] = []
