@@ -60,6 +60,9 @@ def _judge_main(conn: Connection, alive: Connection) -> None:
             return
         if request is None:
             return
+        if request[0] == "warm":
+            _warm(request[1])
+            continue
         task, outcome, isolated = request
         try:
             ensure_plugins(task.plugin_modules, missing_ok=True)
@@ -72,6 +75,34 @@ def _judge_main(conn: Connection, alive: Connection) -> None:
             conn.send(("done", record, [str(w.message) for w in caught if issubclass(w.category, RuntimeWarning)]))
         except Exception as exc:  # noqa: BLE001 - MemoryError included: the run is invalid, the judge goes on
             conn.send(("error", describe_exception(exc).splitlines()[0]))
+
+
+def _warm(task: "RunTask") -> None:
+    """Load the task's scenario and judge its reference path once, discarding the record; never raises.
+
+    Loading, hashing and the first validation and metrics on a scenario kind
+    (numba code loaded or compiled) then happen while the first runs of the
+    scenario execute, not after them.
+    """
+    import numpy as np
+
+    from pathzoo.core.status import Status
+    from pathzoo.grid.reference import reference_path
+    from pathzoo.harness.judge import judge
+    from pathzoo.harness.worker import RunOutcome
+
+    try:
+        ensure_plugins(task.plugin_modules, missing_ok=True)
+        scenario, _ = load_cached(task.scenario)
+        ref = reference_path(scenario)
+        if ref is not None:
+            outcome = RunOutcome(task.run_key, status=Status.SOLVED, path=np.array(ref.path, dtype=np.float64))
+            metrics = [entry.obj() for entry in quiet_registry().metrics.values()]
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                judge(task, outcome, scenario, metrics)
+    except Exception:  # noqa: BLE001 - the real run's judging meets the same error and reports it
+        return
 
 
 class JudgeWorker:
@@ -127,6 +158,21 @@ class JudgeWorker:
         if self._conn is not None:
             self._conn.close()
         self._process, self._conn = None, None
+
+    def prepare(self, task: "RunTask") -> None:
+        """Let the judge load the task's scenario and warm up on it now (registered and file scenarios only).
+
+        Nothing comes back: the next :meth:`judge` call waits for it under
+        its setup limit. Scenario objects are not sent twice.
+        """
+        if task.scenario.source == "object":
+            return
+        self._launch()
+        assert self._conn is not None
+        try:
+            self._conn.send(("warm", task))
+        except (OSError, EOFError):  # the judge died: judge() notices and restarts it
+            pass
 
     def close(self) -> None:
         """Stop the judge process."""

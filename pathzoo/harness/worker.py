@@ -60,6 +60,8 @@ __all__ = [
     "SCENARIO_CACHE_SIZE",
     "SETUP_TIMEOUT_S",
     "Report",
+    "warm_up_pairs",
+    "warm_up_tasks",
 ]
 
 SCENARIO_CACHE_SIZE = 4
@@ -242,6 +244,37 @@ def evict(spec: "ScenarioSpec") -> None:
     """Forget a cached scenario."""
     with _scenario_lock:
         _scenarios.pop(spec.cache_key, None)
+
+
+# ------------------------------------------------------------------ warm-up
+def warm_up_pairs(tasks: "list[RunTask]", workers: int) -> "list[list[RunTask]]":
+    """One run per (planner class, scenario kind) pair in order of first appearance, dealt round-robin to ``workers``.
+
+    Each worker warms its share (:func:`warm_up_tasks`) before its first run,
+    so the numba compilations of an experiment (about 17 CPU s with an empty
+    cache for the default experiment) are spread over the workers instead of
+    being repeated by each; a worker that later runs a planner another one
+    warmed loads the compiled code from numba's on-disk cache.
+    """
+    firsts: dict[tuple[str, str], RunTask] = {}
+    for task in tasks:
+        firsts.setdefault((task.planner.id, task.scenario.kind), task)
+    pairs = list(firsts.values())
+    return [pairs[i::workers] for i in range(workers)]
+
+
+def warm_up_tasks(tasks: "list[RunTask]") -> None:
+    """Warm up (:func:`pathzoo.testing.warmup.warm_up`) the planner of each task on its scenario kind; never raises.
+
+    Nothing here is timed or stored; a planner that fails to build or to warm
+    up fails again in its measured run, where that is recorded.
+    """
+    for task in tasks:
+        try:
+            ensure_plugins(task.plugin_modules)
+            warm_up(task.build_planner(), task.scenario.kind)
+        except BaseException:  # noqa: BLE001 - SystemExit from a planner included; see the docstring
+            continue
 
 
 # --------------------------------------------------------------------- runs

@@ -39,6 +39,9 @@ class RunExecutor(abc.ABC):
     def submit(self, task: "RunTask") -> "Future[RunOutcome]":
         """Schedule one run."""
 
+    def prepare(self, tasks: "list[RunTask]") -> None:
+        """Hear of the runs about to be submitted, e.g. to warm the workers up (default: nothing)."""
+
     def shutdown(self) -> None:
         """Stop the workers; runs still in flight are abandoned (their futures cancelled)."""
 
