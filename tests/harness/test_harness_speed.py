@@ -66,7 +66,8 @@ def test_warm_up_shares_cover_each_pair_once_in_order():
     pairs = [(t.planner.id, t.scenario.kind) for share in shares for t in share]
     assert sorted(pairs) == sorted({(t.planner.id, t.scenario.kind) for t in tasks})
     assert len(pairs) == len(set(pairs))
-    assert [(t.planner.id, t.scenario.kind) for t in shares[0]] == [("exact.astar", "grid2d"), ("exact.astar", "terrain")]
+    first = [(t.planner.id, t.scenario.kind) for t in shares[0]]
+    assert first == [("exact.astar", "grid2d"), ("exact.astar", "terrain")]
     assert warm_up_pairs(tasks, 5)[4] == []
 
 

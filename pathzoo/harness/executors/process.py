@@ -183,7 +183,7 @@ class ProcessExecutor(RunExecutor):
     def __init__(self, jobs: int | None = None, *, start_method: str | None = None) -> None:
         self.capacity = int(jobs or os.cpu_count() or 1)
         self._ctx: Any = NoMainContext(start_method or default_start_method())
-        start_server(start_method)  # from this thread, not the monitor (the server dies with the thread that started it)
+        start_server(start_method)  # from this thread, not the monitor: the server dies with its starting thread
         self._lock = threading.Lock()
         self._pending: deque[tuple[RunTask, Future[RunOutcome]]] = deque()
         self._workers: list[_Worker] = []

@@ -6,8 +6,8 @@ again: replacing a killed worker costs a fork, not a second of imports.
 
 The server exits when the harness does: killed by the kernel
 (:func:`~pathzoo.harness.launch.die_with_parent`, Linux, even in the middle
-of these imports) or on end of file on its life pipe. It then skips the interpreter's clean-up (``os._exit`` as the first exit
-handler): tearing down numba and every plugin takes seconds of CPU on a
+of these imports) or on end of file on its life pipe. It then skips the
+interpreter's clean-up (``os._exit`` as the first exit handler): tearing down numba and every plugin takes seconds of CPU on a
 loaded machine, and the workers it forked die only once it is gone
 (:func:`pathzoo.harness.launch.die_with_harness`). Workers never run exit
 handlers (a forkserver child always leaves through ``os._exit``).
