@@ -247,20 +247,23 @@ def evict(spec: "ScenarioSpec") -> None:
 
 
 # ------------------------------------------------------------------ warm-up
-def warm_up_pairs(tasks: "list[RunTask]", workers: int) -> "list[list[RunTask]]":
-    """One run per (planner class, scenario kind) pair in order of first appearance, dealt round-robin to ``workers``.
+def warm_up_pairs(tasks: "list[RunTask]", shares: int) -> "list[list[RunTask]]":
+    """One run per (planner, scenario kind) pair in order of first appearance, dealt round-robin into ``shares`` lists.
 
-    Each worker warms its share (:func:`warm_up_tasks`) before its first run,
-    so the numba compilations of an experiment (about 17 CPU s with an empty
-    cache for the default experiment) are spread over the workers instead of
-    being repeated by each; a worker that later runs a planner another one
-    warmed loads the compiled code from numba's on-disk cache.
+    The first task's pair is left out: the worker that runs the first task
+    warms it up then. The other workers each warm a share
+    (:func:`warm_up_tasks`) while that one serves the queue, so the numba
+    compilations of an experiment (about 17 CPU s with an empty cache for the
+    default experiment) are spread over the workers instead of being repeated
+    by each, and the first result is not delayed; a worker that later runs a
+    planner another one warmed loads the compiled code from numba's on-disk
+    cache.
     """
     firsts: dict[tuple[str, str], RunTask] = {}
     for task in tasks:
         firsts.setdefault((task.planner.id, task.scenario.kind), task)
-    pairs = list(firsts.values())
-    return [pairs[i::workers] for i in range(workers)]
+    pairs = list(firsts.values())[1:]
+    return [pairs[i::shares] for i in range(shares)]
 
 
 def warm_up_tasks(tasks: "list[RunTask]") -> None:

@@ -64,11 +64,12 @@ def test_warm_up_shares_cover_each_pair_once_in_order():
     tasks = exp.tasks()
     shares = warm_up_pairs(tasks, 2)
     pairs = [(t.planner.id, t.scenario.kind) for share in shares for t in share]
-    assert sorted(pairs) == sorted({(t.planner.id, t.scenario.kind) for t in tasks})
+    # every pair once, but the first run's own pair: the worker serving the queue warms that one
+    assert sorted(pairs) == sorted({(t.planner.id, t.scenario.kind) for t in tasks} - {("exact.astar", "grid2d")})
     assert len(pairs) == len(set(pairs))
     first = [(t.planner.id, t.scenario.kind) for t in shares[0]]
-    assert first == [("exact.astar", "grid2d"), ("exact.astar", "terrain")]
-    assert warm_up_pairs(tasks, 5)[4] == []
+    assert first == [("exact.dijkstra", "grid2d"), ("exact.dijkstra", "terrain")]
+    assert warm_up_pairs(tasks, 4)[3] == []
 
 
 def test_only_the_process_executor_queues_ahead():

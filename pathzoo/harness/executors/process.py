@@ -206,18 +206,19 @@ class ProcessExecutor(RunExecutor):
         return future
 
     def prepare(self, tasks: "list[RunTask]") -> None:
-        """Deal the warm-up of each (planner, scenario kind) pair to the workers, one share each (jobs >= 2 only).
+        """Deal the warm-up of the experiment's (planner, scenario kind) pairs to all workers but one (jobs >= 2).
 
-        Each worker warms its share (:func:`~pathzoo.harness.worker.warm_up_pairs`)
-        before its first run, under the setup limit
-        :data:`~pathzoo.harness.worker.SETUP_TIMEOUT_S`; the compilations run
-        in parallel instead of being repeated by every worker. With one worker
-        there is nothing to share, and the first run starts sooner without.
+        One worker serves the queue from the start; each other worker first
+        warms up its share (:func:`~pathzoo.harness.worker.warm_up_pairs`),
+        under the setup limit :data:`~pathzoo.harness.worker.SETUP_TIMEOUT_S`,
+        then serves the queue too. The compilations run in parallel with the
+        first runs instead of being repeated by every worker. With one worker
+        there is nothing to share.
         """
         if self.capacity < 2:
             return
         with self._lock:
-            self._warm_shares.extend(share for share in warm_up_pairs(tasks, self.capacity) if share)
+            self._warm_shares.extend(share for share in warm_up_pairs(tasks, self.capacity - 1) if share)
         self._wake_w.send(None)
 
     def shutdown(self) -> None:
@@ -270,9 +271,9 @@ class ProcessExecutor(RunExecutor):
         self._workers.remove(worker)
 
     def _dispatch(self) -> None:
-        while True:  # warm-up shares first, to workers that are ready and have had none
+        while True:  # warm-up shares first, to ready workers that have had none, while another one serves the queue
             with self._lock:
-                if not self._warm_shares:
+                if not self._warm_shares or not any(w.task is not None for w in self._workers):
                     break
                 fresh = next((w for w in self._workers if w.idle and w.task is None and not w.had_share), None)
                 if fresh is None:
