@@ -159,6 +159,11 @@ class JudgeWorker:
             self._conn.close()
         self._process, self._conn = None, None
 
+    @staticmethod
+    def _for_judge(task: "RunTask") -> "RunTask":
+        """The task as the judge process gets it (for runs and warm-ups alike)."""
+        return task
+
     def prepare(self, task: "RunTask") -> None:
         """Let the judge load the task's scenario and warm up on it now (registered and file scenarios only).
 
@@ -170,7 +175,7 @@ class JudgeWorker:
         self._launch()
         assert self._conn is not None
         try:
-            self._conn.send(("warm", task))
+            self._conn.send(("warm", self._for_judge(task)))
         except (OSError, EOFError):  # the judge died: judge() notices and restarts it
             pass
 
@@ -207,7 +212,7 @@ class JudgeWorker:
 
         conn = self._start()
         try:
-            conn.send((task, outcome, isolated))
+            conn.send((self._for_judge(task), outcome, isolated))
         except Exception as exc:  # noqa: BLE001 - e.g. a scenario object that does not pickle
             return unjudged(task, outcome, f"the run could not be sent to the judge ({type(exc).__name__})",
                             isolated=isolated)
