@@ -76,6 +76,10 @@ def _harness_info_on_stderr() -> Iterator[None]:
 
 def _run(args: argparse.Namespace) -> int:
     executor = executor_of(args)
+    if executor == "process":  # the worker server imports the plugins while this process reads the experiment
+        from pathzoo.harness.launch import start_server
+
+        start_server()
     with ExitStack() as stack:
         if args.experiment is None:
             path = stack.enter_context(resources.as_file(resources.files("pathzoo.experiments") / "default.toml"))

@@ -36,7 +36,7 @@ from dataclasses import replace
 from multiprocessing.connection import Connection, wait
 from typing import TYPE_CHECKING, Any
 
-from pathzoo.harness.launch import NoMainContext
+from pathzoo.harness.launch import NoMainContext, die_with_harness, harness_alive
 from pathzoo.harness.worker import SETUP_TIMEOUT_S, describe_exception, ensure_plugins, load_cached, quiet_registry
 from pathzoo.plugins.manager import get_registry, limit_kinds
 
@@ -58,11 +58,12 @@ JUDGE_KINDS = ("scenarios", "metrics")
 _clock = time.perf_counter
 
 
-def _judge_main(conn: Connection) -> None:
+def _judge_main(conn: Connection, alive: Connection) -> None:
     """Loop of the judge process: load the scenario, say so, judge, send the record (or the error)."""
     limit_kinds(JUDGE_KINDS)  # before anything discovers plugins: planner plugins are never imported here
     from pathzoo.harness.judge import judge
 
+    die_with_harness(alive)
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     conn.send(("ready",))
     while True:
@@ -72,6 +73,9 @@ def _judge_main(conn: Connection) -> None:
             return
         if request is None:
             return
+        if request[0] == "warm":
+            _warm(request[1])
+            continue
         task, outcome, isolated = request
         try:
             ensure_plugins(task.plugin_modules, missing_ok=True)
@@ -84,6 +88,34 @@ def _judge_main(conn: Connection) -> None:
             conn.send(("done", record, [str(w.message) for w in caught if issubclass(w.category, RuntimeWarning)]))
         except Exception as exc:  # noqa: BLE001 - MemoryError included: the run is invalid, the judge goes on
             conn.send(("error", describe_exception(exc).splitlines()[0]))
+
+
+def _warm(task: "RunTask") -> None:
+    """Load the task's scenario and judge its reference path once, discarding the record; never raises.
+
+    Loading, hashing and the first validation and metrics on a scenario kind
+    (numba code loaded or compiled) then happen while the first runs of the
+    scenario execute, not after them.
+    """
+    import numpy as np
+
+    from pathzoo.core.status import Status
+    from pathzoo.grid.reference import reference_path
+    from pathzoo.harness.judge import judge
+    from pathzoo.harness.worker import RunOutcome
+
+    try:
+        ensure_plugins(task.plugin_modules, missing_ok=True)
+        scenario, _ = load_cached(task.scenario)
+        ref = reference_path(scenario)
+        if ref is not None:
+            outcome = RunOutcome(task.run_key, status=Status.SOLVED, path=np.array(ref.path, dtype=np.float64))
+            metrics = [entry.obj() for entry in quiet_registry().metrics.values()]
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                judge(task, outcome, scenario, metrics)
+    except Exception:  # noqa: BLE001 - the real run's judging meets the same error and reports it
+        return
 
 
 class JudgeWorker:
@@ -104,23 +136,33 @@ class JudgeWorker:
         self._ctx: Any = NoMainContext("spawn")
         self._process: BaseProcess | None = None
         self._conn: Connection | None = None
+        self._ready = False
 
     def __enter__(self) -> "JudgeWorker":
+        self._launch()  # it starts while the first runs execute
         return self
 
     def __exit__(self, *exc: object) -> None:
         self.close()
 
-    def _start(self) -> Connection:
+    def _launch(self) -> None:
+        """Start the judge process if there is none, without waiting for it."""
         if self._conn is None:
             parent, child = self._ctx.Pipe(duplex=True)
-            self._process = self._ctx.Process(target=_judge_main, args=(child,), name="pathzoo-judge")
+            self._process = self._ctx.Process(target=_judge_main, args=(child, harness_alive()), name="pathzoo-judge")
             self._process.start()
             child.close()
-            self._conn = parent
+            self._conn, self._ready = parent, False
+
+    def _start(self) -> Connection:
+        """The connection to a judge process that said it is ready."""
+        self._launch()
+        assert self._conn is not None
+        if not self._ready:
             if self._receive(SETUP_TIMEOUT_S) != ("ready",):
                 self._stop()
                 raise RuntimeError("the judge process failed to start")
+            self._ready = True
         return self._conn
 
     def _stop(self) -> None:
@@ -130,6 +172,27 @@ class JudgeWorker:
         if self._conn is not None:
             self._conn.close()
         self._process, self._conn = None, None
+
+    @staticmethod
+    def _for_judge(task: "RunTask") -> "RunTask":
+        """The task as the judge process gets it (for runs and warm-ups alike): only the hand-registered
+        plugin modules that provide scenarios or metrics, never a planner's."""
+        return replace(task, plugin_modules=get_registry().judge_modules(task.plugin_modules))
+
+    def prepare(self, task: "RunTask") -> None:
+        """Let the judge load the task's scenario and warm up on it now (registered and file scenarios only).
+
+        Nothing comes back: the next :meth:`judge` call waits for it under
+        its setup limit. Scenario objects are not sent twice.
+        """
+        if task.scenario.source == "object":
+            return
+        self._launch()
+        assert self._conn is not None
+        try:
+            self._conn.send(("warm", self._for_judge(task)))
+        except (OSError, EOFError):  # the judge died: judge() notices and restarts it
+            pass
 
     def close(self) -> None:
         """Stop the judge process."""
@@ -164,8 +227,7 @@ class JudgeWorker:
 
         conn = self._start()
         try:
-            conn.send((replace(task, plugin_modules=get_registry().judge_modules(task.plugin_modules)), outcome,
-                       isolated))
+            conn.send((self._for_judge(task), outcome, isolated))
         except Exception as exc:  # noqa: BLE001 - e.g. a scenario object that does not pickle
             return unjudged(task, outcome, f"the run could not be sent to the judge ({type(exc).__name__})",
                             isolated=isolated)

@@ -7,17 +7,45 @@ time in every child (and fails). Like loky and Dask's worker processes,
 prepared with; the child still gets the parent's ``sys.path`` and working
 directory. With ``forkserver`` (the default where available) the server
 imports pathzoo and every entry-point plugin once
-(:mod:`pathzoo.harness.executors.warmup`), so each new child costs a fork.
+(:mod:`pathzoo.harness.executors.warmup`), so each new child costs a fork;
+:func:`start_server` starts it early, so it imports while the harness is
+still reading the experiment.
+
+Children die with the harness (:func:`die_with_harness`): a ``kill -9`` of
+the harness process leaves no worker or judge behind. On Linux each child
+asks the kernel for ``SIGKILL`` when its parent dies
+(``prctl(PR_SET_PDEATHSIG)``). A forkserver child's parent is the server,
+which exits when its own life pipe from the harness reports end of file; each
+child inherits a write end of that pipe (so that it could fork through the
+server itself), which would keep the server, and so the child, alive after
+the harness's death, so the child closes it first. Everywhere, a watchdog
+thread also ends the child when the read end of a pipe whose only writer is
+the harness reports end of file (it cannot run while a planner holds the GIL
+in a long C call, which is why the kernel's signal comes first).
 """
 
 from __future__ import annotations
 
+import ctypes
 import multiprocessing as mp
+import os
+import signal
+import sys
 import threading
 from multiprocessing import popen_forkserver, popen_spawn_posix, spawn
+from multiprocessing.connection import Connection
 from typing import Any
 
-__all__ = ["NoMainContext", "ForkServerNoMainProcess", "SpawnNoMainProcess", "default_start_method"]
+__all__ = [
+    "NoMainContext",
+    "ForkServerNoMainProcess",
+    "SpawnNoMainProcess",
+    "default_start_method",
+    "start_server",
+    "harness_alive",
+    "die_with_harness",
+    "die_with_parent",
+]
 
 _PRELOAD = ["pathzoo.harness.executors.warmup"]
 _launch_lock = threading.Lock()
@@ -26,6 +54,85 @@ _launch_lock = threading.Lock()
 def default_start_method() -> str:
     """``forkserver`` where the platform has it, else ``spawn``."""
     return "forkserver" if "forkserver" in mp.get_all_start_methods() else "spawn"
+
+
+def start_server(method: str | None = None) -> None:
+    """Start the ``forkserver`` now if it is not running, without waiting for it (no-op for ``spawn``).
+
+    The server imports every plugin (:mod:`pathzoo.harness.executors.warmup`)
+    while the caller goes on, e.g. reading and checking the experiment on the
+    other core; the first worker then costs a fork instead of a cold start.
+    The server dies with the thread that started it (see
+    :func:`die_with_parent`), so call this from the main thread: the
+    executors and the judge do, from the thread that builds them.
+    """
+    if (method or default_start_method()) != "forkserver":
+        return
+    NoMainContext("forkserver")  # sets the preload list of the server
+    from multiprocessing import forkserver
+
+    with _launch_lock:
+        original = spawn.get_preparation_data
+        spawn.get_preparation_data = _without_main(original)
+        try:
+            forkserver.ensure_running()
+        finally:
+            spawn.get_preparation_data = original
+
+
+_alive: tuple[Connection, Connection] | None = None
+
+
+def harness_alive() -> Connection:
+    """The read end of this process's life pipe, to hand to each child (see :func:`die_with_harness`).
+
+    The write end is kept by this process only and never written to or
+    closed, so a child's read end reports end of file exactly when this
+    process is gone.
+    """
+    global _alive
+    with _launch_lock:
+        if _alive is None:
+            _alive = mp.Pipe(duplex=False)
+        return _alive[0]
+
+
+_PR_SET_PDEATHSIG = 1
+
+
+def die_with_parent() -> None:
+    """Ask the kernel for ``SIGKILL`` when the thread that started this process exits (Linux; elsewhere nothing)."""
+    if sys.platform.startswith("linux"):
+        try:
+            ctypes.CDLL(None, use_errno=True).prctl(_PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
+        except (OSError, AttributeError):
+            pass
+
+
+def die_with_harness(alive: Connection) -> None:
+    """In a child: be killed when the harness dies (see the module docstring); call it first thing.
+
+    Parameters
+    ----------
+    alive : Connection
+        The child's copy of :func:`harness_alive`.
+    """
+    from multiprocessing import forkserver
+
+    server = forkserver._forkserver  # a forkserver child inherits the write end of the server's own life pipe:
+    if server._forkserver_alive_fd is not None:  # with it open, the server outlives the harness while we run
+        os.close(server._forkserver_alive_fd)
+        server._forkserver_alive_fd = None
+    die_with_parent()
+
+    def watch() -> None:
+        try:
+            alive.poll(None)  # only end of file ever arrives
+        except (OSError, EOFError):
+            pass
+        os.kill(os.getpid(), signal.SIGKILL)
+
+    threading.Thread(target=watch, name="pathzoo-harness-watch", daemon=True).start()
 
 
 def _without_main(prepare: Any) -> Any:

@@ -123,15 +123,21 @@ def _execute(
     remaining = Counter(t.planner.name for t in tasks)
     times = RunTimes()
 
+    scenarios_seen: set[tuple[str, str, str, str]] = set()
+
     def submit_more() -> None:
-        while len(in_flight) < executor.capacity:
+        while len(in_flight) < executor.capacity + executor.lookahead:
             task = next(queue, None)
             if task is None:
                 return
+            if task.scenario.cache_key not in scenarios_seen:  # the judge loads it while the run executes
+                scenarios_seen.add(task.scenario.cache_key)
+                judge.prepare(task)
             _call_hook(registry, "pathzoo_run_started", run_key=task.run_key, planner_id=task.planner.id,
                        scenario_id=task.scenario.id, seed=task.seed)
             in_flight[executor.submit(task)] = task
 
+    executor.prepare(tasks)
     submit_more()
     while in_flight:
         done, _ = wait(list(in_flight), return_when=FIRST_COMPLETED)

@@ -45,20 +45,27 @@ class ModuleFingerprint:
     """Snapshots of the namespaces of every loaded module and of the classes each defines.
 
     :meth:`update` snapshots modules loaded since the last call (the first
-    call takes about 0.07 s of CPU with every plugin loaded); :meth:`changed`
-    compares every snapshot with the live namespace, which costs a few
-    milliseconds when nothing changed: the key lists and the value
-    identities are compared in C, and only a namespace that differs is
-    examined attribute by attribute (then re-snapshotted if the difference
-    is not a tracked one).
+    call takes about 0.02-0.07 s of CPU with every plugin loaded).
+    :meth:`changed` first compares the whole live state with the last state
+    it found clean, in a few C-level passes: the namespace sizes, then every
+    key and every value by identity (``operator.is_``, never ``==``, which a
+    planner's object could answer falsely), and the ``sys.modules`` entries
+    likewise. That costs 3-6 ms with every plugin loaded (4,300 namespaces,
+    72,000 attributes), against 45 ms for a namespace-by-namespace loop.
+    Only when anything differs does it examine each namespace attribute by
+    attribute against its snapshot (re-snapshotting one whose difference is
+    not a tracked one); the clean state it then finds becomes the reference
+    for the next quick comparison.
     """
 
     def __init__(self) -> None:
         self._modules: dict[str, int] = {}
         self._owners: dict[int, tuple[str, Any, dict[str, Any]]] = {}
+        self._clean: _CleanState | None = None
 
     def _snap(self, label: str, owner: Any) -> None:
         self._owners[id(owner)] = (label, owner, _attributes(owner))
+        self._clean = None
 
     def update(self) -> "ModuleFingerprint":
         """Snapshot the modules loaded since the last call (and their classes)."""
@@ -74,6 +81,15 @@ class ModuleFingerprint:
 
     def changed(self, limit: int = 5) -> list[str]:
         """Up to ``limit`` names (``"module.attribute"``) whose tracked object was replaced or deleted."""
+        if self._clean is not None and self._clean.holds():
+            return []
+        out = self._examine(limit)
+        if not out:
+            self._clean = _CleanState(list(self._modules), [owner for _, owner, _ in self._owners.values()])
+        return out
+
+    def _examine(self, limit: int) -> list[str]:
+        """The attribute-by-attribute comparison with the snapshots."""
         out = [f"sys.modules[{name!r}]" for name, ident in self._modules.items()
                if sys.modules.get(name) is not None and id(sys.modules[name]) != ident]
         for key, (label, owner, old) in list(self._owners.items()):
@@ -92,3 +108,42 @@ class ModuleFingerprint:
             else:  # only untracked data changed (a lazily set global): the new state is the reference
                 self._owners[key] = (label, owner, _attributes(owner))
         return out[:limit]
+
+
+class _CleanState:
+    """The live state of every tracked namespace at a moment :meth:`ModuleFingerprint.changed` found it clean.
+
+    It holds the namespaces' keys and values themselves (so no identity can
+    be reused by a new object while it exists) and :meth:`holds` compares
+    the live state with them by identity only.
+    """
+
+    def __init__(self, module_names: list[str], owners: list[Any]) -> None:
+        self.module_names = module_names
+        self.modules = list(map(sys.modules.get, module_names))
+        self.namespaces = [ns for ns in map(_namespace, owners) if ns is not None]
+        self.sizes = list(map(len, self.namespaces))
+        self.keys = list(itertools.chain.from_iterable(self.namespaces))
+        self.values = list(itertools.chain.from_iterable(map(_VALUES, self.namespaces)))
+
+    def holds(self) -> bool:
+        """Whether every module entry, namespace key and namespace value is still the very same object."""
+        if not all(map(operator.is_, self.modules, map(sys.modules.get, self.module_names))):
+            return False
+        if list(map(len, self.namespaces)) != self.sizes:  # plain ints: == cannot be fooled
+            return False
+        keys = list(itertools.chain.from_iterable(self.namespaces))
+        values = list(itertools.chain.from_iterable(map(_VALUES, self.namespaces)))
+        return (len(keys) == len(self.keys) and len(values) == len(self.values)
+                and all(map(operator.is_, self.keys, keys)) and all(map(operator.is_, self.values, values)))
+
+
+_VALUES = operator.methodcaller("values")
+
+
+def _namespace(owner: Any) -> Any:
+    """The live namespace of a module (its ``__dict__``) or class (a read-only view of it); None if it has none."""
+    try:
+        return vars(owner)
+    except TypeError:
+        return None

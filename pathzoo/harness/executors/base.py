@@ -20,12 +20,16 @@ class RunExecutor(abc.ABC):
     resolves to a :class:`~pathzoo.harness.worker.RunOutcome`: planner
     exceptions, hard-limit kills and dead workers are outcomes (``crash``,
     ``timed_out``), not future exceptions. The runner keeps at most
-    :attr:`capacity` runs in flight, so a run starts soon after it is submitted.
+    :attr:`capacity` + :attr:`lookahead` runs in flight, so a run starts soon after it is submitted.
     Use executors as context managers; :meth:`shutdown` stops every worker.
     """
 
     capacity: int = 1
     """How many runs execute at the same time."""
+
+    lookahead: int = 0
+    """How many runs beyond :attr:`capacity` the runner may queue here, so a worker that finishes a run finds its
+    next one waiting instead of waiting for the harness to judge and store the last one."""
 
     isolated: bool = False
     """Whether every run executes in a process of its own that no other planner's code can have changed
@@ -34,6 +38,9 @@ class RunExecutor(abc.ABC):
     @abc.abstractmethod
     def submit(self, task: "RunTask") -> "Future[RunOutcome]":
         """Schedule one run."""
+
+    def prepare(self, tasks: "list[RunTask]") -> None:
+        """Hear of the runs about to be submitted, e.g. to warm the workers up (default: nothing)."""
 
     def shutdown(self) -> None:
         """Stop the workers; runs still in flight are abandoned (their futures cancelled)."""

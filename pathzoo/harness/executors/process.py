@@ -7,7 +7,8 @@ code, so nothing they send is unpickled: they send short tagged byte strings
 (read with a size limit) and the outcome in the format of
 :mod:`pathzoo.harness.wire`:
 
-- ``R`` (ready) once started, ``I`` (idle) after each run when the process
+- ``R`` (ready) once started, ``I`` (idle) after each run (or warm-up share,
+  :meth:`ProcessExecutor.prepare`) when the process
   is still clean, ``T`` (tainted) when the run rebound module attributes
   (:mod:`pathzoo.harness.tamper`): that worker is retired and a fresh one
   started, so no planner's patch reaches another run;
@@ -33,7 +34,13 @@ script without an ``if __name__ == "__main__":`` guard (or ``python - <
 script.py``) works; planner classes defined in ``__main__`` travel by value
 (:attr:`~pathzoo.harness.specs.RunTask.planner_class`). Replacing a worker
 costs a fork of the server, which has every entry-point plugin imported.
-Workers ignore ``SIGINT``; Ctrl-C reaches the harness, which kills them on shutdown.
+Workers ignore ``SIGINT``; Ctrl-C reaches the harness, which kills them on shutdown,
+and they die with the harness however it ends (:func:`~pathzoo.harness.launch.die_with_harness`).
+
+All workers start when the executor is built; with two or more, each first
+warms up its share of the experiment's planners (:meth:`ProcessExecutor.prepare`),
+and the runner keeps one run per worker queued here (:attr:`lookahead`), so a
+worker goes from one run to the next without waiting for the harness.
 """
 
 from __future__ import annotations
@@ -51,10 +58,10 @@ from typing import TYPE_CHECKING, Any
 
 from pathzoo.core.errors import PathzooError
 from pathzoo.harness.executors.base import RunExecutor
-from pathzoo.harness.launch import NoMainContext, default_start_method
+from pathzoo.harness.launch import NoMainContext, default_start_method, die_with_harness, harness_alive, start_server
 from pathzoo.harness.tamper import ModuleFingerprint
 from pathzoo.harness.wire import MAX_OUTCOME_BYTES, decode_outcome, encode_outcome
-from pathzoo.harness.worker import SETUP_TIMEOUT_S, RunOutcome, execute_task, utc_now
+from pathzoo.harness.worker import SETUP_TIMEOUT_S, RunOutcome, execute_task, utc_now, warm_up_pairs, warm_up_tasks
 
 if TYPE_CHECKING:
     from multiprocessing.process import BaseProcess
@@ -81,8 +88,9 @@ def process_cpu_time(pid: int) -> float:
         return math.nan
 
 
-def _worker_main(conn: Connection) -> None:
+def _worker_main(conn: Connection, alive: Connection) -> None:
     """Loop of one worker process: receive a task, run it, send the outcome and whether the process is clean."""
+    die_with_harness(alive)
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     fingerprint = ModuleFingerprint().update()
     conn.send_bytes(b"R")
@@ -93,21 +101,30 @@ def _worker_main(conn: Connection) -> None:
             return
         if task is None:
             return
-        outcome = execute_task(task, lambda event: conn.send_bytes(b"S" if event == "started" else b"P"))
-        try:
-            conn.send_bytes(b"D" + encode_outcome(outcome))
-        except (EOFError, OSError):
+        if isinstance(task, list):  # the warm-up share of this worker (see ProcessExecutor.prepare)
+            warm_up_tasks(task)
+        elif not _run(conn, task):
             return
-        except Exception as exc:  # noqa: BLE001 - the outcome could not be encoded
-            conn.send_bytes(b"D" + encode_outcome(RunOutcome(
-                task.run_key, crash=True, message=f"outcome could not be sent back: {exc!r}",
-                started_at=outcome.started_at)))
         changed = fingerprint.changed()
         if changed:
             conn.send_bytes(b"T" + ", ".join(changed).encode("utf-8", "replace")[:1000])
             return
         fingerprint.update()
         conn.send_bytes(b"I")
+
+
+def _run(conn: Connection, task: "RunTask") -> bool:
+    """Run one task and send its outcome; False when the harness is gone."""
+    outcome = execute_task(task, lambda event: conn.send_bytes(b"S" if event == "started" else b"P"))
+    try:
+        conn.send_bytes(b"D" + encode_outcome(outcome))
+    except (EOFError, OSError):
+        return False
+    except Exception as exc:  # noqa: BLE001 - the outcome could not be encoded
+        conn.send_bytes(b"D" + encode_outcome(RunOutcome(
+            task.run_key, crash=True, message=f"outcome could not be sent back: {exc!r}",
+            started_at=outcome.started_at)))
+    return True
 
 
 def describe_exit(exitcode: int | None) -> str:
@@ -137,6 +154,7 @@ class _Worker:
     in_setup: bool = False
     plan_t0: float = math.nan
     plan_c0: float = math.nan
+    had_share: bool = False
 
     @property
     def listening(self) -> bool:
@@ -165,11 +183,14 @@ class ProcessExecutor(RunExecutor):
     def __init__(self, jobs: int | None = None, *, start_method: str | None = None) -> None:
         self.capacity = int(jobs or os.cpu_count() or 1)
         self._ctx: Any = NoMainContext(start_method or default_start_method())
+        start_server(start_method)  # from this thread, not the monitor: the server dies with its starting thread
         self._lock = threading.Lock()
         self._pending: deque[tuple[RunTask, Future[RunOutcome]]] = deque()
         self._workers: list[_Worker] = []
+        self._warm_shares: deque[list[RunTask]] = deque()
         self._closing = False
         self._wake_r, self._wake_w = self._ctx.Pipe(duplex=False)
+        self.lookahead = self.capacity
         self._thread = threading.Thread(target=self._monitor, name="pathzoo-process-executor", daemon=True)
         self._thread.start()
 
@@ -183,6 +204,22 @@ class ProcessExecutor(RunExecutor):
             self._pending.append((task, future))
         self._wake_w.send(None)
         return future
+
+    def prepare(self, tasks: "list[RunTask]") -> None:
+        """Deal the warm-up of the experiment's (planner, scenario kind) pairs to all workers but one (jobs >= 2).
+
+        One worker serves the queue from the start; each other worker first
+        warms up its share (:func:`~pathzoo.harness.worker.warm_up_pairs`),
+        under the setup limit :data:`~pathzoo.harness.worker.SETUP_TIMEOUT_S`,
+        then serves the queue too. The compilations run in parallel with the
+        first runs instead of being repeated by every worker. With one worker
+        there is nothing to share.
+        """
+        if self.capacity < 2:
+            return
+        with self._lock:
+            self._warm_shares.extend(share for share in warm_up_pairs(tasks, self.capacity - 1) if share)
+        self._wake_w.send(None)
 
     def shutdown(self) -> None:
         """Stop the monitor, ask idle workers to exit, kill busy ones, cancel queued runs."""
@@ -219,7 +256,7 @@ class ProcessExecutor(RunExecutor):
     # ------------------------------------------------------------- internals
     def _spawn(self) -> _Worker:
         parent, child = self._ctx.Pipe(duplex=True)
-        process = self._ctx.Process(target=_worker_main, args=(child,), name="pathzoo-worker")
+        process = self._ctx.Process(target=_worker_main, args=(child, harness_alive()), name="pathzoo-worker")
         process.start()
         child.close()
         worker = _Worker(process, parent)
@@ -234,6 +271,22 @@ class ProcessExecutor(RunExecutor):
         self._workers.remove(worker)
 
     def _dispatch(self) -> None:
+        while True:  # warm-up shares first, to ready workers that have had none, while another one serves the queue
+            with self._lock:
+                if not self._warm_shares or not any(w.task is not None for w in self._workers):
+                    break
+                fresh = next((w for w in self._workers if w.idle and w.task is None and not w.had_share), None)
+                if fresh is None:
+                    break
+                share = self._warm_shares.popleft()
+            fresh.idle, fresh.had_share = False, True
+            fresh.deadline = _clock() + SETUP_TIMEOUT_S
+            try:
+                fresh.conn.send(share)
+            except (OSError, EOFError):  # the worker died: its sentinel reports it
+                pass
+            except Exception:  # noqa: BLE001 - the share did not pickle: the runs will warm up as they come
+                fresh.idle, fresh.deadline = True, math.inf
         while True:
             with self._lock:
                 if not self._pending:
@@ -289,7 +342,7 @@ class ProcessExecutor(RunExecutor):
             if tag == b"R" and not worker.was_ready:
                 worker.idle = worker.was_ready = True
             elif tag == b"I" and worker.task is None:
-                worker.idle = True
+                worker.idle, worker.deadline = True, math.inf
             elif tag == b"T" and worker.task is None:
                 self._retire(worker)  # a planner patched modules in it: never reuse it
                 return
@@ -336,6 +389,8 @@ class ProcessExecutor(RunExecutor):
 
     def _monitor(self) -> None:
         try:
+            while len(self._workers) < self.capacity:  # all at once: they start while the first task is prepared
+                self._spawn()
             while True:
                 with self._lock:
                     if self._closing:
@@ -362,6 +417,8 @@ class ProcessExecutor(RunExecutor):
                 for worker in list(self._workers):
                     if worker.task is not None and now >= worker.deadline:
                         self._kill(worker)
+                    elif worker.task is None and now >= worker.deadline:  # a warm-up over the setup limit
+                        self._retire(worker)
         except BaseException as exc:  # never leave the runner waiting on futures forever
             for worker in self._workers:
                 if worker.future is not None and not worker.future.done():

@@ -1,0 +1,245 @@
+"""Issue 12's harness targets: each figure measured and printed beside its target, in one run.
+
+Run from the repository root::
+
+    python benchmarks/harness.py             # everything (the cold default experiment takes a minute or more)
+    python benchmarks/harness.py --quick     # without the cold default experiment
+
+Every measurement runs in a child process (``pathzoo run`` or a short Python
+script) and is reported as wall seconds *and* CPU seconds of the whole
+process tree (the harness, the forkserver, every worker and the judge), read
+with psutil every 0.05 s, so a process that ends between two readings loses
+at most its last 0.05 s. On a machine shared with other work the wall times
+are inflated and the jobs=2 / jobs=1 ratio means little; the load average is
+printed first, and the CPU figures are the ones to compare.
+
+- *first result*: from the start of ``pathzoo run`` (the default experiment)
+  to the first run stored in its database, then the run is stopped; also the
+  same time from the call of ``run_experiment`` in a Python process that has
+  already imported pathzoo and read the experiment (the harness's own part).
+  Measured twice on a fresh numba cache: empty, then warmed by the first
+  attempt (the target's figure).
+- *default experiment, cold*: ``pathzoo run`` of the bundled default
+  experiment with an empty ``NUMBA_CACHE_DIR``, so every numba function is
+  compiled during the run.
+- *tiny runs*: ``--tiny`` runs of ``exact.astar`` (one iteration) on a 32x32
+  MovingAI problem at jobs=1 and jobs=2: runs per wall second, their ratio,
+  and the harness's cost per run (wall and CPU per run, minus the planner's
+  own ``plan()`` time as stored). A tiny run costs the harness (worker,
+  judge, store) more than the planner, and at jobs=1 the judge and the
+  store already work beside the worker, so this ratio stays well below 2
+  even on an idle machine.
+- *short runs*: ``--short`` runs of ``aco.as`` (1000 iterations, about 0.15 CPU s each) on the same
+  problem at jobs=1 and jobs=2, where the planner's time dominates: the
+  throughput ratio the target is about.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sqlite3
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+import psutil
+
+FIRST_RESULT_TARGET_S = 1.0
+DEFAULT_COLD_TARGET_S = 60.0
+JOBS_RATIO_TARGET = 1.8
+TINY_SCENARIO = "movingai.random-32-32-20.b10.13"
+SHORT_ITERATIONS = 1000
+
+_TINY_SCRIPT = """
+import sys, time
+from pathzoo import Budget
+from pathzoo.harness import Experiment, run_experiment
+exp = Experiment.build(name="tiny", planners=[{planner!r}], scenarios=[{scenario!r}], seeds={n},
+                       budget=Budget(iterations={iterations}, time_s=5.0))
+t0 = time.perf_counter()
+runs = run_experiment(exp, db={db!r}, jobs={jobs}, progress=False)
+wall = time.perf_counter() - t0
+assert len(runs) == {n} and (runs["status"] == "solved").all(), runs["status"].value_counts()
+print(wall, runs["wall_time_s"].sum(), runs["cpu_time_s"].sum())
+"""
+
+_FIRST_SCRIPT = """
+import importlib.resources, os, sqlite3, sys, threading, time
+from pathzoo.harness import Experiment, run_experiment
+exp = Experiment.from_toml(importlib.resources.files("pathzoo") / "experiments" / "default.toml")
+def watch(t0):
+    while True:
+        try:
+            with sqlite3.connect({db!r}, timeout=0.1) as con:
+                if con.execute("select count(*) from runs").fetchone()[0]:
+                    print(time.perf_counter() - t0, flush=True)
+                    os._exit(0)  # the workers and the judge die with this process
+        except sqlite3.Error:
+            pass
+        time.sleep(0.01)
+threading.Thread(target=watch, args=(time.perf_counter(),), daemon=True).start()
+run_experiment(exp, db={db!r}, progress=False)
+"""
+
+
+@dataclass
+class TreeUsage:
+    """Wall and CPU seconds of a child process and all its descendants."""
+
+    wall_s: float
+    cpu_s: float
+    stdout: str
+
+
+def run_tree(cmd: list[str], *, env: dict[str, str] | None = None, cwd: str | None = None,
+             stop_when: "callable | None" = None, timeout_s: float = 1800.0) -> TreeUsage:
+    """Run ``cmd`` and add up the CPU time of its process tree (sampled every 0.05 s).
+
+    ``stop_when`` is polled too; when it returns True the command gets SIGINT
+    (as Ctrl-C would) and the measurement ends when it has exited.
+    """
+    last: dict[int, float] = {}
+    t0 = time.perf_counter()
+    proc = subprocess.Popen(cmd, env=env, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
+    out: list[str] = []
+    reader = threading.Thread(target=lambda: out.append(proc.stdout.read()), daemon=True)  # type: ignore[union-attr]
+    reader.start()
+    root = psutil.Process(proc.pid)
+    stopped = False
+    while proc.poll() is None:
+        try:
+            for p in [root, *root.children(recursive=True)]:
+                try:
+                    t = p.cpu_times()
+                    last[p.pid] = t.user + t.system
+                except psutil.Error:
+                    pass
+        except psutil.Error:
+            pass
+        if stop_when is not None and not stopped and stop_when():
+            proc.send_signal(2)
+            stopped = True
+        if time.perf_counter() - t0 > timeout_s:
+            proc.kill()
+            raise TimeoutError(f"{cmd} took over {timeout_s} s")
+        time.sleep(0.05)
+    wall = time.perf_counter() - t0
+    reader.join()
+    return TreeUsage(wall, sum(last.values()), "".join(out))
+
+
+def stored_runs(db: Path) -> int:
+    """Rows in the runs table (0 while the database does not exist yet)."""
+    try:
+        with sqlite3.connect(db, timeout=0.1) as con:
+            return int(con.execute("select count(*) from runs").fetchone()[0])
+    except sqlite3.Error:
+        return 0
+
+
+def pathzoo_cli() -> str:
+    """The ``pathzoo`` script beside this interpreter."""
+    return str(Path(sys.executable).with_name("pathzoo"))
+
+
+def first_result(tmp: Path, attempt: str) -> tuple[float, float]:
+    """Seconds from the start of ``pathzoo run`` to its first stored run, and from ``run_experiment``'s call.
+
+    Both use the numba cache ``tmp/numba-first``: empty at the first attempt,
+    filled by it for the next.
+    """
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp / "numba-first")}
+    db = tmp / f"first-{attempt}.sqlite"
+    t0 = time.perf_counter()
+    seen: list[float] = []
+
+    def stop() -> bool:
+        if not seen and stored_runs(db):
+            seen.append(time.perf_counter() - t0)
+        return bool(seen)
+
+    run_tree([pathzoo_cli(), "run", "--db", str(db), "--no-progress"], env=env, cwd=str(tmp), stop_when=stop)
+    api = run_tree([sys.executable, "-c", _FIRST_SCRIPT.format(db=str(tmp / f"first-api-{attempt}.sqlite"))],
+                   env=env, cwd=str(tmp))
+    return seen[0] if seen else float("nan"), float(api.stdout.split()[-1])
+
+
+def default_cold(tmp: Path) -> TreeUsage:
+    """``pathzoo run`` of the default experiment with an empty numba cache."""
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp / "numba-cold")}
+    usage = run_tree([pathzoo_cli(), "run", "--db", str(tmp / "default.sqlite"), "--no-progress"], env=env,
+                     cwd=str(tmp))
+    runs = stored_runs(tmp / "default.sqlite")
+    if runs != 240:
+        raise RuntimeError(f"the default experiment stored {runs} runs, not 240")
+    return usage
+
+
+def tiny(tmp: Path, jobs: int, n: int, planner: str = "exact.astar", iterations: int = 1, name: str = ""
+         ) -> tuple[TreeUsage, float, float]:
+    """``n`` runs at ``jobs``: the tree's usage, and the summed stored wall and CPU time of ``plan()``."""
+    db = tmp / f"{planner}-{jobs}{name}.sqlite"
+    script = _TINY_SCRIPT.format(planner=planner, iterations=iterations, scenario=TINY_SCENARIO, n=n, db=str(db),
+                                 jobs=jobs)
+    usage = run_tree([sys.executable, "-c", script], cwd=str(tmp))
+    wall, plan_wall, plan_cpu = map(float, usage.stdout.split()[-3:])
+    usage.wall_s = wall  # the harness's part only: imports and the experiment's construction excluded
+    return usage, plan_wall, plan_cpu
+
+
+def verdict(ok: bool) -> str:
+    return "met" if ok else "NOT met"
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="skip the cold default experiment")
+    parser.add_argument("--tiny", type=int, default=140, help="tiny runs per jobs setting (default 140)")
+    parser.add_argument("--short", type=int, default=40, help="short aco.as runs per jobs setting (default 40)")
+    args = parser.parse_args()
+    print(f"load average {os.getloadavg()[0]:.2f} {os.getloadavg()[1]:.2f} on {os.cpu_count()} cores; "
+          "wall times are inflated by other load, CPU times (whole process tree) much less")
+    with tempfile.TemporaryDirectory(prefix="pathzoo-harness-bench-") as name:
+        tmp = Path(name)
+        cli_cold, api_cold = first_result(tmp, "cold")
+        cli_first, api_first = first_result(tmp, "warm")
+        print(f"first result of `pathzoo run`, numba cache warm: {cli_first:.2f} s from the command's start, "
+              f"{api_first:.2f} s from run_experiment()   target <= {FIRST_RESULT_TARGET_S:g} s: "
+              f"{verdict(cli_first <= FIRST_RESULT_TARGET_S)}")
+        print(f"  (with an empty numba cache: {cli_cold:.2f} s and {api_cold:.2f} s)")
+        if not args.quick:
+            cold = default_cold(tmp)
+            print(f"default experiment, cold (empty NUMBA_CACHE_DIR, 240 runs): {cold.wall_s:.1f} s wall, "
+                  f"{cold.cpu_s:.1f} CPU s   target <= {DEFAULT_COLD_TARGET_S:g} s wall on 2 cores: "
+                  f"{verdict(cold.wall_s <= DEFAULT_COLD_TARGET_S)}")
+        one, wall1, cpu1 = tiny(tmp, 1, args.tiny)
+        two, _, _ = tiny(tmp, 2, args.tiny)
+        rate1, rate2 = args.tiny / one.wall_s, args.tiny / two.wall_s
+        print(f"tiny runs ({args.tiny} x exact.astar, 1 iteration, {TINY_SCENARIO}): jobs=1 {rate1:.1f} runs/s, "
+              f"jobs=2 {rate2:.1f} runs/s, ratio {rate2 / rate1:.2f}   target >= {JOBS_RATIO_TARGET:g} "
+              f"on an idle machine: {verdict(rate2 / rate1 >= JOBS_RATIO_TARGET)}")
+        print(f"  CPU of the whole tree per run: jobs=1 {one.cpu_s / args.tiny * 1e3:.1f} ms, "
+              f"jobs=2 {two.cpu_s / args.tiny * 1e3:.1f} ms (imports and start-up included)")
+        few = max(1, args.tiny // 4)
+        base, wall0, cpu0 = tiny(tmp, 1, few, iterations=1, planner="exact.astar", name="few")
+        extra = args.tiny - few
+        print(f"per-run harness overhead at jobs=1 (the cost of {extra} more runs, start-up excluded): "
+              f"{(one.wall_s - base.wall_s - (wall1 - wall0)) / extra * 1e3:.1f} ms wall, "
+              f"{(one.cpu_s - base.cpu_s - (cpu1 - cpu0)) / extra * 1e3:.1f} ms CPU of the whole tree "
+              f"(plan() itself {(cpu1 - cpu0) / extra * 1e3:.1f} CPU ms)")
+        s1, _, scpu = tiny(tmp, 1, args.short, "aco.as", SHORT_ITERATIONS)
+        s2, _, _ = tiny(tmp, 2, args.short, "aco.as", SHORT_ITERATIONS)
+        ratio = s1.wall_s / s2.wall_s
+        print(f"short runs ({args.short} x aco.as, {SHORT_ITERATIONS} iterations, plan() {scpu / args.short * 1e3:.0f} "
+              f"CPU ms each): jobs=1 {args.short / s1.wall_s:.1f} runs/s, jobs=2 {args.short / s2.wall_s:.1f} runs/s, "
+              f"ratio {ratio:.2f}   target >= {JOBS_RATIO_TARGET:g} on an idle machine: "
+              f"{verdict(ratio >= JOBS_RATIO_TARGET)}")
+
+
+if __name__ == "__main__":
+    main()

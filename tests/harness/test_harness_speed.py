@@ -1,0 +1,78 @@
+"""The harness's speed-ups keep their guarantees: the quick tamper check, the warm-up shares, the queue ahead."""
+
+from __future__ import annotations
+
+import sys
+import types
+
+import pathzoo
+from pathzoo.harness import Experiment
+from pathzoo.harness.executors import InlineExecutor, ProcessExecutor
+from pathzoo.harness.tamper import ModuleFingerprint
+from pathzoo.harness.worker import warm_up_pairs
+
+
+class _LooksEqual:
+    """An impostor that claims to equal everything (``==`` must never be what the tamper check trusts)."""
+
+    def __eq__(self, other: object) -> bool:
+        return True
+
+    __hash__ = object.__hash__
+
+
+def _module(name: str) -> types.ModuleType:
+    module = types.ModuleType(name)
+    exec("def f():\n    return 1\n\nclass K:\n    def m(self):\n        return 2\n", module.__dict__)
+    sys.modules[name] = module
+    return module
+
+
+def test_the_quick_check_still_sees_every_replacement():
+    module = _module("pathzoo_tamper_probe")
+    try:
+        fingerprint = ModuleFingerprint().update()
+        assert fingerprint.changed() == [] and fingerprint._clean is not None  # the quick path is armed
+        assert fingerprint.changed() == []
+        module.counter = 3  # a new attribute is untracked: no alarm
+        assert fingerprint.changed() == []
+        module.f = _LooksEqual()  # replaced by an object that claims equality
+        assert fingerprint.changed() == ["pathzoo_tamper_probe.f"]
+    finally:
+        del sys.modules["pathzoo_tamper_probe"]
+
+
+def test_the_quick_check_sees_a_replaced_method_and_module():
+    module = _module("pathzoo_tamper_probe2")
+    try:
+        fingerprint = ModuleFingerprint().update()
+        assert fingerprint.changed() == []
+        module.K.m = lambda self: 3
+        assert fingerprint.changed() == ["pathzoo_tamper_probe2.K.m"]
+        fingerprint = ModuleFingerprint().update()
+        assert fingerprint.changed() == []
+        sys.modules["pathzoo_tamper_probe2"] = types.ModuleType("pathzoo_tamper_probe2")
+        assert fingerprint.changed() == ["sys.modules['pathzoo_tamper_probe2']"]
+    finally:
+        del sys.modules["pathzoo_tamper_probe2"]
+
+
+def test_warm_up_shares_cover_each_pair_once_in_order():
+    exp = Experiment.build(planners=["exact.astar", "exact.dijkstra", ("exact.astar", {"cost": "energy"}, "energy")],
+                           scenarios=["gant.fig7", "iaca.offroad", "movingai.arena.b0.1"], seeds=3,
+                           budget=pathzoo.Budget(iterations=1))
+    tasks = exp.tasks()
+    shares = warm_up_pairs(tasks, 2)
+    pairs = [(t.planner.id, t.scenario.kind) for share in shares for t in share]
+    # every pair once, but the first run's own pair: the worker serving the queue warms that one
+    assert sorted(pairs) == sorted({(t.planner.id, t.scenario.kind) for t in tasks} - {("exact.astar", "grid2d")})
+    assert len(pairs) == len(set(pairs))
+    first = [(t.planner.id, t.scenario.kind) for t in shares[0]]
+    assert first == [("exact.dijkstra", "grid2d"), ("exact.dijkstra", "terrain")]
+    assert warm_up_pairs(tasks, 4)[3] == []
+
+
+def test_only_the_process_executor_queues_ahead():
+    assert InlineExecutor().lookahead == 0
+    with ProcessExecutor(2) as pool:
+        assert pool.capacity == 2 and pool.lookahead == 2
