@@ -202,7 +202,8 @@ def run_experiment(
     pandas.DataFrame
         :func:`pathzoo.harness.store.read_runs` restricted to this
         experiment's planners x scenarios x seeds (other runs stored under the
-        same name, from earlier calls, are left out).
+        same name, from earlier calls, are left out), in the experiment's
+        order of runs, not the order they finished in.
 
     Notes
     -----
@@ -239,7 +240,10 @@ def run_experiment(
                     bar.close()
         n_runs = store.count_runs(experiment.name)
     _call_hook(registry, "pathzoo_experiment_finished", experiment=experiment.name, db=str(db_path), n_runs=n_runs)
-    return read_runs(db_path, experiment.name, run_keys={t.run_key for t in all_tasks})
+    order = {t.run_key: i for i, t in enumerate(all_tasks)}
+    runs = read_runs(db_path, experiment.name, run_keys=order)
+    # the experiment's order (planners, then scenarios, then seeds), whatever order the runs finished in
+    return runs.iloc[runs["run_key"].map(order).argsort(kind="stable")].reset_index(drop=True)
 
 
 def _retry_statuses(retry: "tuple[str, ...] | list[str]") -> tuple[str, ...]:

@@ -1,4 +1,4 @@
-"""The rivals plugin registers its planners through the ``pathzoo`` entry points, like the built-in families."""
+"""The rivals plugin registers its planners through the ``pathzoo.planners`` entry points, like the built-in families."""
 
 from __future__ import annotations
 
@@ -8,6 +8,6 @@ import pathzoo
 
 
 def test_rivals_come_through_the_entry_point():
-    assert "rivals" in {ep.name for ep in md.entry_points(group="pathzoo")}
+    assert "rivals" in {ep.name for ep in md.entry_points(group="pathzoo.planners")}
     ids = {entry.obj.id for entry in pathzoo.list_plugins("planners")}
     assert {"exact.zstar", "swarm.mosfla", "search.movns"} <= ids
