@@ -26,6 +26,7 @@ in a long C call, which is why the kernel's signal comes first).
 
 from __future__ import annotations
 
+import contextlib
 import ctypes
 import multiprocessing as mp
 import os
@@ -34,7 +35,7 @@ import sys
 import threading
 from multiprocessing import popen_forkserver, popen_spawn_posix, spawn
 from multiprocessing.connection import Connection
-from typing import Any
+from typing import Any, Iterator
 
 __all__ = [
     "NoMainContext",
@@ -71,13 +72,8 @@ def start_server(method: str | None = None) -> None:
     NoMainContext("forkserver")  # sets the preload list of the server
     from multiprocessing import forkserver
 
-    with _launch_lock:
-        original = spawn.get_preparation_data
-        spawn.get_preparation_data = _without_main(original)
-        try:
-            forkserver.ensure_running()
-        finally:
-            spawn.get_preparation_data = original
+    with _main_left_out():
+        forkserver.ensure_running()
 
 
 _alive: tuple[Connection, Connection] | None = None
@@ -144,18 +140,25 @@ def _without_main(prepare: Any) -> Any:
     return prepared
 
 
+@contextlib.contextmanager
+def _main_left_out() -> Iterator[None]:
+    """Launches made inside get preparation data without the parent's main module (one launch at a time)."""
+    with _launch_lock:
+        original = spawn.get_preparation_data
+        spawn.get_preparation_data = _without_main(original)
+        try:
+            yield
+        finally:
+            spawn.get_preparation_data = original
+
+
 def _no_main_popen(base: Any) -> Any:
     class NoMainPopen(base):  # type: ignore[misc, valid-type]
         """Launch without the main module in the preparation data (so the child never re-imports it)."""
 
         def _launch(self, process_obj: Any) -> None:
-            with _launch_lock:
-                original = spawn.get_preparation_data
-                spawn.get_preparation_data = _without_main(original)
-                try:
-                    super()._launch(process_obj)
-                finally:
-                    spawn.get_preparation_data = original
+            with _main_left_out():
+                super()._launch(process_obj)
     return NoMainPopen
 
 
