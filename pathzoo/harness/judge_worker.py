@@ -60,10 +60,10 @@ _clock = time.perf_counter
 
 def _judge_main(conn: Connection, alive: Connection) -> None:
     """Loop of the judge process: load the scenario, say so, judge, send the record (or the error)."""
+    die_with_harness(alive)  # first: the harness may die during the imports below
     limit_kinds(JUDGE_KINDS)  # before anything discovers plugins: planner plugins are never imported here
     from pathzoo.harness.judge import judge
 
-    die_with_harness(alive)
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     conn.send(("ready",))
     while True:
