@@ -1,11 +1,14 @@
-"""The harness's speed-ups keep their guarantees: the quick tamper check, the warm-up shares, the queue ahead."""
+"""The harness's speed-ups keep their guarantees: quick tamper check, warm-up shares, queue ahead."""
 
 from __future__ import annotations
 
 import sys
 import types
 
+import pytest
+
 import pathzoo
+from pathzoo.harness import tamper
 from pathzoo.harness import Experiment
 from pathzoo.harness.executors import InlineExecutor, ProcessExecutor
 from pathzoo.harness.tamper import ModuleFingerprint
@@ -28,7 +31,21 @@ def _module(name: str) -> types.ModuleType:
     return module
 
 
-def test_the_quick_check_still_sees_every_replacement():
+QUICK_PATHS = [
+    pytest.param(True, id="version-tags",
+                 marks=pytest.mark.skipif(not tamper._tags_readable(), reason="this interpreter's dicts have no tag")),
+    pytest.param(False, id="identity"),
+]
+
+
+@pytest.fixture(params=QUICK_PATHS)
+def quick_path(request: pytest.FixtureRequest, monkeypatch: pytest.MonkeyPatch) -> bool:
+    """Run the test with the quick check on dict version tags, then on identities of every key and value."""
+    monkeypatch.setattr(tamper, "_TAGS", request.param)
+    return request.param
+
+
+def test_the_quick_check_still_sees_every_replacement(quick_path: bool):
     module = _module("pathzoo_tamper_probe")
     try:
         fingerprint = ModuleFingerprint().update()
@@ -36,13 +53,15 @@ def test_the_quick_check_still_sees_every_replacement():
         assert fingerprint.changed() == []
         module.counter = 3  # a new attribute is untracked: no alarm
         assert fingerprint.changed() == []
+        module.counter = 4  # nor a changed one
+        assert fingerprint.changed() == []
         module.f = _LooksEqual()  # replaced by an object that claims equality
         assert fingerprint.changed() == ["pathzoo_tamper_probe.f"]
     finally:
         del sys.modules["pathzoo_tamper_probe"]
 
 
-def test_the_quick_check_sees_a_replaced_method_and_module():
+def test_the_quick_check_sees_a_replaced_method_and_module(quick_path: bool):
     module = _module("pathzoo_tamper_probe2")
     try:
         fingerprint = ModuleFingerprint().update()
@@ -55,6 +74,30 @@ def test_the_quick_check_sees_a_replaced_method_and_module():
         assert fingerprint.changed() == ["sys.modules['pathzoo_tamper_probe2']"]
     finally:
         del sys.modules["pathzoo_tamper_probe2"]
+
+
+def test_the_quick_check_sees_writes_that_keep_keys_and_size(quick_path: bool):
+    """A value written straight into the namespace dict, a key deleted and put back: each is seen, every time."""
+    module = _module("pathzoo_tamper_probe3")
+    original = module.f
+    try:
+        fingerprint = ModuleFingerprint().update()
+        assert fingerprint.changed() == []
+        vars(module)["f"] = len  # a builtin in place of the function, same key, same size
+        assert fingerprint.changed() == ["pathzoo_tamper_probe3.f"]
+        vars(module)["f"] = original  # put back: clean again
+        assert fingerprint.changed() == []
+        del module.K
+        assert fingerprint.changed() == ["pathzoo_tamper_probe3.K"]
+        fingerprint = ModuleFingerprint().update()
+        assert fingerprint.changed() == []
+        module.counter = 1  # an untracked change is accepted ...
+        assert fingerprint.changed() == []
+        module.f = print  # ... and a later tracked one in the same namespace still seen
+        assert fingerprint.changed() == ["pathzoo_tamper_probe3.f"]
+        assert fingerprint.changed() == ["pathzoo_tamper_probe3.f"]  # and again: a tainted state is never accepted
+    finally:
+        del sys.modules["pathzoo_tamper_probe3"]
 
 
 def test_warm_up_shares_cover_each_pair_once_in_order():
@@ -76,3 +119,4 @@ def test_only_the_process_executor_queues_ahead():
     assert InlineExecutor().lookahead == 0
     with ProcessExecutor(2) as pool:
         assert pool.capacity == 2 and pool.lookahead == 2
+
