@@ -30,6 +30,7 @@ planner plugin's import-time code never runs where verdicts are made.
 from __future__ import annotations
 
 import signal
+import threading
 import time
 import warnings
 from dataclasses import replace
@@ -47,7 +48,7 @@ if TYPE_CHECKING:
     from pathzoo.harness.specs import RunTask
     from pathzoo.harness.worker import RunOutcome
 
-__all__ = ["JudgeWorker", "JUDGE_TIMEOUT_S"]
+__all__ = ["JudgeWorker", "JUDGE_TIMEOUT_S", "start_judge"]
 
 JUDGE_TIMEOUT_S = 60.0
 """Default limit on judging one run (validation and every metric), scenario loading excluded."""
@@ -56,6 +57,48 @@ JUDGE_KINDS = ("scenarios", "metrics")
 """The only kinds of plugins the judge process loads (see ``docs/register-a-planner.md``)."""
 
 _clock = time.perf_counter
+
+_early: "tuple[BaseProcess, Connection] | None" = None
+_early_lock = threading.Lock()
+
+
+def start_judge() -> None:
+    """Start a judge process now, for the next :class:`JudgeWorker` to take over (no-op if one is waiting).
+
+    A judge process spends about a second importing numba and loading its
+    compiled validators before it can judge, so ``pathzoo run`` starts one
+    before it reads the experiment: the first verdict is then not delayed by
+    it. The process is the same as the one :class:`JudgeWorker` starts (spawned,
+    scenario and metric plugins only); one never taken over dies with the
+    harness. Call it from the thread that will use the judge, like
+    :func:`~pathzoo.harness.launch.start_server`.
+    """
+    global _early
+    with _early_lock:
+        if _early is None:
+            _early = _spawn_judge()
+
+
+def _spawn_judge() -> "tuple[BaseProcess, Connection]":
+    """A freshly spawned judge process and the harness's end of its pipe."""
+    ctx: Any = NoMainContext("spawn")
+    parent, child = ctx.Pipe(duplex=True)
+    process = ctx.Process(target=_judge_main, args=(child, harness_alive()), name="pathzoo-judge")
+    process.start()
+    child.close()
+    return process, parent
+
+
+def _take_early() -> "tuple[BaseProcess, Connection] | None":
+    """The process of :func:`start_judge` if one is waiting and alive (it is then no longer waiting)."""
+    global _early
+    with _early_lock:
+        early, _early = _early, None
+    if early is not None and not early[0].is_alive():
+        early[0].join()
+        early[1].close()
+        return None
+    return early
 
 
 def _judge_main(conn: Connection, alive: Connection) -> None:
@@ -133,7 +176,6 @@ class JudgeWorker:
 
     def __init__(self, judge_timeout_s: float = JUDGE_TIMEOUT_S) -> None:
         self.judge_timeout_s = float(judge_timeout_s)
-        self._ctx: Any = NoMainContext("spawn")
         self._process: BaseProcess | None = None
         self._conn: Connection | None = None
         self._ready = False
@@ -146,13 +188,10 @@ class JudgeWorker:
         self.close()
 
     def _launch(self) -> None:
-        """Start the judge process if there is none, without waiting for it."""
+        """Start the judge process if there is none (or take over :func:`start_judge`'s), without waiting for it."""
         if self._conn is None:
-            parent, child = self._ctx.Pipe(duplex=True)
-            self._process = self._ctx.Process(target=_judge_main, args=(child, harness_alive()), name="pathzoo-judge")
-            self._process.start()
-            child.close()
-            self._conn, self._ready = parent, False
+            self._process, self._conn = _take_early() or _spawn_judge()
+            self._ready = False
 
     def _start(self) -> Connection:
         """The connection to a judge process that said it is ready."""

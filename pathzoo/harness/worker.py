@@ -45,7 +45,6 @@ from pathzoo.core.status import Status
 from pathzoo.harness.bounds import bound_outcome, bound_text
 from pathzoo.harness.digest import scenario_digest, warm
 from pathzoo.harness.provenance import PEAK_RSS_KEY, host, loaded_distributions, peak_rss_mb, reset_peak_rss
-from pathzoo.testing.warmup import warm_up
 
 if TYPE_CHECKING:
     from pathzoo.core.scenario import Scenario
@@ -285,6 +284,8 @@ def warm_up_tasks(tasks: "list[RunTask]") -> None:
     Nothing here is timed or stored; a planner that fails to build or to warm
     up fails again in its measured run, where that is recorded.
     """
+    from pathzoo.testing.warmup import warm_up  # not at the top: the harness imports this module before it needs numba
+
     for task in tasks:
         try:
             ensure_plugins(task.plugin_modules)
@@ -357,6 +358,8 @@ def execute_task(task: "RunTask", report: Report | None = None, *, interruptible
 
 
 def _execute(task: "RunTask", report: Report) -> RunOutcome:
+    from pathzoo.testing.warmup import warm_up  # see warm_up_tasks; the workers' server has imported it
+
     started_at = utc_now()
     try:
         ensure_plugins(task.plugin_modules)

@@ -1,4 +1,4 @@
-"""The harness's speed-ups keep their guarantees: quick tamper check, warm-up shares, queue ahead."""
+"""The harness's speed-ups keep their guarantees: quick tamper check, warm-up shares, queue ahead, early judge."""
 
 from __future__ import annotations
 
@@ -8,11 +8,12 @@ import types
 import pytest
 
 import pathzoo
-from pathzoo.harness import tamper
+from pathzoo.harness import judge_worker, tamper
 from pathzoo.harness import Experiment
 from pathzoo.harness.executors import InlineExecutor, ProcessExecutor
+from pathzoo.harness.judge_worker import JudgeWorker
 from pathzoo.harness.tamper import ModuleFingerprint
-from pathzoo.harness.worker import warm_up_pairs
+from pathzoo.harness.worker import execute_task, warm_up_pairs
 
 
 class _LooksEqual:
@@ -120,3 +121,33 @@ def test_only_the_process_executor_queues_ahead():
     with ProcessExecutor(2) as pool:
         assert pool.capacity == 2 and pool.lookahead == 2
 
+
+def _solved_run() -> tuple:
+    task = Experiment.build(planners=["exact.astar"], scenarios=["gant.fig7"], seeds=1,
+                            budget=pathzoo.Budget(iterations=1)).tasks()[0]
+    return task, execute_task(task)
+
+
+def test_an_early_judge_is_taken_over_and_judges():
+    task, outcome = _solved_run()
+    judge_worker.start_judge()
+    early = judge_worker._early
+    assert early is not None
+    judge_worker.start_judge()  # one waiting is enough
+    assert judge_worker._early is early
+    with JudgeWorker() as judge:
+        assert judge._process is early[0] and judge_worker._early is None
+        record = judge.judge(task, outcome)
+    assert record.status.value == "solved" and record.valid and record.metrics
+
+
+def test_a_dead_early_judge_is_replaced():
+    task, outcome = _solved_run()
+    judge_worker.start_judge()
+    assert judge_worker._early is not None
+    dead = judge_worker._early[0]
+    dead.kill()
+    dead.join()
+    with JudgeWorker() as judge:
+        assert judge._process is not dead
+        assert judge.judge(task, outcome).status.value == "solved"
