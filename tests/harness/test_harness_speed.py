@@ -151,3 +151,23 @@ def test_a_dead_early_judge_is_replaced():
     with JudgeWorker() as judge:
         assert judge._process is not dead
         assert judge.judge(task, outcome).status.value == "solved"
+
+
+def test_the_cpu_time_of_a_worker_is_read_from_outside_and_agrees_with_psutil():
+    import subprocess
+
+    import psutil
+
+    from pathzoo.harness.executors.process import process_cpu_time
+
+    child = subprocess.Popen([sys.executable, "-c", "import time\nt = time.process_time()\n"
+                              "while time.process_time() - t < 0.3: pass\nprint(flush=True)\ninput()"],
+                             stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
+    try:
+        child.stdout.readline()  # it has burnt 0.3 s of CPU and waits
+        ours = process_cpu_time(child.pid)
+        theirs = sum(psutil.Process(child.pid).cpu_times()[:2])
+        assert ours >= 0.3 and abs(ours - theirs) < 0.05  # psutil counts in 10 ms clock ticks
+    finally:
+        child.communicate("")
+    assert process_cpu_time(child.pid) != process_cpu_time(child.pid)  # NaN once it is gone

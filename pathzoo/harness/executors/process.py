@@ -18,8 +18,8 @@ code, so nothing they send is unpickled: they send short tagged byte strings
   :data:`~pathzoo.harness.worker.SETUP_TIMEOUT_S`, and is recorded as ``crash``;
 - ``P`` (planning, after the warm-up): the planning clock starts. Wall time is
   the harness's ``time.perf_counter`` from ``P`` to the outcome, CPU time the
-  worker process's CPU time read from the outside (psutil) at the same two
-  moments, so a planner cannot change its own timings;
+  worker process's CPU time read from the outside at the same two
+  moments (:func:`process_cpu_time`), so a planner cannot change its own timings;
 - ``D`` + outcome: the future resolves;
 - a worker past its hard limit gets ``SIGKILL`` (``Process.kill``), the run
   resolves as ``timed_out`` and a fresh worker replaces it; one that dies
@@ -48,6 +48,7 @@ from __future__ import annotations
 import math
 import os
 import signal
+import sys
 import threading
 import time
 from collections import deque
@@ -77,8 +78,24 @@ class WorkerStartError(PathzooError, RuntimeError):
     """A worker process died before it was ready: the harness cannot run anything."""
 
 
+_clock_gettime = getattr(time, "clock_gettime", None)  # bound at import, like _clock
+_CPU_CLOCK_OF_PID = sys.platform.startswith("linux") and _clock_gettime is not None
+
+
 def process_cpu_time(pid: int) -> float:
-    """User + system CPU seconds of a process, read from outside it (NaN when it is gone)."""
+    """User + system CPU seconds of a process, read from outside it (NaN when it is gone).
+
+    On Linux this reads the process's CPU-time clock (``clock_gettime`` on
+    the clock id the kernel derives from a pid, as glibc's
+    ``clock_getcpuclockid`` does): about 5 microseconds and nanosecond
+    resolution, against 0.3-0.6 ms and 10 ms clock ticks for psutil's
+    ``cpu_times``, which is the fallback elsewhere.
+    """
+    if _CPU_CLOCK_OF_PID:
+        try:
+            return _clock_gettime((~pid << 3) | 2)  # MAKE_PROCESS_CPUCLOCK(pid, CPUCLOCK_SCHED)
+        except OSError:  # gone
+            return math.nan
     try:
         import psutil
 
