@@ -2,8 +2,9 @@
 
 :class:`JudgeWorker` starts one process (like the workers, without the
 parent's ``__main__``: :mod:`pathzoo.harness.launch`) that loads every
-scenario itself, from its reference (registry id, file, or the pickled
-object the parent holds), builds its geometry, and keeps a small LRU of
+scenario itself, from its reference (registry id, file, or the bytes of an
+object the parent pickled, sent once per judge process), builds its
+geometry, and keeps a small LRU of
 them. For each run the parent sends the task and the bounded outcome; the
 judge process loads the scenario (limit
 :data:`~pathzoo.harness.worker.SETUP_TIMEOUT_S`, like a worker's setup), then
@@ -38,7 +39,8 @@ from multiprocessing.connection import Connection, wait
 from typing import TYPE_CHECKING, Any
 
 from pathzoo.harness.launch import NoMainContext, die_with_harness, harness_alive
-from pathzoo.harness.worker import SETUP_TIMEOUT_S, describe_exception, ensure_plugins, load_cached, quiet_registry
+from pathzoo.harness.worker import (SETUP_TIMEOUT_S, describe_exception, ensure_plugins, keep_payload, load_cached,
+                                    quiet_registry)
 from pathzoo.plugins.manager import get_registry, limit_kinds
 
 if TYPE_CHECKING:
@@ -120,6 +122,7 @@ def _judge_main(conn: Connection, alive: Connection) -> None:
             _warm(request[1])
             continue
         task, outcome, isolated = request
+        keep_payload(task.scenario)  # first: the harness counts it as held from now on
         try:
             ensure_plugins(task.plugin_modules, missing_ok=True)
             scenario, _ = load_cached(task.scenario)
@@ -147,6 +150,7 @@ def _warm(task: "RunTask") -> None:
     from pathzoo.harness.judge import judge
     from pathzoo.harness.worker import RunOutcome
 
+    keep_payload(task.scenario)
     try:
         ensure_plugins(task.plugin_modules, missing_ok=True)
         scenario, _ = load_cached(task.scenario)
@@ -179,6 +183,7 @@ class JudgeWorker:
         self._process: BaseProcess | None = None
         self._conn: Connection | None = None
         self._ready = False
+        self._payloads: set[str] = set()  # digests of the scenario objects the judge process holds
 
     def __enter__(self) -> "JudgeWorker":
         self._launch()  # it starts while the first runs execute
@@ -191,7 +196,7 @@ class JudgeWorker:
         """Start the judge process if there is none (or take over :func:`start_judge`'s), without waiting for it."""
         if self._conn is None:
             self._process, self._conn = _take_early() or _spawn_judge()
-            self._ready = False
+            self._ready, self._payloads = False, set()
 
     def _start(self) -> Connection:
         """The connection to a judge process that said it is ready."""
@@ -212,24 +217,34 @@ class JudgeWorker:
             self._conn.close()
         self._process, self._conn = None, None
 
-    @staticmethod
-    def _for_judge(task: "RunTask") -> "RunTask":
-        """The task as the judge process gets it (for runs and warm-ups alike): only the hand-registered
-        plugin modules that provide scenarios or metrics, never a planner's."""
-        return replace(task, plugin_modules=get_registry().judge_modules(task.plugin_modules))
+    def _for_judge(self, task: "RunTask") -> "RunTask":
+        """The task as the judge process gets it, for runs and warm-ups alike.
+
+        Of the hand-registered plugin modules, only those that provide
+        scenarios or metrics, never a planner's; a scenario object the judge
+        process holds already goes by reference.
+        """
+        spec = task.scenario
+        if spec.digest in self._payloads:
+            spec = spec.by_reference()
+        return replace(task, scenario=spec, plugin_modules=get_registry().judge_modules(task.plugin_modules))
+
+    def _sent(self, task: "RunTask") -> None:
+        """Count the task's scenario object as held by the judge process (it keeps it on receipt)."""
+        if task.scenario.payload:
+            self._payloads.add(task.scenario.digest)
 
     def prepare(self, task: "RunTask") -> None:
-        """Let the judge load the task's scenario and warm up on it now (registered and file scenarios only).
+        """Let the judge load the task's scenario and warm up on it now.
 
         Nothing comes back: the next :meth:`judge` call waits for it under
-        its setup limit. Scenario objects are not sent twice.
+        its setup limit.
         """
-        if task.scenario.source == "object":
-            return
         self._launch()
         assert self._conn is not None
         try:
             self._conn.send(("warm", self._for_judge(task)))
+            self._sent(task)
         except (OSError, EOFError):  # the judge died: judge() notices and restarts it
             pass
 
@@ -267,6 +282,7 @@ class JudgeWorker:
         conn = self._start()
         try:
             conn.send((self._for_judge(task), outcome, isolated))
+            self._sent(task)
         except Exception as exc:  # noqa: BLE001 - e.g. a scenario object that does not pickle
             return unjudged(task, outcome, f"the run could not be sent to the judge ({type(exc).__name__})",
                             isolated=isolated)

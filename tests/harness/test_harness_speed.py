@@ -171,3 +171,30 @@ def test_the_cpu_time_of_a_worker_is_read_from_outside_and_agrees_with_psutil():
     finally:
         child.communicate("")
     assert process_cpu_time(child.pid) != process_cpu_time(child.pid)  # NaN once it is gone
+
+
+def test_a_scenario_object_is_sent_to_each_process_once(monkeypatch: pytest.MonkeyPatch, tmp_path):
+    """The worker and the judge get the pickled object with the first run on it, then its digest only."""
+    from multiprocessing.connection import Connection
+
+    from pathzoo.harness.runner import run_experiment
+    from pathzoo.harness.specs import RunTask
+    from pathzoo.plugins.manager import get_registry
+
+    scenario = get_registry().get("scenarios", "gant.fig7").obj.load()
+    exp = Experiment.build(name="objects", planners=["exact.astar"], scenarios=[scenario], seeds=4,
+                           budget=pathzoo.Budget(iterations=1))
+    sent: list[int] = []
+    send = Connection.send
+
+    def spy(self: Connection, obj: object) -> None:
+        found = [o for o in (obj if isinstance(obj, tuple) else (obj,)) if isinstance(o, RunTask)]
+        sent.extend(len(t.scenario.payload) for t in found)
+        send(self, obj)
+
+    monkeypatch.setattr(Connection, "send", spy)
+    runs = run_experiment(exp, db=tmp_path / "o.sqlite", jobs=1, progress=False)
+    assert (runs.status == "solved").all() and len(runs) == 4
+    full = [n for n in sent if n]
+    # worker: 1 full + 3 by reference; judge: the warm-up in full, then 4 runs by reference
+    assert len(full) == 2 and len(sent) == 9 and full[0] == len(exp.tasks()[0].scenario.payload)
