@@ -85,7 +85,8 @@ def _spawn_judge() -> "tuple[BaseProcess, Connection]":
     """A freshly spawned judge process and the harness's end of its pipe."""
     ctx: Any = NoMainContext("spawn")
     parent, child = ctx.Pipe(duplex=True)
-    process = ctx.Process(target=_judge_main, args=(child, harness_alive()), name="pathzoo-judge")
+    # daemonic: one never taken over (the command failed on its experiment) must not hold the harness's exit
+    process = ctx.Process(target=_judge_main, args=(child, harness_alive()), name="pathzoo-judge", daemon=True)
     process.start()
     child.close()
     return process, parent
