@@ -18,7 +18,9 @@ printed first, and the CPU figures are the ones to compare.
   same time from the call of ``run_experiment`` in a Python process that has
   already imported pathzoo and read the experiment (the harness's own part).
   Measured twice on a fresh numba cache: empty, then warmed by the first
-  attempt (the target's figure).
+  attempt (the target's figure). Printed with the CPU seconds the command's
+  process tree had used by its first stored run: the harness, the fork
+  server (numba and every plugin), the judge (numba again), the workers.
 - *default experiment, cold*: ``pathzoo run`` of the bundled default
   experiment with an empty ``NUMBA_CACHE_DIR``, so every numba function is
   compiled during the run.
@@ -28,7 +30,10 @@ printed first, and the CPU figures are the ones to compare.
   own ``plan()`` time as stored). A tiny run costs the harness (worker,
   judge, store) more than the planner, and at jobs=1 the judge and the
   store already work beside the worker, so this ratio stays well below 2
-  even on an idle machine.
+  even on an idle machine: with a worker's cost per run W and the harness
+  process's and the judge's S, jobs=1 runs at about 1/max(W, S) on two
+  cores and jobs=2 at most 2/(W + S), a ratio of 2 max(W, S)/(W + S), which
+  reaches 1.8 only when S <= W/9.
 - *short runs*: ``--short`` runs of ``aco.as`` (1000 iterations, about 0.15 CPU s each) on the same
   problem at jobs=1 and jobs=2, where the planner's time dominates: the
   throughput ratio the target is about.
@@ -46,6 +51,7 @@ import threading
 import time
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Callable
 
 import psutil
 
@@ -103,11 +109,12 @@ class TreeUsage:
 
 
 def run_tree(cmd: list[str], *, env: dict[str, str] | None = None, cwd: str | None = None,
-             stop_when: "callable | None" = None, timeout_s: float = 1800.0) -> TreeUsage:
+             stop_when: "Callable[[float], bool] | None" = None, timeout_s: float = 1800.0) -> TreeUsage:
     """Run ``cmd`` and add up the CPU time of its process tree (sampled every 0.05 s).
 
-    ``stop_when`` is polled too; when it returns True the command gets SIGINT
-    (as Ctrl-C would) and the measurement ends when it has exited.
+    ``stop_when`` is polled too, with the tree's CPU seconds so far; when it
+    returns True the command gets SIGINT (as Ctrl-C would) and the
+    measurement ends when it has exited.
     """
     last: dict[int, float] = {}
     t0 = time.perf_counter()
@@ -127,7 +134,7 @@ def run_tree(cmd: list[str], *, env: dict[str, str] | None = None, cwd: str | No
                     pass
         except psutil.Error:
             pass
-        if stop_when is not None and not stopped and stop_when():
+        if stop_when is not None and not stopped and stop_when(sum(last.values())):
             proc.send_signal(2)
             stopped = True
         if time.perf_counter() - t0 > timeout_s:
@@ -153,26 +160,29 @@ def pathzoo_cli() -> str:
     return str(Path(sys.executable).with_name("pathzoo"))
 
 
-def first_result(tmp: Path, attempt: str) -> tuple[float, float]:
+def first_result(tmp: Path, attempt: str) -> tuple[float, float, float]:
     """Seconds from the start of ``pathzoo run`` to its first stored run, and from ``run_experiment``'s call.
 
-    Both use the numba cache ``tmp/numba-first``: empty at the first attempt,
-    filled by it for the next.
+    Also the CPU seconds the command's process tree had used by its first
+    stored run (sampled every 0.05 s), which other load inflates much less
+    than the wall time. Both use the numba cache ``tmp/numba-first``: empty
+    at the first attempt, filled by it for the next.
     """
     env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp / "numba-first")}
     db = tmp / f"first-{attempt}.sqlite"
     t0 = time.perf_counter()
     seen: list[float] = []
 
-    def stop() -> bool:
+    def stop(cpu_s: float) -> bool:
         if not seen and stored_runs(db):
-            seen.append(time.perf_counter() - t0)
+            seen.extend((time.perf_counter() - t0, cpu_s))
         return bool(seen)
 
     run_tree([pathzoo_cli(), "run", "--db", str(db), "--no-progress"], env=env, cwd=str(tmp), stop_when=stop)
     api = run_tree([sys.executable, "-c", _FIRST_SCRIPT.format(db=str(tmp / f"first-api-{attempt}.sqlite"))],
                    env=env, cwd=str(tmp))
-    return seen[0] if seen else float("nan"), float(api.stdout.split()[-1])
+    wall, cpu = seen if seen else (float("nan"), float("nan"))
+    return wall, float(api.stdout.split()[-1]), cpu
 
 
 def default_cold(tmp: Path) -> TreeUsage:
@@ -222,12 +232,14 @@ def main() -> None:
           "wall times are inflated by other load, CPU times (whole process tree) much less")
     with tempfile.TemporaryDirectory(prefix="pathzoo-harness-bench-") as name:
         tmp = Path(name)
-        cli_cold, api_cold = first_result(tmp, "cold")
-        cli_first, api_first = first_result(tmp, "warm")
+        cli_cold, api_cold, cpu_cold = first_result(tmp, "cold")
+        cli_first, api_first, cpu_first = first_result(tmp, "warm")
         print(f"first result of `pathzoo run`, numba cache warm: {cli_first:.2f} s from the command's start, "
               f"{api_first:.2f} s from run_experiment()   target <= {FIRST_RESULT_TARGET_S:g} s: "
               f"{verdict(cli_first <= FIRST_RESULT_TARGET_S)}")
-        print(f"  (with an empty numba cache: {cli_cold:.2f} s and {api_cold:.2f} s)")
+        print(f"  the command's process tree had used {cpu_first:.2f} CPU s by then (which takes at least "
+              f"{cpu_first / (os.cpu_count() or 1):.2f} s on {os.cpu_count()} cores)")
+        print(f"  (with an empty numba cache: {cli_cold:.2f} s and {api_cold:.2f} s, {cpu_cold:.2f} CPU s)")
         if not args.quick:
             cold = default_cold(tmp)
             print(f"default experiment, cold (empty NUMBA_CACHE_DIR, 240 runs): {cold.wall_s:.1f} s wall, "

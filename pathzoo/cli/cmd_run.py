@@ -76,7 +76,10 @@ def _harness_info_on_stderr() -> Iterator[None]:
 
 def _run(args: argparse.Namespace) -> int:
     executor = executor_of(args)
-    if executor == "process":  # the worker server imports the plugins while this process reads the experiment
+    from pathzoo.harness.judge_worker import start_judge
+
+    start_judge()  # the judge process and the workers' server import while this process reads the experiment
+    if executor == "process":
         from pathzoo.harness.launch import start_server
 
         start_server()

@@ -2,8 +2,9 @@
 
 :class:`JudgeWorker` starts one process (like the workers, without the
 parent's ``__main__``: :mod:`pathzoo.harness.launch`) that loads every
-scenario itself, from its reference (registry id, file, or the pickled
-object the parent holds), builds its geometry, and keeps a small LRU of
+scenario itself, from its reference (registry id, file, or the bytes of an
+object the parent pickled, sent once per judge process), builds its
+geometry, and keeps a small LRU of
 them. For each run the parent sends the task and the bounded outcome; the
 judge process loads the scenario (limit
 :data:`~pathzoo.harness.worker.SETUP_TIMEOUT_S`, like a worker's setup), then
@@ -30,6 +31,7 @@ planner plugin's import-time code never runs where verdicts are made.
 from __future__ import annotations
 
 import signal
+import threading
 import time
 import warnings
 from dataclasses import replace
@@ -37,7 +39,8 @@ from multiprocessing.connection import Connection, wait
 from typing import TYPE_CHECKING, Any
 
 from pathzoo.harness.launch import NoMainContext, die_with_harness, harness_alive
-from pathzoo.harness.worker import SETUP_TIMEOUT_S, describe_exception, ensure_plugins, load_cached, quiet_registry
+from pathzoo.harness.worker import (SETUP_TIMEOUT_S, describe_exception, ensure_plugins, keep_payload, load_cached,
+                                    quiet_registry)
 from pathzoo.plugins.manager import get_registry, limit_kinds
 
 if TYPE_CHECKING:
@@ -47,7 +50,7 @@ if TYPE_CHECKING:
     from pathzoo.harness.specs import RunTask
     from pathzoo.harness.worker import RunOutcome
 
-__all__ = ["JudgeWorker", "JUDGE_TIMEOUT_S"]
+__all__ = ["JudgeWorker", "JUDGE_TIMEOUT_S", "start_judge"]
 
 JUDGE_TIMEOUT_S = 60.0
 """Default limit on judging one run (validation and every metric), scenario loading excluded."""
@@ -56,6 +59,49 @@ JUDGE_KINDS = ("scenarios", "metrics")
 """The only kinds of plugins the judge process loads (see ``docs/register-a-planner.md``)."""
 
 _clock = time.perf_counter
+
+_early: "tuple[BaseProcess, Connection] | None" = None
+_early_lock = threading.Lock()
+
+
+def start_judge() -> None:
+    """Start a judge process now, for the next :class:`JudgeWorker` to take over (no-op if one is waiting).
+
+    A judge process spends about a second importing numba and loading its
+    compiled validators before it can judge, so ``pathzoo run`` starts one
+    before it reads the experiment: the first verdict is then not delayed by
+    it. The process is the same as the one :class:`JudgeWorker` starts (spawned,
+    scenario and metric plugins only); one never taken over dies with the
+    harness. Call it from the thread that will use the judge, like
+    :func:`~pathzoo.harness.launch.start_server`.
+    """
+    global _early
+    with _early_lock:
+        if _early is None:
+            _early = _spawn_judge()
+
+
+def _spawn_judge() -> "tuple[BaseProcess, Connection]":
+    """A freshly spawned judge process and the harness's end of its pipe."""
+    ctx: Any = NoMainContext("spawn")
+    parent, child = ctx.Pipe(duplex=True)
+    # daemonic: one never taken over (the command failed on its experiment) must not hold the harness's exit
+    process = ctx.Process(target=_judge_main, args=(child, harness_alive()), name="pathzoo-judge", daemon=True)
+    process.start()
+    child.close()
+    return process, parent
+
+
+def _take_early() -> "tuple[BaseProcess, Connection] | None":
+    """The process of :func:`start_judge` if one is waiting and alive (it is then no longer waiting)."""
+    global _early
+    with _early_lock:
+        early, _early = _early, None
+    if early is not None and not early[0].is_alive():
+        early[0].join()
+        early[1].close()
+        return None
+    return early
 
 
 def _judge_main(conn: Connection, alive: Connection) -> None:
@@ -77,6 +123,7 @@ def _judge_main(conn: Connection, alive: Connection) -> None:
             _warm(request[1])
             continue
         task, outcome, isolated = request
+        keep_payload(task.scenario)  # first: the harness counts it as held from now on
         try:
             ensure_plugins(task.plugin_modules, missing_ok=True)
             scenario, _ = load_cached(task.scenario)
@@ -104,6 +151,7 @@ def _warm(task: "RunTask") -> None:
     from pathzoo.harness.judge import judge
     from pathzoo.harness.worker import RunOutcome
 
+    keep_payload(task.scenario)
     try:
         ensure_plugins(task.plugin_modules, missing_ok=True)
         scenario, _ = load_cached(task.scenario)
@@ -133,10 +181,10 @@ class JudgeWorker:
 
     def __init__(self, judge_timeout_s: float = JUDGE_TIMEOUT_S) -> None:
         self.judge_timeout_s = float(judge_timeout_s)
-        self._ctx: Any = NoMainContext("spawn")
         self._process: BaseProcess | None = None
         self._conn: Connection | None = None
         self._ready = False
+        self._payloads: set[str] = set()  # digests of the scenario objects the judge process holds
 
     def __enter__(self) -> "JudgeWorker":
         self._launch()  # it starts while the first runs execute
@@ -146,13 +194,10 @@ class JudgeWorker:
         self.close()
 
     def _launch(self) -> None:
-        """Start the judge process if there is none, without waiting for it."""
+        """Start the judge process if there is none (or take over :func:`start_judge`'s), without waiting for it."""
         if self._conn is None:
-            parent, child = self._ctx.Pipe(duplex=True)
-            self._process = self._ctx.Process(target=_judge_main, args=(child, harness_alive()), name="pathzoo-judge")
-            self._process.start()
-            child.close()
-            self._conn, self._ready = parent, False
+            self._process, self._conn = _take_early() or _spawn_judge()
+            self._ready, self._payloads = False, set()
 
     def _start(self) -> Connection:
         """The connection to a judge process that said it is ready."""
@@ -173,24 +218,34 @@ class JudgeWorker:
             self._conn.close()
         self._process, self._conn = None, None
 
-    @staticmethod
-    def _for_judge(task: "RunTask") -> "RunTask":
-        """The task as the judge process gets it (for runs and warm-ups alike): only the hand-registered
-        plugin modules that provide scenarios or metrics, never a planner's."""
-        return replace(task, plugin_modules=get_registry().judge_modules(task.plugin_modules))
+    def _for_judge(self, task: "RunTask") -> "RunTask":
+        """The task as the judge process gets it, for runs and warm-ups alike.
+
+        Of the hand-registered plugin modules, only those that provide
+        scenarios or metrics, never a planner's; a scenario object the judge
+        process holds already goes by reference.
+        """
+        spec = task.scenario
+        if spec.digest in self._payloads:
+            spec = spec.by_reference()
+        return replace(task, scenario=spec, plugin_modules=get_registry().judge_modules(task.plugin_modules))
+
+    def _sent(self, task: "RunTask") -> None:
+        """Count the task's scenario object as held by the judge process (it keeps it on receipt)."""
+        if task.scenario.payload:
+            self._payloads.add(task.scenario.digest)
 
     def prepare(self, task: "RunTask") -> None:
-        """Let the judge load the task's scenario and warm up on it now (registered and file scenarios only).
+        """Let the judge load the task's scenario and warm up on it now.
 
         Nothing comes back: the next :meth:`judge` call waits for it under
-        its setup limit. Scenario objects are not sent twice.
+        its setup limit.
         """
-        if task.scenario.source == "object":
-            return
         self._launch()
         assert self._conn is not None
         try:
             self._conn.send(("warm", self._for_judge(task)))
+            self._sent(task)
         except (OSError, EOFError):  # the judge died: judge() notices and restarts it
             pass
 
@@ -228,6 +283,7 @@ class JudgeWorker:
         conn = self._start()
         try:
             conn.send((self._for_judge(task), outcome, isolated))
+            self._sent(task)
         except Exception as exc:  # noqa: BLE001 - e.g. a scenario object that does not pickle
             return unjudged(task, outcome, f"the run could not be sent to the judge ({type(exc).__name__})",
                             isolated=isolated)

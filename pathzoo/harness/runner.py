@@ -233,7 +233,8 @@ def run_experiment(
         if tasks:
             bar = _progress_bar(len(tasks), experiment.name, progress)
             try:
-                with make_executor(executor, n_jobs) as pool, JudgeWorker(judge_timeout_s) as judge:
+                # the judge first: it starts while the executor starts its workers
+                with JudgeWorker(judge_timeout_s) as judge, make_executor(executor, n_jobs) as pool:
                     _execute(pool, tasks, store, judge, registry, bar, retry_statuses)
             finally:
                 if bar is not None:

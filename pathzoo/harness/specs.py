@@ -3,8 +3,10 @@
 A worker receives a :class:`RunTask` and rebuilds everything else: the
 planner from its registered id and parameters (:func:`pathzoo.make_planner`),
 the scenario from its registered id or file. Scenario *objects* given in
-Python have no such reference, so they travel pickled inside the task (they
-are pathzoo's own frozen objects, so unpickling them is trusted), and a
+Python have no such reference, so they travel pickled inside the task, as
+the bytes the harness pickled once (they are pathzoo's own frozen objects,
+so unpickling them is trusted); a process that already holds those bytes
+gets the spec without them (:meth:`ScenarioSpec.by_reference`), and a
 planner class defined in ``__main__`` (a script, a notebook) travels by value,
 pickled with cloudpickle as Dask and loky do, since workers do not import the
 parent's main module. Both are pickled by the harness process itself; nothing
@@ -17,7 +19,7 @@ import functools
 import hashlib
 import pickle
 import sys
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any, Literal, Mapping
 
 from pathzoo.core.budget import Budget
@@ -173,27 +175,38 @@ class ScenarioSpec:
         The scenario kind, to skip planners that do not support it.
     source : {"registry", "file", "object"}
         Load by registered id, from a file (absolute path in ``location``), or
-        unpickle ``scenario``.
+        unpickle ``payload``.
     location : str
         The registered id or the file path; empty for objects.
-    scenario : Scenario, optional
-        The object itself (``source == "object"`` only).
+    payload : bytes
+        The object pickled by the harness (``source == "object"`` only);
+        empty in a spec sent :meth:`by_reference`.
     digest : str
-        For objects, a content hash, so workers can cache them.
+        For objects, a hash of ``payload``, so processes can cache them.
     """
 
     id: str
     kind: str
     source: ScenarioSource
     location: str = ""
-    scenario: "Scenario | None" = None
+    payload: bytes = b""
     digest: str = ""
 
     @classmethod
     def of_object(cls, scenario: "Scenario") -> "ScenarioSpec":
-        """Reference a Scenario object (it will travel pickled)."""
-        digest = hashlib.blake2b(pickle.dumps(scenario, protocol=5), digest_size=12).hexdigest()
-        return cls(scenario.id, scenario.kind, "object", "", scenario, digest)
+        """Reference a Scenario object (it travels as these pickled bytes)."""
+        payload = pickle.dumps(scenario, protocol=5)
+        digest = hashlib.blake2b(payload, digest_size=12).hexdigest()
+        return cls(scenario.id, scenario.kind, "object", "", payload, digest)
+
+    def by_reference(self) -> "ScenarioSpec":
+        """The spec without its payload, for a process that holds it already.
+
+        That process loads the object from the bytes it kept
+        (:func:`pathzoo.harness.worker.keep_payload`). Specs without a
+        payload are returned as they are.
+        """
+        return replace(self, payload=b"") if self.payload else self
 
     @property
     def cache_key(self) -> tuple[str, str, str, str]:
@@ -207,8 +220,10 @@ class ScenarioSpec:
     def load(self) -> "Scenario":
         """Load the scenario (uncached; the worker and the runner cache it)."""
         if self.source == "object":  # a copy: no planner ever gets the caller's own object
-            assert self.scenario is not None
-            return pickle.loads(pickle.dumps(self.scenario, protocol=5))
+            if not self.payload:
+                raise InvalidExperimentError(f"scenario object '{self.id}' was sent by reference to a process "
+                                             "that never received it")
+            return pickle.loads(self.payload)
         if self.source == "registry":
             from pathzoo.plugins.manager import get_registry
 

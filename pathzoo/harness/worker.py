@@ -34,7 +34,7 @@ import threading
 import time
 import traceback
 from collections import OrderedDict
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from datetime import datetime, timezone
 from typing import TYPE_CHECKING, Any, Callable
 
@@ -45,7 +45,6 @@ from pathzoo.core.status import Status
 from pathzoo.harness.bounds import bound_outcome, bound_text
 from pathzoo.harness.digest import scenario_digest, warm
 from pathzoo.harness.provenance import PEAK_RSS_KEY, host, loaded_distributions, peak_rss_mb, reset_peak_rss
-from pathzoo.testing.warmup import warm_up
 
 if TYPE_CHECKING:
     from pathzoo.core.scenario import Scenario
@@ -55,6 +54,7 @@ __all__ = [
     "RunOutcome",
     "execute_task",
     "load_cached",
+    "keep_payload",
     "ensure_plugins",
     "preload_planners",
     "HistoryRecorder",
@@ -235,15 +235,36 @@ def preload_planners() -> None:
 # ---------------------------------------------------------------- scenarios
 _scenarios: "OrderedDict[tuple[str, str, str, str], tuple[Scenario, str]]" = OrderedDict()
 _scenario_lock = threading.Lock()
+_payloads: dict[str, bytes] = {}
+
+
+def keep_payload(spec: "ScenarioSpec") -> None:
+    """Keep the pickled bytes of a scenario object sent in full, for the specs sent later by reference.
+
+    The processes the harness sends objects to by reference (its workers
+    and the judge, :meth:`~pathzoo.harness.specs.ScenarioSpec.by_reference`)
+    call it on receipt of each task, before any planner code runs, whatever
+    fails after. The bytes are kept for the life of the process (bytes
+    cannot be changed in place, so a planner cannot alter what later runs
+    load).
+    """
+    if spec.payload:
+        _payloads.setdefault(spec.digest, spec.payload)
 
 
 def load_cached(spec: "ScenarioSpec", size: int = SCENARIO_CACHE_SIZE) -> "tuple[Scenario, str]":
-    """Load a scenario once per process (LRU of ``size``), geometry warmed; returns it with its load-time digest."""
+    """Load a scenario once per process (LRU of ``size``), geometry warmed; returns it with its load-time digest.
+
+    A scenario object sent by reference is loaded from the bytes
+    :func:`keep_payload` kept.
+    """
     key = spec.cache_key
     with _scenario_lock:
         if key in _scenarios:
             _scenarios.move_to_end(key)
             return _scenarios[key]
+    if spec.source == "object" and not spec.payload and spec.digest in _payloads:
+        spec = replace(spec, payload=_payloads[spec.digest])
     scenario = warm(spec.load())
     entry = (scenario, scenario_digest(scenario))
     with _scenario_lock:
@@ -285,6 +306,8 @@ def warm_up_tasks(tasks: "list[RunTask]") -> None:
     Nothing here is timed or stored; a planner that fails to build or to warm
     up fails again in its measured run, where that is recorded.
     """
+    from pathzoo.testing.warmup import warm_up  # not at the top: the harness imports this module before it needs numba
+
     for task in tasks:
         try:
             ensure_plugins(task.plugin_modules)
@@ -357,6 +380,8 @@ def execute_task(task: "RunTask", report: Report | None = None, *, interruptible
 
 
 def _execute(task: "RunTask", report: Report) -> RunOutcome:
+    from pathzoo.testing.warmup import warm_up  # see warm_up_tasks; the workers' server has imported it
+
     started_at = utc_now()
     try:
         ensure_plugins(task.plugin_modules)

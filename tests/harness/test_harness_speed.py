@@ -1,15 +1,19 @@
-"""The harness's speed-ups keep their guarantees: the quick tamper check, the warm-up shares, the queue ahead."""
+"""The harness's speed-ups keep their guarantees: quick tamper check, warm-up shares, queue ahead, early judge."""
 
 from __future__ import annotations
 
 import sys
 import types
 
+import pytest
+
 import pathzoo
+from pathzoo.harness import judge_worker, tamper
 from pathzoo.harness import Experiment
 from pathzoo.harness.executors import InlineExecutor, ProcessExecutor
+from pathzoo.harness.judge_worker import JudgeWorker
 from pathzoo.harness.tamper import ModuleFingerprint
-from pathzoo.harness.worker import warm_up_pairs
+from pathzoo.harness.worker import execute_task, warm_up_pairs
 
 
 class _LooksEqual:
@@ -28,7 +32,21 @@ def _module(name: str) -> types.ModuleType:
     return module
 
 
-def test_the_quick_check_still_sees_every_replacement():
+QUICK_PATHS = [
+    pytest.param(True, id="version-tags",
+                 marks=pytest.mark.skipif(not tamper._tags_readable(), reason="this interpreter's dicts have no tag")),
+    pytest.param(False, id="identity"),
+]
+
+
+@pytest.fixture(params=QUICK_PATHS)
+def quick_path(request: pytest.FixtureRequest, monkeypatch: pytest.MonkeyPatch) -> bool:
+    """Run the test with the quick check on dict version tags, then on identities of every key and value."""
+    monkeypatch.setattr(tamper, "_TAGS", request.param)
+    return request.param
+
+
+def test_the_quick_check_still_sees_every_replacement(quick_path: bool):
     module = _module("pathzoo_tamper_probe")
     try:
         fingerprint = ModuleFingerprint().update()
@@ -36,13 +54,15 @@ def test_the_quick_check_still_sees_every_replacement():
         assert fingerprint.changed() == []
         module.counter = 3  # a new attribute is untracked: no alarm
         assert fingerprint.changed() == []
+        module.counter = 4  # nor a changed one
+        assert fingerprint.changed() == []
         module.f = _LooksEqual()  # replaced by an object that claims equality
         assert fingerprint.changed() == ["pathzoo_tamper_probe.f"]
     finally:
         del sys.modules["pathzoo_tamper_probe"]
 
 
-def test_the_quick_check_sees_a_replaced_method_and_module():
+def test_the_quick_check_sees_a_replaced_method_and_module(quick_path: bool):
     module = _module("pathzoo_tamper_probe2")
     try:
         fingerprint = ModuleFingerprint().update()
@@ -55,6 +75,30 @@ def test_the_quick_check_sees_a_replaced_method_and_module():
         assert fingerprint.changed() == ["sys.modules['pathzoo_tamper_probe2']"]
     finally:
         del sys.modules["pathzoo_tamper_probe2"]
+
+
+def test_the_quick_check_sees_writes_that_keep_keys_and_size(quick_path: bool):
+    """A value written straight into the namespace dict, a key deleted and put back: each is seen, every time."""
+    module = _module("pathzoo_tamper_probe3")
+    original = module.f
+    try:
+        fingerprint = ModuleFingerprint().update()
+        assert fingerprint.changed() == []
+        vars(module)["f"] = len  # a builtin in place of the function, same key, same size
+        assert fingerprint.changed() == ["pathzoo_tamper_probe3.f"]
+        vars(module)["f"] = original  # put back: clean again
+        assert fingerprint.changed() == []
+        del module.K
+        assert fingerprint.changed() == ["pathzoo_tamper_probe3.K"]
+        fingerprint = ModuleFingerprint().update()
+        assert fingerprint.changed() == []
+        module.counter = 1  # an untracked change is accepted ...
+        assert fingerprint.changed() == []
+        module.f = print  # ... and a later tracked one in the same namespace still seen
+        assert fingerprint.changed() == ["pathzoo_tamper_probe3.f"]
+        assert fingerprint.changed() == ["pathzoo_tamper_probe3.f"]  # and again: a tainted state is never accepted
+    finally:
+        del sys.modules["pathzoo_tamper_probe3"]
 
 
 def test_warm_up_shares_cover_each_pair_once_in_order():
@@ -76,3 +120,81 @@ def test_only_the_process_executor_queues_ahead():
     assert InlineExecutor().lookahead == 0
     with ProcessExecutor(2) as pool:
         assert pool.capacity == 2 and pool.lookahead == 2
+
+
+def _solved_run() -> tuple:
+    task = Experiment.build(planners=["exact.astar"], scenarios=["gant.fig7"], seeds=1,
+                            budget=pathzoo.Budget(iterations=1)).tasks()[0]
+    return task, execute_task(task)
+
+
+def test_an_early_judge_is_taken_over_and_judges():
+    task, outcome = _solved_run()
+    judge_worker.start_judge()
+    early = judge_worker._early
+    assert early is not None
+    judge_worker.start_judge()  # one waiting is enough
+    assert judge_worker._early is early
+    with JudgeWorker() as judge:
+        assert judge._process is early[0] and judge_worker._early is None
+        record = judge.judge(task, outcome)
+    assert record.status.value == "solved" and record.valid and record.metrics
+
+
+def test_a_dead_early_judge_is_replaced():
+    task, outcome = _solved_run()
+    judge_worker.start_judge()
+    assert judge_worker._early is not None
+    dead = judge_worker._early[0]
+    dead.kill()
+    dead.join()
+    with JudgeWorker() as judge:
+        assert judge._process is not dead
+        assert judge.judge(task, outcome).status.value == "solved"
+
+
+def test_the_cpu_time_of_a_worker_is_read_from_outside_and_agrees_with_psutil():
+    import subprocess
+
+    import psutil
+
+    from pathzoo.harness.executors.process import process_cpu_time
+
+    child = subprocess.Popen([sys.executable, "-c", "import time\nt = time.process_time()\n"
+                              "while time.process_time() - t < 0.3: pass\nprint(flush=True)\ninput()"],
+                             stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
+    try:
+        child.stdout.readline()  # it has burnt 0.3 s of CPU and waits
+        ours = process_cpu_time(child.pid)
+        theirs = sum(psutil.Process(child.pid).cpu_times()[:2])
+        assert ours >= 0.3 and abs(ours - theirs) < 0.05  # psutil counts in 10 ms clock ticks
+    finally:
+        child.communicate("")
+    assert process_cpu_time(child.pid) != process_cpu_time(child.pid)  # NaN once it is gone
+
+
+def test_a_scenario_object_is_sent_to_each_process_once(monkeypatch: pytest.MonkeyPatch, tmp_path):
+    """The worker and the judge get the pickled object with the first run on it, then its digest only."""
+    from multiprocessing.connection import Connection
+
+    from pathzoo.harness.runner import run_experiment
+    from pathzoo.harness.specs import RunTask
+    from pathzoo.plugins.manager import get_registry
+
+    scenario = get_registry().get("scenarios", "gant.fig7").obj.load()
+    exp = Experiment.build(name="objects", planners=["exact.astar"], scenarios=[scenario], seeds=4,
+                           budget=pathzoo.Budget(iterations=1))
+    sent: list[int] = []
+    send = Connection.send
+
+    def spy(self: Connection, obj: object) -> None:
+        found = [o for o in (obj if isinstance(obj, tuple) else (obj,)) if isinstance(o, RunTask)]
+        sent.extend(len(t.scenario.payload) for t in found)
+        send(self, obj)
+
+    monkeypatch.setattr(Connection, "send", spy)
+    runs = run_experiment(exp, db=tmp_path / "o.sqlite", jobs=1, progress=False)
+    assert (runs.status == "solved").all() and len(runs) == 4
+    full = [n for n in sent if n]
+    # worker: 1 full + 3 by reference; judge: the warm-up in full, then 4 runs by reference
+    assert len(full) == 2 and len(sent) == 9 and full[0] == len(exp.tasks()[0].scenario.payload)
