@@ -407,8 +407,8 @@ def astar_moves_batch(
     size = counters[0]
     status = RUNNING
     done = 0
-    w = dims[2]
-    plane = dims[1] * w
+    w = np.uint64(dims[2])
+    plane = np.uint64(dims[1]) * w
     n_moves = move_shift.shape[0]
     while done < max_expansions:
         u, size, status = next_open(closed, heap_node, heap_f, heap_g, size, max_degree)
@@ -418,12 +418,16 @@ def astar_moves_batch(
         if u == target:
             status = FOUND
             break
-        gu = g[np.uint64(u)]
-        layer = u // plane
-        rest = u - layer * plane
+        ui = np.uint64(u)
+        gu = g[ui]
+        # unsigned divisions: numba's signed ``//`` rounds towards minus infinity, which costs a correction
+        layer = ui // plane
+        rest = ui - layer * plane
         row = rest // w
-        col = rest - row * w
-        bits = np.int64(mask[np.uint64(u)])
+        col = np.int64(rest - row * w)
+        row = np.int64(row)
+        layer = np.int64(layer)
+        bits = np.int64(mask[ui])
         for k in range(n_moves):
             if (bits >> k) & 1:
                 v = u + move_shift[k]
