@@ -148,22 +148,34 @@ class SearchState:
     @classmethod
     def start(cls, n_nodes: int, source: int, heap_capacity: int = 4096) -> "SearchState":
         """A fresh state with only ``source`` (cost 0) on the open list."""
+        empty = np.empty(0, dtype=np.int64)
         state = cls(
             g=np.full(n_nodes, np.inf),
             parent=np.empty(n_nodes, dtype=np.int64),
             closed=np.zeros(n_nodes, dtype=np.bool_),
-            heap_node=np.empty(heap_capacity, dtype=np.int64),
-            heap_f=np.empty(heap_capacity, dtype=np.int64),
-            heap_g=np.empty(heap_capacity, dtype=np.int64),
+            heap_node=empty,
+            heap_f=empty,
+            heap_g=empty,
             counters=np.zeros(2, dtype=np.int64),
         )
-        state.g[source] = 0.0
-        state.parent[source] = -1
-        state.heap_node[0] = source
-        state.heap_f[0] = 0  # order_key(0.0)
-        state.heap_g[0] = 0
-        state.counters[0] = 1
+        state._begin(source, heap_capacity)
         return state
+
+    def restart(self, source: int, heap_capacity: int = 4096) -> None:
+        """Forget the search and start a new one from ``source`` in the same node arrays: what :meth:`start` gives."""
+        self.g.fill(np.inf)
+        self.closed.fill(False)
+        self._begin(source, heap_capacity)
+
+    def _begin(self, source: int, heap_capacity: int) -> None:
+        if len(self.heap_node) != heap_capacity:
+            self.heap_node, self.heap_f, self.heap_g = (np.empty(heap_capacity, dtype=np.int64) for _ in range(3))
+        self.g[source] = 0.0
+        self.parent[source] = -1
+        self.heap_node[0] = source
+        self.heap_f[0] = 0  # order_key(0.0)
+        self.heap_g[0] = 0
+        self.counters[:] = (1, 0)
 
     def grow_heap(self) -> None:
         """Double the heap's capacity, keeping its entries."""
