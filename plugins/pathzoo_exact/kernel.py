@@ -210,7 +210,7 @@ def cell_heuristic(col: int, row: int, layer: int, goal: np.ndarray, mode: int, 
     return scale * math.sqrt(dx * dx + dy * dy + dz * dz)
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def heuristic(node: int, goal: np.ndarray, mode: int, dims: np.ndarray, steps: np.ndarray, scale: float) -> float:
     """:func:`cell_heuristic` of the flat node id ``node`` of a grid of shape ``dims = (L, H, W)``."""
     if mode == H_ZERO:
@@ -297,7 +297,7 @@ def heap_pop(heap_node: np.ndarray, heap_f: np.ndarray, heap_g: np.ndarray, size
     return top
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def next_open(
     closed: np.ndarray, heap_node: np.ndarray, heap_f: np.ndarray, heap_g: np.ndarray, size: int, max_degree: int
 ) -> tuple[int, int, int]:
