@@ -8,7 +8,9 @@ import pytest
 import pathzoo
 from pathzoo.core import Budget, PlanResult, Scenario, Status
 from pathzoo.generators import random_obstacles
+from pathzoo.testing.scenarios import check_scenario
 from pathzoo_exact import base
+from pathzoo_exact.astar import _E_MIN, least_energy_per_metre
 from pathzoo_exact.base import endpoints, straight_run_ends
 
 RNG = np.random.default_rng(0)
@@ -82,3 +84,14 @@ def test_straight_run_ends_keeps_the_ends_and_the_turns() -> None:
     keep = straight_run_ends(nodes, width)
     assert [cells[i] for i in np.flatnonzero(keep)] == [(0, 0), (0, 2), (2, 4), (4, 4), (4, 3)]
     assert straight_run_ends(nodes[:2], width).all() and straight_run_ends(nodes[:1], width).all()
+
+
+def test_energy_heuristic_scale_is_worked_out_once_per_graph() -> None:
+    graph = check_scenario("terrain").graph
+    _E_MIN.pop(graph, None)
+    e_min = least_energy_per_metre(graph)
+    assert e_min == float(np.min(graph.energy / graph.length))
+    assert _E_MIN[graph] == e_min
+    _E_MIN[graph] = 0.5 * e_min  # a kept value is what later plans use
+    assert least_energy_per_metre(graph) == 0.5 * e_min
+    _E_MIN.pop(graph)
