@@ -34,7 +34,7 @@ from pathzoo_exact.moves import move_table
 
 __all__ = ["AStarPlanner", "least_energy_per_metre"]
 
-_E_MIN: "weakref.WeakKeyDictionary[GridGraph, float]" = weakref.WeakKeyDictionary()
+_E_MIN: weakref.WeakKeyDictionary[GridGraph, float] = weakref.WeakKeyDictionary()
 
 
 def least_energy_per_metre(graph: GridGraph) -> float:

@@ -130,7 +130,7 @@ class Endpoints(NamedTuple):
     goal_on_centre: bool
 
 
-_ENDPOINTS: "weakref.WeakKeyDictionary[Scenario, Endpoints]" = weakref.WeakKeyDictionary()
+_ENDPOINTS: weakref.WeakKeyDictionary[Scenario, Endpoints] = weakref.WeakKeyDictionary()
 
 
 def endpoints(scenario: Scenario) -> Endpoints:

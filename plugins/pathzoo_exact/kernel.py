@@ -86,10 +86,10 @@ _MAGNITUDE = np.int64(0x7FFF_FFFF_FFFF_FFFF)
 
 
 @intrinsic
-def _float_bits(typingctx, x):  # noqa: ANN001, ARG001  (numba's intrinsic protocol)
+def _float_bits(typingctx, x):
     """The IEEE-754 bit pattern of a float64, read as an int64 (no conversion: a register move)."""
 
-    def codegen(context, builder, signature, args):  # noqa: ANN001, ARG001
+    def codegen(context, builder, signature, args):
         return builder.bitcast(args[0], context.get_value_type(types.int64))
 
     return types.int64(types.float64), codegen
@@ -233,7 +233,7 @@ def goal_cell(target: int, dims: np.ndarray) -> np.ndarray:
 
 
 @numba.njit(cache=True)
-def heap_push(heap_node: np.ndarray, heap_f: np.ndarray, heap_g: np.ndarray, size: int, node: int, f, g) -> int:  # noqa: ANN001
+def heap_push(heap_node: np.ndarray, heap_f: np.ndarray, heap_g: np.ndarray, size: int, node: int, f: int | float, g: int | float) -> int:
     """Push ``node`` with key ``f`` (ties: larger ``g`` first) on a heap of ``size`` entries; returns the new size.
 
     The keys are compared as they are: floats, or :func:`order_key` integers

@@ -4,14 +4,14 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from pathzoo_exact import base
+from pathzoo_exact.astar import _E_MIN, least_energy_per_metre
+from pathzoo_exact.base import endpoints, straight_run_ends
 
 import pathzoo
 from pathzoo.core import Budget, PlanResult, Scenario, Status
 from pathzoo.generators import random_obstacles
 from pathzoo.testing.scenarios import check_scenario
-from pathzoo_exact import base
-from pathzoo_exact.astar import _E_MIN, least_energy_per_metre
-from pathzoo_exact.base import endpoints, straight_run_ends
 
 RNG = np.random.default_rng(0)
 
@@ -23,8 +23,8 @@ def maze(start: tuple[float, float], goal: tuple[float, float]) -> Scenario:
     return Scenario(id="maze", kind="grid2d", occupancy=occ, cell_size=1.0, start=start, goal=goal)
 
 
-def plan(planner_id: str, scenario: Scenario, budget: Budget = Budget()) -> PlanResult:
-    return pathzoo.make_planner(planner_id).plan(scenario, budget=budget, rng=RNG)
+def plan(planner_id: str, scenario: Scenario, budget: Budget | None = None) -> PlanResult:
+    return pathzoo.make_planner(planner_id).plan(scenario, budget=budget or Budget(), rng=RNG)
 
 
 def same(a: PlanResult, b: PlanResult) -> None:

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import numpy as np
-
 from pathzoo_exact.kernel import heap_pop, heap_push, order_key
 
 
