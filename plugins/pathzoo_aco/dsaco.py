@@ -337,8 +337,7 @@ class DSACO(AntColonyPlanner):
             return PlanResult(Status.SOLVED, problem.walk_points(np.zeros(0, dtype=np.int64)),
                               message="start and goal share a cell")
         engine = self.walk_engine(problem)
-        table = problem.memo(self.table_key("move_table"), lambda: MoveTable.of(
-            engine.adjacency(rules), problem.graph.offsets, rules.turn))
+        table = problem.memo(self.table_key("move_table"), lambda: MoveTable.of(engine.adjacency(rules), rules.turn))
         trail = Pheromone(len(table.node), self.initial_trail(problem))  # in the table's storage order
         state = self.init_state(problem, rules, trail, engine, rng)
         assert isinstance(state, DsacoState) and state.node_height is not None and state.turn_angle is not None
