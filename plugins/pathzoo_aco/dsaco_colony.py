@@ -12,6 +12,10 @@ the same colony with three changes that leave every result bit-identical:
   node with that heading, appended one list after another and kept per
   scenario and configuration (:class:`MoveTable`). A step reads one run of
   records, so no edge is refused by the turn table inside the walk;
+- **records linked to the next list**: a record whose move sets the
+  heading leads to one list only (its target's, for that heading), so it
+  learns where that list lies the first time an ant takes it, and later ants
+  skip the random read of the list heads (:attr:`MoveTable.to_next`);
 - **candidates kept per depth**: after a dead end the ant steps back and
   chooses again on the node before; the candidates it had there, less the
   nodes stamped since, are what reading the list again would give, so they
@@ -87,6 +91,13 @@ class MoveTable:
         The records: target node, adjacency position, weight and move.
         Allocated for every list there could be and written only as lists are
         built, so untouched pages cost no memory.
+    to_next : ndarray of int64
+        Per record of a move that sets the heading, where the list the ant
+        reads after taking it starts (shifted left 16 bits) and its length
+        plus 1, once an ant has looked it up; 0 until then. That list depends
+        only on the record (target node, heading of its move), so later ants
+        skip the random read of ``head``. Empty (not used) when a list's place
+        or length would not fit.
     filled : ndarray of int64, shape (1,)
         Records in use.
     """
@@ -103,6 +114,7 @@ class MoveTable:
     to_place: np.ndarray
     to_weight: np.ndarray
     to_move: np.ndarray
+    to_next: np.ndarray
     filled: np.ndarray
 
     @classmethod
@@ -122,12 +134,15 @@ class MoveTable:
             class_row = first.astype(np.int64)
             per_move = np.bincount(adj_offset, minlength=turn.shape[1])  # every list there could be, at most
             records = int(((turn[class_row] > 0.0) @ per_move).sum())
+        degree = int(np.diff(adj_ptr).max(initial=0))
         index = np.int32 if max(records, len(adj_node)) < 2**31 - 1 else np.int64
         edge = np.zeros(0, dtype=np.int64) if adj_edge is None else adj_edge
         return cls(adj_ptr, adj_node, w_mul, adj_offset, edge, move_class, class_row,
                    np.zeros((n_nodes * len(class_row), 2), dtype=index), np.empty(records, dtype=adj_node.dtype),
                    np.empty(records, dtype=index), np.empty(records, dtype=w_mul.dtype),
-                   np.empty(records, dtype=adj_offset.dtype), np.zeros(1, dtype=np.int64))
+                   np.empty(records, dtype=adj_offset.dtype),
+                   np.empty(records if records < 2**47 and degree < 2**16 - 1 else 0, dtype=np.int64),
+                   np.zeros(1, dtype=np.int64))
 
 
 @dataclass
@@ -197,7 +212,7 @@ class ColonyRun:
 
 @numba.njit(cache=True)
 def _build_list(c, k, h, adj_ptr, node, weight, move, turn, class_row, head, to_node, to_place, to_weight, to_move,
-                filled):
+                to_next, filled):
     """Append the records of node ``c``'s list for heading class ``k`` (list ``h``): its edges whose move the
     turn table allows, in their adjacency order."""
     row = class_row[k]
@@ -211,6 +226,8 @@ def _build_list(c, k, h, adj_ptr, node, weight, move, turn, class_row, head, to_
         to_place[r] = q
         to_weight[r] = weight[q]
         to_move[r] = move[q]
+        if to_next.size:
+            to_next[r] = 0
         r += 1
     head[h, 1] = r - head[h, 0] + 1
     filled[0] = r
@@ -218,7 +235,7 @@ def _build_list(c, k, h, adj_ptr, node, weight, move, turn, class_row, head, to_
 
 @numba.njit(cache=True)
 def _walk_ant(wid, adj_ptr, node, weight, move, horizontal, turn, move_class, class_row, head, to_node, to_place,
-              to_weight, to_move, filled, x, node_max, scale, lo, hi, tau_exp, q0, start, goal, backtrack, max_steps,
+              to_weight, to_move, to_next, filled, x, node_max, scale, lo, hi, tau_exp, q0, start, goal, backtrack, max_steps,
               stamp, stack, stack_prev, cand, cand_w, level_first, level_count, level_more):
     """One ant from ``start``; returns ``(outcome, depth, steps)``, the adjacency positions it took in ``stack[:depth]``.
 
@@ -239,6 +256,9 @@ def _walk_ant(wid, adj_ptr, node, weight, move, horizontal, turn, move_class, cl
     pv = no_prev
     n = 0
     back = False  # this step is on a node the walk stepped back to
+    known = 0  # where the list of the node the ant arrived at starts (<< 16) and its length plus 1; 0: look it up
+    via = -1  # the record the ant arrived by, when it should learn where that list is
+    link = to_next.size > 0  # lists' places fit in to_next (see MoveTable)
     stamp[start] = wid
     c = start
     level_first[0] = 0
@@ -262,12 +282,20 @@ def _walk_ant(wid, adj_ptr, node, weight, move, horizontal, turn, move_class, cl
             # none left: a dead end, unless some open move weighed 0 (then the heuristic alone may still choose)
             scan = nc == 0 and level_more[d]
         if scan:
-            h = c * n_classes + move_class[pv]
-            if head[h, 1] == 0:
-                _build_list(c, move_class[pv], h, adj_ptr, node, weight, move, turn, class_row, head, to_node,
-                            to_place, to_weight, to_move, filled)
-            r0 = head[h, 0]
-            r1 = r0 + head[h, 1] - 1
+            if known > 0:  # the record the ant came by knows where this list is
+                r0 = known >> 16
+                r1 = r0 + (known & 0xFFFF) - 1
+            else:
+                h = c * n_classes + move_class[pv]
+                if head[h, 1] == 0:
+                    _build_list(c, move_class[pv], h, adj_ptr, node, weight, move, turn, class_row, head, to_node,
+                                to_place, to_weight, to_move, to_next, filled)
+                r0 = head[h, 0]
+                r1 = r0 + head[h, 1] - 1
+                if via >= 0:
+                    to_next[via] = (np.int64(r0) << 16) | np.int64(head[h, 1])
+            known = 0
+            via = -1
             cached = p0 + r1 - r0 <= room
             if not cached:  # no room to keep them: written past the levels, scanned again after a dead end
                 p0 = room
@@ -319,6 +347,8 @@ def _walk_ant(wid, adj_ptr, node, weight, move, horizontal, turn, move_class, cl
             if use_turn:
                 pv = stack_prev[d - 1] if d > 0 else no_prev
             back = True
+            known = 0
+            via = -1
         else:
             sel = cand[p0 + nc - 1]
             if q0 > 0.0 and np.random.random() < q0:
@@ -338,11 +368,17 @@ def _walk_ant(wid, adj_ptr, node, weight, move, horizontal, turn, move_class, cl
             c = to_node[sel]
             stamp[c] = wid
             stack[d] = to_place[sel]
+            fixed = True  # the next list follows from the record alone
             if use_turn:
                 o = to_move[sel]
                 if horizontal[o]:
                     pv = o
+                else:
+                    fixed = False  # a vertical move keeps the heading before it
                 stack_prev[d] = pv
+            if fixed and link:
+                known = to_next[sel]
+                via = sel if known == 0 else -1
             d += 1
             level_first[d] = p0 + nc if level_count[d - 1] >= 0 else level_first[d - 1]
             back = False
@@ -350,7 +386,7 @@ def _walk_ant(wid, adj_ptr, node, weight, move, horizontal, turn, move_class, cl
 
 
 @numba.njit(cache=True)
-def _colony_run(adj_ptr, node, weight, move, edge, move_class, class_row, head, to_node, to_place, to_weight, to_move, filled, horizontal, turn, graph_indices, graph_offset_id, edge_length, height, turn_angle, cells, f1, f2, f3,
+def _colony_run(adj_ptr, node, weight, move, edge, move_class, class_row, head, to_node, to_place, to_weight, to_move, to_next, filled, horizontal, turn, graph_indices, graph_offset_id, edge_length, height, turn_angle, cells, f1, f2, f3,
                 l_max, l_min, x, scale, lo, hi, rho, tau_exp, q, start, goal, backtrack, max_steps,
                 seeds, q0s, ps, ants, first, stop_at, best_cost, best_edges, counters, stamps, stack, stack_prev, cand,
                 cand_w, level_first, level_count, level_more, node_max):
@@ -369,7 +405,7 @@ def _colony_run(adj_ptr, node, weight, move, edge, move_class, class_row, head, 
         exhausted = False
         for a in range(n_ants):
             wid = counters[1] + a  # walk ids never repeat within a run
-            flag, d, n = _walk_ant(wid, adj_ptr, node, weight, move, horizontal, turn, move_class, class_row, head, to_node, to_place, to_weight, to_move, filled,
+            flag, d, n = _walk_ant(wid, adj_ptr, node, weight, move, horizontal, turn, move_class, class_row, head, to_node, to_place, to_weight, to_move, to_next, filled,
                                    x, node_max, scale[0], lo, hi, tau_exp,
                                    q0s[it - first], start, goal, backtrack, max_steps, stamps, stack, stack_prev,
                                    cand, cand_w, level_first, level_count, level_more)
@@ -459,6 +495,6 @@ def run_colony(table: MoveTable, horizontal: np.ndarray, turn: np.ndarray, fitne
     tau_exp, q, start, goal, backtrack, max_steps = rule
     seeds, q0s, ps, ants = schedule
     _colony_run(t.adj_ptr, t.node, t.weight, t.move, t.edge, t.move_class, t.class_row,
-                t.head, t.to_node, t.to_place, t.to_weight, t.to_move, t.filled, horizontal, turn, *fitness, x, run.scale, lo, hi, rho, tau_exp, q, start, goal,
+                t.head, t.to_node, t.to_place, t.to_weight, t.to_move, t.to_next, t.filled, horizontal, turn, *fitness, x, run.scale, lo, hi, rho, tau_exp, q, start, goal,
                 backtrack, max_steps, seeds, q0s, ps, ants, first, stop_at, run.best_cost, run.best_edges, run.counters,
                 run.stamps, run.stack, run.stack_prev, run.cand, run.cand_w, run.level_first, run.level_count, run.level_more, run.node_max)

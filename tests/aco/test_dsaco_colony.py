@@ -133,7 +133,8 @@ def test_move_table_lists_the_allowed_moves_in_their_original_order():
             k = table.move_class[prev]
             h = c * n_classes + k
             _build_list(c, k, h, table.adj_ptr, table.node, table.weight, table.move, rules.turn, table.class_row,
-                        table.head, table.to_node, table.to_place, table.to_weight, table.to_move, table.filled)
+                        table.head, table.to_node, table.to_place, table.to_weight, table.to_move, table.to_next,
+                        table.filled)
             first, length = table.head[h, 0], table.head[h, 1] - 1
             records = slice(first, first + length)
             assert length == len(wanted) and table.filled[0] >= first + length
@@ -167,5 +168,22 @@ def test_every_list_fits_in_the_records_allocated():
         for k in range(n_classes):
             _build_list(c, k, c * n_classes + k, table.adj_ptr, table.node, table.weight, table.move, rules.turn,
                         table.class_row, table.head, table.to_node, table.to_place, table.to_weight, table.to_move,
-                        table.filled)
+                        table.to_next, table.filled)
     assert table.filled[0] == len(table.to_node)  # the bound is exact: every record written, none beyond
+
+
+def test_without_the_records_links_the_answer_is_the_same(monkeypatch):
+    import dataclasses
+
+    import pathzoo_aco.dsaco as dsaco
+
+    class Unlinked(MoveTable):  # as a table whose lists' places would not fit in to_next
+        @classmethod
+        def of(cls, adjacency, turn):
+            return dataclasses.replace(MoveTable.of(adjacency, turn), to_next=np.zeros(0, dtype=np.int64))
+
+    monkeypatch.setattr(dsaco, "MoveTable", Unlinked)
+    planner = pathzoo.make_planner("aco.dsaco", step_rule="longitude", n_ants=4)
+    (fast, slow), _, (fast_rng, slow_rng) = _both(planner, pathzoo.load_scenario("dsaco.simple"), Budget(iterations=6))
+    _same(fast, slow)
+    assert fast_rng == slow_rng
