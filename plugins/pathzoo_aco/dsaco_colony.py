@@ -87,10 +87,13 @@ class MoveTable:
         Per list (row ``c * classes + k``): its first record and its length
         plus 1; ``(0, 0)`` until built (allocated zeroed: pages cost memory
         only once a list on them is built).
-    to_node, to_place, to_weight, to_move : ndarray
-        The records: target node, adjacency position, weight and move.
+    to_rec : structured ndarray with fields ``node``, ``place``, ``weight``
+        The records: target node, adjacency position and weight, side by side
+        (the fields a step reads for every candidate: one run of memory).
         Allocated for every list there could be and written only as lists are
         built, so untouched pages cost no memory.
+    to_move : ndarray
+        Per record its move (read for the chosen one only).
     to_next : ndarray of int64
         Per record of a move that sets the heading, where the list the ant
         reads after taking it starts (shifted left 16 bits) and its length
@@ -110,9 +113,7 @@ class MoveTable:
     move_class: np.ndarray
     class_row: np.ndarray
     head: np.ndarray
-    to_node: np.ndarray
-    to_place: np.ndarray
-    to_weight: np.ndarray
+    to_rec: np.ndarray
     to_move: np.ndarray
     to_next: np.ndarray
     filled: np.ndarray
@@ -138,8 +139,9 @@ class MoveTable:
         index = np.int32 if max(records, len(adj_node)) < 2**31 - 1 else np.int64
         edge = np.zeros(0, dtype=np.int64) if adj_edge is None else adj_edge
         return cls(adj_ptr, adj_node, w_mul, adj_offset, edge, move_class, class_row,
-                   np.zeros((n_nodes * len(class_row), 2), dtype=index), np.empty(records, dtype=adj_node.dtype),
-                   np.empty(records, dtype=index), np.empty(records, dtype=w_mul.dtype),
+                   np.zeros((n_nodes * len(class_row), 2), dtype=index),
+                   np.empty(records, dtype=np.dtype([("node", adj_node.dtype), ("place", index),
+                                                     ("weight", w_mul.dtype)])),
                    np.empty(records, dtype=adj_offset.dtype),
                    np.empty(records if records < 2**47 and degree < 2**16 - 1 else 0, dtype=np.int64),
                    np.zeros(1, dtype=np.int64))
@@ -211,7 +213,7 @@ class ColonyRun:
 
 
 @numba.njit(cache=True)
-def _build_list(c, k, h, adj_ptr, node, weight, move, turn, class_row, head, to_node, to_place, to_weight, to_move,
+def _build_list(c, k, h, adj_ptr, node, weight, move, turn, class_row, head, to_rec, to_move,
                 to_next, filled):
     """Append the records of node ``c``'s list for heading class ``k`` (list ``h``): its edges whose move the
     turn table allows, in their adjacency order."""
@@ -222,9 +224,9 @@ def _build_list(c, k, h, adj_ptr, node, weight, move, turn, class_row, head, to_
     for q in range(adj_ptr[c], adj_ptr[c + 1]):
         if use_turn and turn[row, move[q]] <= 0.0:
             continue
-        to_node[r] = node[q]
-        to_place[r] = q
-        to_weight[r] = weight[q]
+        to_rec[r].node = node[q]
+        to_rec[r].place = q
+        to_rec[r].weight = weight[q]
         to_move[r] = move[q]
         if to_next.size:
             to_next[r] = 0
@@ -234,8 +236,7 @@ def _build_list(c, k, h, adj_ptr, node, weight, move, turn, class_row, head, to_
 
 
 @numba.njit(cache=True)
-def _walk_ant(wid, adj_ptr, node, weight, move, horizontal, turn, move_class, class_row, head, to_node, to_place,
-              to_weight, to_move, to_next, filled, x, node_max, scale, lo, hi, tau_exp, q0, start, goal, backtrack, max_steps,
+def _walk_ant(wid, adj_ptr, node, weight, move, horizontal, turn, move_class, class_row, head, to_rec, to_move, to_next, filled, x, node_max, scale, lo, hi, tau_exp, q0, start, goal, backtrack, max_steps,
               stamp, stack, stack_prev, cand, cand_w, level_first, level_count, level_more):
     """One ant from ``start``; returns ``(outcome, depth, steps)``, the adjacency positions it took in ``stack[:depth]``.
 
@@ -273,7 +274,7 @@ def _walk_ant(wid, adj_ptr, node, weight, move, horizontal, turn, move_class, cl
         scan = True
         if back and level_count[d] >= 0:  # the same candidates as before, less the nodes stamped since
             for i in range(p0, p0 + level_count[d]):
-                if stamp[to_node[cand[i]]] == wid:
+                if stamp[to_rec[cand[i]].node] == wid:
                     continue
                 cand[p0 + nc] = cand[i]
                 cand_w[p0 + nc] = cand_w[i]
@@ -288,8 +289,8 @@ def _walk_ant(wid, adj_ptr, node, weight, move, horizontal, turn, move_class, cl
             else:
                 h = c * n_classes + move_class[pv]
                 if head[h, 1] == 0:
-                    _build_list(c, move_class[pv], h, adj_ptr, node, weight, move, turn, class_row, head, to_node,
-                                to_place, to_weight, to_move, to_next, filled)
+                    _build_list(c, move_class[pv], h, adj_ptr, node, weight, move, turn, class_row, head, to_rec,
+                                to_move, to_next, filled)
                 r0 = head[h, 0]
                 r1 = r0 + head[h, 1] - 1
                 if via >= 0:
@@ -302,21 +303,21 @@ def _walk_ant(wid, adj_ptr, node, weight, move, horizontal, turn, move_class, cl
             at_floor = scale * node_max[c] <= lo  # every trail from c reads as lo
             n_open = 0
             for r in range(r0, r1):
-                if stamp[to_node[r]] == wid:
+                if stamp[to_rec[r].node] == wid:
                     continue
                 if at_floor:
                     t = lo
                 else:
-                    t = scale * x[to_place[r]]
+                    t = scale * x[to_rec[r].place]
                     if bounded:
                         t = min(max(t, lo), hi)
                 n_open += 1
                 if tau_exp == 1.0:
-                    w = t * to_weight[r]
+                    w = t * to_rec[r].weight
                 elif t <= lo:
-                    w = lo_pow * to_weight[r]
+                    w = lo_pow * to_rec[r].weight
                 else:
-                    w = t**tau_exp * to_weight[r]
+                    w = t**tau_exp * to_rec[r].weight
                 if w > 0.0:
                     cand[p0 + nc] = r
                     cand_w[p0 + nc] = w
@@ -326,9 +327,9 @@ def _walk_ant(wid, adj_ptr, node, weight, move, horizontal, turn, move_class, cl
             if nc == 0 and n_open > 0:  # every trail weight underflowed: the heuristic alone
                 level_more[d] = False
                 for r in range(r0, r1):
-                    if stamp[to_node[r]] == wid:
+                    if stamp[to_rec[r].node] == wid:
                         continue
-                    w = to_weight[r]
+                    w = to_rec[r].weight
                     if w > 0.0:
                         cand[p0 + nc] = r
                         cand_w[p0 + nc] = w
@@ -365,9 +366,9 @@ def _walk_ant(wid, adj_ptr, node, weight, move, horizontal, turn, move_class, cl
                     if u < acc:
                         sel = cand[i]
                         break
-            c = to_node[sel]
+            c = to_rec[sel].node
             stamp[c] = wid
-            stack[d] = to_place[sel]
+            stack[d] = to_rec[sel].place
             fixed = True  # the next list follows from the record alone
             if use_turn:
                 o = to_move[sel]
@@ -386,7 +387,7 @@ def _walk_ant(wid, adj_ptr, node, weight, move, horizontal, turn, move_class, cl
 
 
 @numba.njit(cache=True)
-def _colony_run(adj_ptr, node, weight, move, edge, move_class, class_row, head, to_node, to_place, to_weight, to_move, to_next, filled, horizontal, turn, graph_indices, graph_offset_id, edge_length, height, turn_angle, cells, f1, f2, f3,
+def _colony_run(adj_ptr, node, weight, move, edge, move_class, class_row, head, to_rec, to_move, to_next, filled, horizontal, turn, graph_indices, graph_offset_id, edge_length, height, turn_angle, cells, f1, f2, f3,
                 l_max, l_min, x, scale, lo, hi, rho, tau_exp, q, start, goal, backtrack, max_steps,
                 seeds, q0s, ps, ants, first, stop_at, best_cost, best_edges, counters, stamps, stack, stack_prev, cand,
                 cand_w, level_first, level_count, level_more, node_max):
@@ -405,7 +406,7 @@ def _colony_run(adj_ptr, node, weight, move, edge, move_class, class_row, head, 
         exhausted = False
         for a in range(n_ants):
             wid = counters[1] + a  # walk ids never repeat within a run
-            flag, d, n = _walk_ant(wid, adj_ptr, node, weight, move, horizontal, turn, move_class, class_row, head, to_node, to_place, to_weight, to_move, to_next, filled,
+            flag, d, n = _walk_ant(wid, adj_ptr, node, weight, move, horizontal, turn, move_class, class_row, head, to_rec, to_move, to_next, filled,
                                    x, node_max, scale[0], lo, hi, tau_exp,
                                    q0s[it - first], start, goal, backtrack, max_steps, stamps, stack, stack_prev,
                                    cand, cand_w, level_first, level_count, level_more)
@@ -495,6 +496,6 @@ def run_colony(table: MoveTable, horizontal: np.ndarray, turn: np.ndarray, fitne
     tau_exp, q, start, goal, backtrack, max_steps = rule
     seeds, q0s, ps, ants = schedule
     _colony_run(t.adj_ptr, t.node, t.weight, t.move, t.edge, t.move_class, t.class_row,
-                t.head, t.to_node, t.to_place, t.to_weight, t.to_move, t.to_next, t.filled, horizontal, turn, *fitness, x, run.scale, lo, hi, rho, tau_exp, q, start, goal,
+                t.head, t.to_rec, t.to_move, t.to_next, t.filled, horizontal, turn, *fitness, x, run.scale, lo, hi, rho, tau_exp, q, start, goal,
                 backtrack, max_steps, seeds, q0s, ps, ants, first, stop_at, run.best_cost, run.best_edges, run.counters,
                 run.stamps, run.stack, run.stack_prev, run.cand, run.cand_w, run.level_first, run.level_count, run.level_more, run.node_max)

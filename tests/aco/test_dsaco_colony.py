@@ -133,17 +133,16 @@ def test_move_table_lists_the_allowed_moves_in_their_original_order():
             k = table.move_class[prev]
             h = c * n_classes + k
             _build_list(c, k, h, table.adj_ptr, table.node, table.weight, table.move, rules.turn, table.class_row,
-                        table.head, table.to_node, table.to_place, table.to_weight, table.to_move, table.to_next,
-                        table.filled)
+                        table.head, table.to_rec, table.to_move, table.to_next, table.filled)
             first, length = table.head[h, 0], table.head[h, 1] - 1
             records = slice(first, first + length)
             assert length == len(wanted) and table.filled[0] >= first + length
-            np.testing.assert_array_equal(table.to_place[records], wanted)
-            np.testing.assert_array_equal(table.to_node[records], adj_node[wanted])
-            np.testing.assert_array_equal(table.to_weight[records], weight[wanted])
+            np.testing.assert_array_equal(table.to_rec["place"][records], wanted)
+            np.testing.assert_array_equal(table.to_rec["node"][records], adj_node[wanted])
+            np.testing.assert_array_equal(table.to_rec["weight"][records], weight[wanted])
             np.testing.assert_array_equal(table.to_move[records], adj_offset[wanted])
-            np.testing.assert_array_equal(table.edge[table.to_place[records]], adj_edge[wanted])
-    assert table.filled[0] <= len(table.to_node)  # the records allocated hold every list there could be
+            np.testing.assert_array_equal(table.edge[table.to_rec["place"][records]], adj_edge[wanted])
+    assert table.filled[0] <= len(table.to_rec)  # the records allocated hold every list there could be
 
 
 def test_levels_that_do_not_fit_are_read_again_with_the_same_answer(monkeypatch):
@@ -167,9 +166,8 @@ def test_every_list_fits_in_the_records_allocated():
     for c in range(len(table.adj_ptr) - 1):
         for k in range(n_classes):
             _build_list(c, k, c * n_classes + k, table.adj_ptr, table.node, table.weight, table.move, rules.turn,
-                        table.class_row, table.head, table.to_node, table.to_place, table.to_weight, table.to_move,
-                        table.to_next, table.filled)
-    assert table.filled[0] == len(table.to_node)  # the bound is exact: every record written, none beyond
+                        table.class_row, table.head, table.to_rec, table.to_move, table.to_next, table.filled)
+    assert table.filled[0] == len(table.to_rec)  # the bound is exact: every record written, none beyond
 
 
 def test_without_the_records_links_the_answer_is_the_same(monkeypatch):
