@@ -236,9 +236,11 @@ def _build_list(c, k, h, adj_ptr, node, weight, move, turn, class_row, head, to_
 
 
 @numba.njit(cache=True)
-def _walk_ant(wid, adj_ptr, node, weight, move, horizontal, turn, move_class, class_row, head, to_rec, to_move, to_next, filled, x, node_max, scale, lo, hi, tau_exp, q0, start, goal, backtrack, max_steps,
-              stamp, stack, stack_prev, cand, cand_w, level_first, level_count, level_more):
-    """One ant from ``start``; returns ``(outcome, depth, steps)``, the adjacency positions it took in ``stack[:depth]``.
+def _walk_ant(wid, adj_ptr, node, weight, move, horizontal, turn, move_class, class_row, head, to_rec, to_move,
+              to_next, filled, x, node_max, scale, lo, hi, tau_exp, q0, start, goal, backtrack, max_steps, stamp,
+              stack, stack_prev, cand, cand_w, level_first, level_count, level_more):
+    """One ant from ``start``; returns ``(outcome, depth, steps)``, the adjacency positions it took in
+    ``stack[:depth]``.
 
     Step for step :func:`pathzoo_aco.engine.walk._colony` for one ant walking
     alone, reading the records of (node, heading) instead of the node's whole
@@ -387,7 +389,8 @@ def _walk_ant(wid, adj_ptr, node, weight, move, horizontal, turn, move_class, cl
 
 
 @numba.njit(cache=True)
-def _colony_run(adj_ptr, node, weight, move, edge, move_class, class_row, head, to_rec, to_move, to_next, filled, horizontal, turn, graph_indices, graph_offset_id, edge_length, height, turn_angle, cells, f1, f2, f3,
+def _colony_run(adj_ptr, node, weight, move, edge, move_class, class_row, head, to_rec, to_move, to_next, filled,
+                horizontal, turn, graph_indices, graph_offset_id, edge_length, height, turn_angle, cells, f1, f2, f3,
                 l_max, l_min, x, scale, lo, hi, rho, tau_exp, q, start, goal, backtrack, max_steps,
                 seeds, q0s, ps, ants, first, stop_at, best_cost, best_edges, counters, stamps, stack, stack_prev, cand,
                 cand_w, level_first, level_count, level_more, node_max):
@@ -406,8 +409,8 @@ def _colony_run(adj_ptr, node, weight, move, edge, move_class, class_row, head, 
         exhausted = False
         for a in range(n_ants):
             wid = counters[1] + a  # walk ids never repeat within a run
-            flag, d, n = _walk_ant(wid, adj_ptr, node, weight, move, horizontal, turn, move_class, class_row, head, to_rec, to_move, to_next, filled,
-                                   x, node_max, scale[0], lo, hi, tau_exp,
+            flag, d, n = _walk_ant(wid, adj_ptr, node, weight, move, horizontal, turn, move_class, class_row, head,
+                                   to_rec, to_move, to_next, filled, x, node_max, scale[0], lo, hi, tau_exp,
                                    q0s[it - first], start, goal, backtrack, max_steps, stamps, stack, stack_prev,
                                    cand, cand_w, level_first, level_count, level_more)
             started += 1
@@ -495,7 +498,8 @@ def run_colony(table: MoveTable, horizontal: np.ndarray, turn: np.ndarray, fitne
     x, lo, hi, rho = trail
     tau_exp, q, start, goal, backtrack, max_steps = rule
     seeds, q0s, ps, ants = schedule
-    _colony_run(t.adj_ptr, t.node, t.weight, t.move, t.edge, t.move_class, t.class_row,
-                t.head, t.to_rec, t.to_move, t.to_next, t.filled, horizontal, turn, *fitness, x, run.scale, lo, hi, rho, tau_exp, q, start, goal,
-                backtrack, max_steps, seeds, q0s, ps, ants, first, stop_at, run.best_cost, run.best_edges, run.counters,
-                run.stamps, run.stack, run.stack_prev, run.cand, run.cand_w, run.level_first, run.level_count, run.level_more, run.node_max)
+    _colony_run(t.adj_ptr, t.node, t.weight, t.move, t.edge, t.move_class, t.class_row, t.head, t.to_rec, t.to_move,
+                t.to_next, t.filled, horizontal, turn, *fitness, x, run.scale, lo, hi, rho, tau_exp, q, start, goal,
+                backtrack, max_steps, seeds, q0s, ps, ants, first, stop_at, run.best_cost, run.best_edges,
+                run.counters, run.stamps, run.stack, run.stack_prev, run.cand, run.cand_w, run.level_first,
+                run.level_count, run.level_more, run.node_max)
