@@ -71,6 +71,9 @@ LONG = (  # planner, scenario id, parameters, iterations: whole runs (schedules,
     ("aco.dsaco", "dsaco.simple", {"rho": 0.9}, 300),
     ("aco.dsaco", "dsaco.complex", {"l_min": 1.01, "step_rule": "longitude"}, 100),
     ("aco.dsaco", "dsaco.complex", {"l_max": 70.0, "step_rule": "longitude"}, 60),
+    ("aco.dsaco", "dsaco.complex", {"step_rule": "longitude", "q0_initial": 0.0, "alpha": 2.0}, 40),  # roulette only
+    ("aco.dsaco", "dsaco.simple", {"step_rule": "longitude", "n_ants": 30}, 120),  # many steps back
+    ("aco.dsaco", "dsaco.simple", {"n_ants": 20, "beta": 1.0}, 50),  # weak heuristic: long walks, deep levels
     ("aco.fgdaco", "fgdaco.scenario1", {}, 100),
     ("aco.fgdaco", "fgdaco.scenario3", {}, 100),
     ("aco.fgdaco", "fgdaco.trap", {}, 30),

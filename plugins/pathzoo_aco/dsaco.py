@@ -116,6 +116,27 @@ def _gather(rows, offset_id, table, length_class, move_factor, refused):
     return out
 
 
+@numba.njit(cache=True)
+def _move_lengths(offset_id, length, n_moves):
+    """Per move the length of its edges, and whether every edge of a move has the same one (one pass over the edges).
+
+    Moves without edges get 0. ``consistent`` is False as soon as an edge's
+    length differs from the first of its move (or is NaN), as
+    ``np.array_equal(length, step[offset_id])`` would say.
+    """
+    step = np.zeros(n_moves)
+    seen = np.zeros(n_moves, dtype=np.bool_)
+    consistent = True
+    for e in range(length.size):
+        o = offset_id[e]
+        if not seen[o]:
+            step[o] = length[e]
+            seen[o] = True
+        if length[e] != step[o]:
+            consistent = False
+    return step, consistent
+
+
 @dataclass
 class DsacoState(ColonyState):
     """Colony state plus the flight height of every node (in cells) and the turn angle between moves."""
@@ -197,9 +218,8 @@ class DSACO(AntColonyPlanner):
             admitted = problem.node_xyz[:, 2] >= np.nan_to_num(ground, nan=np.inf) + self.h_c
         m = 1.0 / (1.0 + h)
         root = np.sqrt(1.0 + (problem.goal_distance / s.cell_size) ** 2)
-        step = np.zeros(len(g.offsets))
-        step[g.offset_id] = g.length
-        if by_node and np.array_equal(g.length, step[g.offset_id]):
+        step, consistent = _move_lengths(g.offset_id, g.length, len(g.offsets))
+        if by_node and consistent:
             lengths, length_class = np.unique(step, return_inverse=True)
             table = _eta(m[:, None], root[:, None], admitted[:, None], lengths[None, :], s.cell_size)
             return _gather(g.indices, g.offset_id, of_eta(table), length_class.reshape(-1),
@@ -337,8 +357,7 @@ class DSACO(AntColonyPlanner):
             return PlanResult(Status.SOLVED, problem.walk_points(np.zeros(0, dtype=np.int64)),
                               message="start and goal share a cell")
         engine = self.walk_engine(problem)
-        table = problem.memo(self.table_key("move_table"), lambda: MoveTable.of(
-            engine.adjacency(rules), problem.graph.offsets, rules.turn))
+        table = problem.memo(self.table_key("move_table"), lambda: MoveTable.of(engine.adjacency(rules), rules.turn))
         trail = Pheromone(len(table.node), self.initial_trail(problem))  # in the table's storage order
         state = self.init_state(problem, rules, trail, engine, rng)
         assert isinstance(state, DsacoState) and state.node_height is not None and state.turn_angle is not None

@@ -6,14 +6,21 @@ of a node, asking the turn table about each. On ``dsaco.complex`` that is 42
 edges per step, most of them refused by the 60° turn limit. This module runs
 the same colony with three changes that leave every result bit-identical:
 
-- **allowed-move lists** per (node, incoming heading): the positions of the
-  node's edges that the turn limit lets through, in their original order,
-  built the first time an ant stands on that node with that heading and kept
-  per scenario and configuration (:class:`MoveTable`). A step scans only
-  those, so no edge is refused by the turn table inside the walk;
-- **moves stored by heading**: each node's edges (target, weight, trail) are
-  stored sorted by heading, so the moves one heading allows are read from one
-  or two runs of memory (:class:`MoveTable`);
+- **allowed-move records** per (node, incoming heading): one record
+  (target, adjacency position, weight, move) per edge the turn limit lets
+  through, in the original order, built the first time an ant stands on that
+  node with that heading, appended one list after another and kept per
+  scenario and configuration (:class:`MoveTable`). A step reads one run of
+  records, so no edge is refused by the turn table inside the walk;
+- **records linked to the next list**: a record whose move sets the
+  heading leads to one list only (its target's, for that heading), so it
+  learns where that list lies the first time an ant takes it, and later ants
+  skip the random read of the list heads (:attr:`MoveTable.to_next`);
+- **candidates kept per depth**: after a dead end the ant steps back and
+  chooses again on the node before; the candidates it had there, less the
+  nodes stamped since, are what reading the list again would give, so they
+  are taken from the walk's levels instead (:class:`ColonyRun`). Under the
+  paper's step rule about half of all steps are such steps back;
 - **one call for many iterations**: the walks, the fitness (eq. 20) and the
   flight constraints (eqs. 2-3) by the kernels of
   :mod:`pathzoo_aco.dsaco_fitness`, the best-so-far walk, evaporation and
@@ -44,112 +51,100 @@ from pathzoo_aco.engine import EXHAUSTED, REACHED, STEP_CAP, STUCK
 
 __all__ = ["MoveTable", "ColonyRun", "run_colony"]
 
+_LEVEL_ROOM = 16384
+"""Candidates kept for the nodes along a walk (:class:`ColonyRun`); deeper levels that do not fit are read again."""
+
 _RENORMALISE_BELOW = 1e-150
 """As :data:`pathzoo_aco.engine.pheromone._RENORMALISE_BELOW`: fold the trail's scale back below this."""
 
 
-@numba.njit(cache=True)
-def _heading_layout(adj_ptr, adj_node, adj_edge, adj_offset, w_mul, rank, node, weight, edge, move, place):
-    """Fill the storage arrays: each node's adjacency positions sorted by ``rank`` of their moves.
-
-    ``node``, ``weight``, ``edge``, ``move`` get the target, weight, graph
-    edge id and move of each storage place; ``place[q]`` the place of
-    adjacency position ``q`` relative to its node's first.
-    """
-    slot = np.empty(rank.size, dtype=np.int64)
-    for c in range(adj_ptr.size - 1):
-        e0 = adj_ptr[c]
-        slot[:] = -1
-        for q in range(e0, adj_ptr[c + 1]):
-            slot[rank[adj_offset[q]]] = q
-        m = 0
-        for r in range(rank.size):
-            q = slot[r]
-            if q < 0:
-                continue
-            s = e0 + m
-            node[s] = adj_node[q]
-            weight[s] = w_mul[q]
-            edge[s] = q if adj_edge is None else adj_edge[q]
-            move[s] = adj_offset[q]
-            place[q] = m
-            m += 1
-
-
 @dataclass(frozen=True, eq=False)
 class MoveTable:
-    """A node's moves stored by heading, and per (node, heading class) the moves the turn limit allows.
+    """A node's moves, and per (node, heading class) a record of each move the turn limit allows.
 
-    **Storage.** Each node's edges (the walk engine's adjacency of the rules)
-    are stored sorted by the heading of their move, so the moves one heading
-    class allows lie in one or two runs of memory rather than spread over the
-    node's whole block (the walk reads fewer cache lines per step). The trail
-    is kept in the same order. The order in which an ant *considers* the
-    moves is unchanged: the original one.
-
-    **Allowed lists.** Heading classes are the distinct rows of the turn table
-    (row ``K``, no previous move, included). The list of node ``c`` and class
-    ``k`` holds the storage places (relative to the node's first) of the
-    edges whose move the turn table allows, in the original order; it is
-    built the first time an ant stands on ``c`` with a heading of class ``k``.
+    Heading classes are the distinct rows of the turn table (row ``K``, no
+    previous move, included). The list of node ``c`` and class ``k`` holds one
+    record per edge of ``c`` whose move the turn table allows, in the
+    adjacency's order (the order in which the generic walk considers them):
+    its target node, adjacency position, weight and move. It is built the
+    first time an ant stands on ``c`` with a heading of class ``k`` and
+    appended to the record arrays, so the lists a walk reads lie one after
+    another in memory, each in one run of cache lines, and no edge the turn
+    limit refuses is ever read.
 
     Attributes
     ----------
-    node, weight, edge, move : ndarray
-        Per storage place: target node, weight ``weight_mul``, graph edge id and move id.
-    place : ndarray of uint8 or uint16
-        Per original adjacency position: its storage place relative to its node's first.
-    adj_ptr, adj_offset : ndarray
-        The adjacency's CSR pointer and per-position moves (original order).
+    adj_ptr, node, weight, move : ndarray
+        The adjacency (the walk engine's, of the rules): CSR pointer, and per
+        position the target node, weight ``weight_mul`` and move id.
+    edge : ndarray of int
+        Per adjacency position its graph edge id; empty when they are equal.
     move_class : ndarray of int64, shape (K + 1,)
         Class of every previous move.
     class_row : ndarray of int64
         A previous move (row of the turn table) standing for each class.
-    pool : ndarray like ``place``
-        The lists, each after a header: node ``c``'s list of class ``k`` has
-        its header at ``(adj_ptr[c] + c) * classes + k * (degree(c) + 1)``:
-        0 until the list is built (the array is allocated zeroed, so its pages
-        cost memory only once a list on them is built), then the list's
-        length plus 1. Header and list share a cache line.
+    head : ndarray of int32 or int64, shape (nodes * classes, 2)
+        Per list (row ``c * classes + k``): its first record and its length
+        plus 1; ``(0, 0)`` until built (allocated zeroed: pages cost memory
+        only once a list on them is built).
+    to_rec : structured ndarray with fields ``node``, ``place``, ``weight``
+        The records: target node, adjacency position and weight, side by side
+        (the fields a step reads for every candidate: one run of memory).
+        Allocated for every list there could be and written only as lists are
+        built, so untouched pages cost no memory.
+    to_move : ndarray
+        Per record its move (read for the chosen one only).
+    to_next : ndarray of int64
+        Per record of a move that sets the heading, where the list the ant
+        reads after taking it starts (shifted left 16 bits) and its length
+        plus 1, once an ant has looked it up; 0 until then. That list depends
+        only on the record (target node, heading of its move), so later ants
+        skip the random read of ``head``. Empty (not used) when a list's place
+        or length would not fit.
+    filled : ndarray of int64, shape (1,)
+        Records in use.
     """
 
+    adj_ptr: np.ndarray
     node: np.ndarray
     weight: np.ndarray
-    edge: np.ndarray
     move: np.ndarray
-    place: np.ndarray
-    adj_ptr: np.ndarray
-    adj_offset: np.ndarray
+    edge: np.ndarray
     move_class: np.ndarray
     class_row: np.ndarray
-    pool: np.ndarray
+    head: np.ndarray
+    to_rec: np.ndarray
+    to_move: np.ndarray
+    to_next: np.ndarray
+    filled: np.ndarray
 
     @classmethod
-    def of(cls, adjacency: tuple, offsets: np.ndarray, turn: np.ndarray) -> "MoveTable":
+    def of(cls, adjacency: tuple, turn: np.ndarray) -> "MoveTable":
         """The table of an adjacency ``(adj_ptr, adj_node, adj_edge or None, adj_offset, weight_mul, _)``
-        (:meth:`~pathzoo_aco.engine.walk.WalkEngine.adjacency`), the graph's move offsets and a turn table
-        ``(K + 1, K)`` of zeros and ones (or ``(0, 0)``: one class, every move allowed)."""
+        (:meth:`~pathzoo_aco.engine.walk.WalkEngine.adjacency`) and a turn table ``(K + 1, K)`` of zeros and
+        ones (or ``(0, 0)``: one class, every move allowed)."""
         adj_ptr, adj_node, adj_edge, adj_offset, w_mul = adjacency[:5]
         n_nodes = len(adj_ptr) - 1
         if turn.size == 0:
             move_class = np.zeros(1, dtype=np.int64)
             class_row = np.zeros(1, dtype=np.int64)
+            records = len(adj_node)
         else:
             _, first, inverse = np.unique(turn, axis=0, return_index=True, return_inverse=True)
             move_class = inverse.reshape(-1).astype(np.int64)
             class_row = first.astype(np.int64)
-        heading = np.arctan2(offsets[:, -2], offsets[:, -1])
-        vertical = (offsets[:, -2:] == 0).all(axis=1)
-        rank = np.empty(len(offsets), dtype=np.int64)
-        rank[np.lexsort((np.arange(len(offsets)), heading, vertical))] = np.arange(len(offsets))
-        degree = int(np.diff(adj_ptr).max()) if n_nodes else 0
-        small = np.uint8 if degree < 255 else np.uint16 if degree < 65535 else np.uint32
-        size = len(adj_node)
-        node, weight, edge = np.empty_like(adj_node), np.empty_like(w_mul), np.empty(size, dtype=np.int64)
-        move, place = np.empty_like(adj_offset), np.empty(size, dtype=small)
-        _heading_layout(adj_ptr, adj_node, adj_edge, adj_offset, w_mul, rank, node, weight, edge, move, place)
-        return cls(node, weight, edge, move, place, adj_ptr, adj_offset, move_class, class_row,
-                   np.zeros((size + n_nodes) * len(class_row), dtype=small))
+            per_move = np.bincount(adj_offset, minlength=turn.shape[1])  # every list there could be, at most
+            records = int(((turn[class_row] > 0.0) @ per_move).sum())
+        degree = int(np.diff(adj_ptr).max(initial=0))
+        index = np.int32 if max(records, len(adj_node)) < 2**31 - 1 else np.int64
+        edge = np.zeros(0, dtype=np.int64) if adj_edge is None else adj_edge
+        return cls(adj_ptr, adj_node, w_mul, adj_offset, edge, move_class, class_row,
+                   np.zeros((n_nodes * len(class_row), 2), dtype=index),
+                   np.empty(records, dtype=np.dtype([("node", adj_node.dtype), ("place", index),
+                                                     ("weight", w_mul.dtype)])),
+                   np.empty(records, dtype=adj_offset.dtype),
+                   np.empty(records if records < 2**47 and degree < 2**16 - 1 else 0, dtype=np.int64),
+                   np.zeros(1, dtype=np.int64))
 
 
 @dataclass
@@ -169,9 +164,19 @@ class ColonyRun:
         1 once an ant has searched the start's whole component (no turn rule).
     stamps : ndarray of int32
         Tabu stamps; walk ``w`` stamps its nodes with ``w``.
-    stack, stack_prev, cand, cand_w : ndarray
-        Work space of the walks: the storage places and headings along the
-        walk, and the candidates of one step with their weights.
+    stack, stack_prev : ndarray
+        Work space of the walks: the adjacency positions and headings along the walk.
+    cand, cand_w, level_first, level_count, level_more : ndarray
+        The candidates (records) and their weights of every node on the walk,
+        one level per depth: level ``d`` starts at ``level_first[d]`` and
+        holds ``level_count[d]`` of them (-1: not kept, no room);
+        ``level_more[d]`` says whether an open move of that node weighed 0.
+        When the walk steps back to a node after a dead end, the same
+        candidates less the nodes stamped since are exactly what reading its
+        list again would give (the trail does not change during a walk, and
+        the sums run in the same order), unless none is left and an open move
+        weighed 0: then the list is read again. The upper half of ``cand`` is
+        room for a step whose level does not fit below.
     node_max : ndarray
         Per node, at least the largest stored trail ``x`` of its edges. When
         ``scale * node_max[c] <= τmin`` every trail leaving ``c`` reads as
@@ -189,103 +194,152 @@ class ColonyRun:
     stack_prev: np.ndarray
     cand: np.ndarray
     cand_w: np.ndarray
+    level_first: np.ndarray
+    level_count: np.ndarray
+    level_more: np.ndarray
     node_max: np.ndarray
 
     @classmethod
     def start(cls, n_nodes: int, max_degree: int, trail: np.ndarray, scale: float) -> "ColonyRun":
         """A run before its first iteration, on ``n_nodes`` nodes with at most ``max_degree`` moves each,
         with the stored ``trail`` and its scale."""
-        k = max(max_degree, 1)
+        room = 2 * max(max_degree, _LEVEL_ROOM)
         return cls(np.array([scale]), np.array([np.inf]), np.zeros(max(n_nodes, 1), dtype=np.int64),
                    np.zeros(5, dtype=np.int64), np.full(n_nodes, -1, dtype=np.int32),
                    np.zeros(n_nodes + 1, dtype=np.int64), np.zeros(n_nodes + 1, dtype=np.int64),
-                   np.zeros(k, dtype=np.int64), np.zeros(k), np.full(n_nodes, trail.max(initial=0.0)))
+                   np.zeros(room, dtype=np.int64), np.zeros(room), np.zeros(n_nodes + 1, dtype=np.int64),
+                   np.zeros(n_nodes + 1, dtype=np.int64), np.zeros(n_nodes + 1, dtype=np.bool_),
+                   np.full(n_nodes, trail.max(initial=0.0)))
 
 
 @numba.njit(cache=True)
-def _build_list(c, k, base, adj_ptr, adj_offset, place, turn, class_row, pool):
-    """Fill node ``c``'s list for heading class ``k`` (header at ``base``): the places of its edges whose move
-    the turn table allows, in their original order."""
+def _build_list(c, k, h, adj_ptr, node, weight, move, turn, class_row, head, to_rec, to_move,
+                to_next, filled):
+    """Append the records of node ``c``'s list for heading class ``k`` (list ``h``): its edges whose move the
+    turn table allows, in their adjacency order."""
     row = class_row[k]
     use_turn = turn.shape[0] > 0
-    m = 0
+    r = filled[0]
+    head[h, 0] = r
     for q in range(adj_ptr[c], adj_ptr[c + 1]):
-        if use_turn and turn[row, adj_offset[q]] <= 0.0:
+        if use_turn and turn[row, move[q]] <= 0.0:
             continue
-        m += 1
-        pool[base + m] = place[q]
-    pool[base] = m + 1
+        to_rec[r].node = node[q]
+        to_rec[r].place = q
+        to_rec[r].weight = weight[q]
+        to_move[r] = move[q]
+        if to_next.size:
+            to_next[r] = 0
+        r += 1
+    head[h, 1] = r - head[h, 0] + 1
+    filled[0] = r
 
 
 @numba.njit(cache=True)
-def _walk_ant(wid, node, weight, move, place, adj_ptr, adj_offset, horizontal, turn, move_class, class_row,
-              pool, x, node_max, scale, lo, hi, tau_exp, q0, start, goal, backtrack, max_steps, stamp, stack,
-              stack_prev, cand, cand_w):
-    """One ant from ``start``; returns ``(outcome, depth, steps)``, the storage places it took in ``stack[:depth]``.
+def _walk_ant(wid, adj_ptr, node, weight, move, horizontal, turn, move_class, class_row, head, to_rec, to_move,
+              to_next, filled, x, node_max, scale, lo, hi, tau_exp, q0, start, goal, backtrack, max_steps, stamp,
+              stack, stack_prev, cand, cand_w, level_first, level_count, level_more):
+    """One ant from ``start``; returns ``(outcome, depth, steps)``, the adjacency positions it took in
+    ``stack[:depth]``.
 
     Step for step :func:`pathzoo_aco.engine.walk._colony` for one ant walking
-    alone, reading the allowed list of (node, heading) instead of the node's
-    whole adjacency.
+    alone, reading the records of (node, heading) instead of the node's whole
+    adjacency. The candidates of every node on the walk are kept, one level
+    per depth in ``cand``/``cand_w``; a step back on a node after a dead end
+    takes them again less those stamped since, rather than reading the list
+    again (see :class:`ColonyRun`).
     """
     use_turn = turn.shape[0] > 0
     no_prev = turn.shape[0] - 1 if use_turn else 0
     n_classes = class_row.size
     bounded = lo > 0.0 or hi < np.inf
     lo_pow = lo**tau_exp
+    room = cand.size // 2  # levels below, one step's candidates above
     d = 0
     pv = no_prev
     n = 0
+    back = False  # this step is on a node the walk stepped back to
+    known = 0  # where the list of the node the ant arrived at starts (<< 16) and its length plus 1; 0: look it up
+    via = -1  # the record the ant arrived by, when it should learn where that list is
+    link = to_next.size > 0  # lists' places fit in to_next (see MoveTable)
     stamp[start] = wid
     c = start
+    level_first[0] = 0
     while True:
         if c == goal:
             return REACHED, d, n
         if n >= max_steps:
             return STEP_CAP, d, n
-        k = move_class[pv]
-        e0 = adj_ptr[c]
-        base = (e0 + c) * n_classes + k * (adj_ptr[c + 1] - e0 + 1)
-        if pool[base] == 0:
-            _build_list(c, k, base, adj_ptr, adj_offset, place, turn, class_row, pool)
-        m = pool[base] - 1
-        base += 1
-        at_floor = scale * node_max[c] <= lo  # every trail from c reads as lo
+        p0 = level_first[d]
         nc = 0
-        n_open = 0
         total_w = 0.0
-        for i in range(m):
-            s = e0 + pool[base + i]
-            if stamp[node[s]] == wid:
-                continue
-            if at_floor:
-                t = lo
-            else:
-                t = scale * x[s]
-                if bounded:
-                    t = min(max(t, lo), hi)
-            n_open += 1
-            if tau_exp == 1.0:
-                w = t * weight[s]
-            elif t <= lo:
-                w = lo_pow * weight[s]
-            else:
-                w = t**tau_exp * weight[s]
-            if w > 0.0:
-                cand[nc] = s
-                cand_w[nc] = w
-                total_w += w
-                nc += 1
-        if nc == 0 and n_open > 0:  # every trail weight underflowed: the heuristic alone
-            for i in range(m):
-                s = e0 + pool[base + i]
-                if stamp[node[s]] == wid:
+        scan = True
+        if back and level_count[d] >= 0:  # the same candidates as before, less the nodes stamped since
+            for i in range(p0, p0 + level_count[d]):
+                if stamp[to_rec[cand[i]].node] == wid:
                     continue
-                w = weight[s]
+                cand[p0 + nc] = cand[i]
+                cand_w[p0 + nc] = cand_w[i]
+                total_w += cand_w[i]
+                nc += 1
+            # none left: a dead end, unless some open move weighed 0 (then the heuristic alone may still choose)
+            scan = nc == 0 and level_more[d]
+        if scan:
+            if known > 0:  # the record the ant came by knows where this list is
+                r0 = known >> 16
+                r1 = r0 + (known & 0xFFFF) - 1
+            else:
+                h = c * n_classes + move_class[pv]
+                if head[h, 1] == 0:
+                    _build_list(c, move_class[pv], h, adj_ptr, node, weight, move, turn, class_row, head, to_rec,
+                                to_move, to_next, filled)
+                r0 = head[h, 0]
+                r1 = r0 + head[h, 1] - 1
+                if via >= 0:
+                    to_next[via] = (np.int64(r0) << 16) | np.int64(head[h, 1])
+            known = 0
+            via = -1
+            cached = p0 + r1 - r0 <= room
+            if not cached:  # no room to keep them: written past the levels, scanned again after a dead end
+                p0 = room
+            at_floor = scale * node_max[c] <= lo  # every trail from c reads as lo
+            n_open = 0
+            for r in range(r0, r1):
+                if stamp[to_rec[r].node] == wid:
+                    continue
+                if at_floor:
+                    t = lo
+                else:
+                    t = scale * x[to_rec[r].place]
+                    if bounded:
+                        t = min(max(t, lo), hi)
+                n_open += 1
+                if tau_exp == 1.0:
+                    w = t * to_rec[r].weight
+                elif t <= lo:
+                    w = lo_pow * to_rec[r].weight
+                else:
+                    w = t**tau_exp * to_rec[r].weight
                 if w > 0.0:
-                    cand[nc] = s
-                    cand_w[nc] = w
+                    cand[p0 + nc] = r
+                    cand_w[p0 + nc] = w
                     total_w += w
                     nc += 1
+            level_more[d] = n_open > nc
+            if nc == 0 and n_open > 0:  # every trail weight underflowed: the heuristic alone
+                level_more[d] = False
+                for r in range(r0, r1):
+                    if stamp[to_rec[r].node] == wid:
+                        continue
+                    w = to_rec[r].weight
+                    if w > 0.0:
+                        cand[p0 + nc] = r
+                        cand_w[p0 + nc] = w
+                        total_w += w
+                        nc += 1
+            level_count[d] = nc if cached else -1
+        else:
+            level_count[d] = nc
         if nc == 0:  # dead end
             if not backtrack:
                 return STUCK, d, n
@@ -295,40 +349,51 @@ def _walk_ant(wid, node, weight, move, place, adj_ptr, adj_offset, horizontal, t
             c = node[stack[d - 1]] if d > 0 else start
             if use_turn:
                 pv = stack_prev[d - 1] if d > 0 else no_prev
+            back = True
+            known = 0
+            via = -1
         else:
-            sel = cand[nc - 1]
+            sel = cand[p0 + nc - 1]
             if q0 > 0.0 and np.random.random() < q0:
                 best = -1.0
-                for i in range(nc):
+                for i in range(p0, p0 + nc):
                     if cand_w[i] > best:
                         best = cand_w[i]
                         sel = cand[i]
             else:
-                r = np.random.random() * total_w
+                u = np.random.random() * total_w
                 acc = 0.0
-                for i in range(nc):
+                for i in range(p0, p0 + nc):
                     acc += cand_w[i]
-                    if r < acc:
+                    if u < acc:
                         sel = cand[i]
                         break
-            c = node[sel]
+            c = to_rec[sel].node
             stamp[c] = wid
-            stack[d] = sel
+            stack[d] = to_rec[sel].place
+            fixed = True  # the next list follows from the record alone
             if use_turn:
-                o = move[sel]
+                o = to_move[sel]
                 if horizontal[o]:
                     pv = o
+                else:
+                    fixed = False  # a vertical move keeps the heading before it
                 stack_prev[d] = pv
+            if fixed and link:
+                known = to_next[sel]
+                via = sel if known == 0 else -1
             d += 1
+            level_first[d] = p0 + nc if level_count[d - 1] >= 0 else level_first[d - 1]
+            back = False
         n += 1
 
 
 @numba.njit(cache=True)
-def _colony_run(node, weight, edge, move, place, adj_ptr, adj_offset, move_class, class_row, pool,
+def _colony_run(adj_ptr, node, weight, move, edge, move_class, class_row, head, to_rec, to_move, to_next, filled,
                 horizontal, turn, graph_indices, graph_offset_id, edge_length, height, turn_angle, cells, f1, f2, f3,
                 l_max, l_min, x, scale, lo, hi, rho, tau_exp, q, start, goal, backtrack, max_steps,
                 seeds, q0s, ps, ants, first, stop_at, best_cost, best_edges, counters, stamps, stack, stack_prev, cand,
-                cand_w, node_max):
+                cand_w, level_first, level_count, level_more, node_max):
     """Iterations ``counters[0]`` to ``stop_at - 1``; the schedule starts at iteration ``first``
     (see :func:`run_colony`)."""
     flat = np.zeros(1024, dtype=np.int64)  # storage places of the iteration's walks
@@ -344,10 +409,10 @@ def _colony_run(node, weight, edge, move, place, adj_ptr, adj_offset, move_class
         exhausted = False
         for a in range(n_ants):
             wid = counters[1] + a  # walk ids never repeat within a run
-            flag, d, n = _walk_ant(wid, node, weight, move, place, adj_ptr, adj_offset, horizontal, turn,
-                                   move_class, class_row, pool, x, node_max, scale[0], lo, hi, tau_exp,
+            flag, d, n = _walk_ant(wid, adj_ptr, node, weight, move, horizontal, turn, move_class, class_row, head,
+                                   to_rec, to_move, to_next, filled, x, node_max, scale[0], lo, hi, tau_exp,
                                    q0s[it - first], start, goal, backtrack, max_steps, stamps, stack, stack_prev,
-                                   cand, cand_w)
+                                   cand, cand_w, level_first, level_count, level_more)
             started += 1
             counters[2] += n
             if flag == REACHED:
@@ -367,7 +432,7 @@ def _colony_run(node, weight, edge, move, place, adj_ptr, adj_offset, move_class
         counters[1] += started
         it += 1
         for i in range(offsets[n_ants]):
-            flat_edges[i] = edge[flat[i]]
+            flat_edges[i] = edge[flat[i]] if edge.size else flat[i]
         costs = walk_fitness(flat_edges, offsets, reached, graph_indices, graph_offset_id, edge_length, height,
                              turn_angle, start, cells, f1, f2, f3)
         if l_max > 0.0 or l_min > 0.0:  # eqs. 2-3
@@ -433,7 +498,8 @@ def run_colony(table: MoveTable, horizontal: np.ndarray, turn: np.ndarray, fitne
     x, lo, hi, rho = trail
     tau_exp, q, start, goal, backtrack, max_steps = rule
     seeds, q0s, ps, ants = schedule
-    _colony_run(t.node, t.weight, t.edge, t.move, t.place, t.adj_ptr, t.adj_offset, t.move_class, t.class_row,
-                t.pool, horizontal, turn, *fitness, x, run.scale, lo, hi, rho, tau_exp, q, start, goal,
-                backtrack, max_steps, seeds, q0s, ps, ants, first, stop_at, run.best_cost, run.best_edges, run.counters,
-                run.stamps, run.stack, run.stack_prev, run.cand, run.cand_w, run.node_max)
+    _colony_run(t.adj_ptr, t.node, t.weight, t.move, t.edge, t.move_class, t.class_row, t.head, t.to_rec, t.to_move,
+                t.to_next, t.filled, horizontal, turn, *fitness, x, run.scale, lo, hi, rho, tau_exp, q, start, goal,
+                backtrack, max_steps, seeds, q0s, ps, ants, first, stop_at, run.best_cost, run.best_edges,
+                run.counters, run.stamps, run.stack, run.stack_prev, run.cand, run.cand_w, run.level_first,
+                run.level_count, run.level_more, run.node_max)

@@ -217,3 +217,18 @@ def test_l_max_below_the_optimum_leaves_no_feasible_path():
     assert pathzoo.make_planner("aco.dsaco").plan(scenario, budget=budget, rng=np.random.default_rng(0)).solved
     result = pathzoo.make_planner("aco.dsaco", l_max=2.5).plan(scenario, budget=budget, rng=np.random.default_rng(0))
     assert not result.solved  # the target is 3 cells away
+
+
+def test_move_lengths_in_one_pass_equal_the_array_version():
+    from pathzoo_aco.dsaco import _move_lengths
+
+    g = pathzoo.load_scenario("dsaco.simple").graph
+    step, consistent = _move_lengths(g.offset_id, g.length, len(g.offsets) + 1)  # one move without edges
+    want = np.zeros(len(g.offsets) + 1)
+    want[g.offset_id] = g.length
+    assert consistent and np.array_equal(step, want)
+    other = g.length.copy()
+    other[len(other) // 2] *= 1.0 + 1e-15  # one edge of a move a little longer than the others
+    assert not _move_lengths(g.offset_id, other, len(g.offsets))[1]
+    other[len(other) // 2] = np.nan
+    assert not _move_lengths(g.offset_id, other, len(g.offsets))[1]

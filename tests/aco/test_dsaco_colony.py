@@ -122,21 +122,66 @@ def test_move_table_lists_the_allowed_moves_in_their_original_order():
     planner = pathzoo.make_planner("aco.dsaco", step_rule="longitude")
     rules = planner.walk_rules(problem)
     adjacency = WalkEngine(problem).adjacency(rules)
-    table = MoveTable.of(adjacency, problem.graph.offsets, rules.turn)
-    adj_ptr, adj_node, adj_edge, adj_offset = adjacency[:4]
-    heading = np.arctan2(problem.graph.offsets[:, -2], problem.graph.offsets[:, -1])
+    table = MoveTable.of(adjacency, rules.turn)
+    adj_ptr, adj_node, adj_edge, adj_offset, weight = adjacency[:5]
+    assert adj_edge is not None and len(adj_edge) < problem.graph.n_edges  # the rule's refused moves are left out
+    n_classes = len(table.class_row)
     for c in (problem.start, problem.start + 7, int(np.flatnonzero(np.diff(adj_ptr) > 0)[-1])):
         e0, e1 = adj_ptr[c], adj_ptr[c + 1]
-        stored = slice(e0, e1)
-        np.testing.assert_array_equal(np.sort(table.edge[stored]), np.sort(adj_edge[e0:e1]))  # a permutation
-        assert (np.diff(heading[table.move[stored]]) >= 0).all()  # stored by heading
-        np.testing.assert_array_equal(table.edge[e0 + table.place[e0:e1]], adj_edge[e0:e1])
-        for prev in (len(rules.turn) - 1, int(table.move[e0])):
+        for prev in (len(rules.turn) - 1, int(adj_offset[e0])):
             wanted = [q for q in range(e0, e1) if rules.turn[prev, adj_offset[q]] > 0]
             k = table.move_class[prev]
-            base = (e0 + c) * len(table.class_row) + k * (e1 - e0 + 1)
-            _build_list(c, k, base, table.adj_ptr, table.adj_offset, table.place, rules.turn, table.class_row,
-                        table.pool)
-            listed = e0 + table.pool[base + 1 : base + table.pool[base]].astype(np.int64)
-            np.testing.assert_array_equal(table.edge[listed], adj_edge[wanted])
-            np.testing.assert_array_equal(table.node[listed], adj_node[wanted])
+            h = c * n_classes + k
+            _build_list(c, k, h, table.adj_ptr, table.node, table.weight, table.move, rules.turn, table.class_row,
+                        table.head, table.to_rec, table.to_move, table.to_next, table.filled)
+            first, length = table.head[h, 0], table.head[h, 1] - 1
+            records = slice(first, first + length)
+            assert length == len(wanted) and table.filled[0] >= first + length
+            np.testing.assert_array_equal(table.to_rec["place"][records], wanted)
+            np.testing.assert_array_equal(table.to_rec["node"][records], adj_node[wanted])
+            np.testing.assert_array_equal(table.to_rec["weight"][records], weight[wanted])
+            np.testing.assert_array_equal(table.to_move[records], adj_offset[wanted])
+            np.testing.assert_array_equal(table.edge[table.to_rec["place"][records]], adj_edge[wanted])
+    assert table.filled[0] <= len(table.to_rec)  # the records allocated hold every list there could be
+
+
+def test_levels_that_do_not_fit_are_read_again_with_the_same_answer(monkeypatch):
+    import pathzoo_aco.dsaco_colony as colony
+
+    monkeypatch.setattr(colony, "_LEVEL_ROOM", 1)  # room for about one node's candidates: most levels are not kept
+    for scenario, params in ((pathzoo.load_scenario("dsaco.simple"), {"step_rule": "longitude", "n_ants": 4}),
+                             (_grid(turn_deg=45.0), {"n_ants": 4}), (_grid(wall=True), {"n_ants": 2})):
+        planner = pathzoo.make_planner("aco.dsaco", **params)
+        (fast, slow), _, (fast_rng, slow_rng) = _both(planner, scenario, Budget(iterations=6))
+        _same(fast, slow)
+        assert fast_rng == slow_rng
+
+
+def test_every_list_fits_in_the_records_allocated():
+    scenario = _grid(turn_deg=45.0)
+    problem = ColonyProblem(scenario)
+    rules = pathzoo.make_planner("aco.dsaco").walk_rules(problem)
+    table = MoveTable.of(WalkEngine(problem).adjacency(rules), rules.turn)
+    n_classes = len(table.class_row)
+    for c in range(len(table.adj_ptr) - 1):
+        for k in range(n_classes):
+            _build_list(c, k, c * n_classes + k, table.adj_ptr, table.node, table.weight, table.move, rules.turn,
+                        table.class_row, table.head, table.to_rec, table.to_move, table.to_next, table.filled)
+    assert table.filled[0] == len(table.to_rec)  # the bound is exact: every record written, none beyond
+
+
+def test_without_the_records_links_the_answer_is_the_same(monkeypatch):
+    import dataclasses
+
+    import pathzoo_aco.dsaco as dsaco
+
+    class Unlinked(MoveTable):  # as a table whose lists' places would not fit in to_next
+        @classmethod
+        def of(cls, adjacency, turn):
+            return dataclasses.replace(MoveTable.of(adjacency, turn), to_next=np.zeros(0, dtype=np.int64))
+
+    monkeypatch.setattr(dsaco, "MoveTable", Unlinked)
+    planner = pathzoo.make_planner("aco.dsaco", step_rule="longitude", n_ants=4)
+    (fast, slow), _, (fast_rng, slow_rng) = _both(planner, pathzoo.load_scenario("dsaco.simple"), Budget(iterations=6))
+    _same(fast, slow)
+    assert fast_rng == slow_rng
