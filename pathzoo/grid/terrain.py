@@ -395,7 +395,21 @@ def _angle_within(grad: np.ndarray, cell_size: float, limit_deg: float) -> np.nd
         if not (0.001 <= limit_deg <= 89.999 and 0.0 < cell_size < math.inf):
             return np.degrees(np.arctan2(grad, cell_size)) <= limit_deg
         cut = cell_size * math.tan(math.radians(limit_deg))
-        ok = grad < cut * (1.0 - _CUT_MARGIN)
-        near = np.flatnonzero((grad >= cut * (1.0 - _CUT_MARGIN)) & (grad <= cut * (1.0 + _CUT_MARGIN)))
-        ok[near] = np.degrees(np.arctan2(grad[near], cell_size)) <= limit_deg
-    return ok
+        ok, near = _split_at_cut(np.ravel(grad), cut * (1.0 - _CUT_MARGIN), cut * (1.0 + _CUT_MARGIN))
+        ok[near] = np.degrees(np.arctan2(grad.ravel()[near], cell_size)) <= limit_deg
+    return ok.reshape(grad.shape)
+
+
+@numba.njit(cache=True)
+def _split_at_cut(grad: np.ndarray, below: float, above: float) -> tuple[np.ndarray, np.ndarray]:
+    """``grad < below`` per value, and the positions of the values within ``[below, above]`` (one pass, no temporaries)."""
+    ok = np.empty(grad.size, dtype=np.bool_)
+    near = np.empty(grad.size, dtype=np.int64)
+    m = 0
+    for i in range(grad.size):
+        g = grad[i]
+        ok[i] = g < below
+        if g >= below and g <= above:
+            near[m] = i
+            m += 1
+    return ok, near[:m]
