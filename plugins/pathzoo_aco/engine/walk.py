@@ -478,6 +478,24 @@ class WalkEngine:
                              rules.weight_mul[adj_edge], add)
         return adjacency
 
+    def colony_weights(self, rules: WalkRules, trail: Pheromone) -> np.ndarray | None:
+        """Every listed edge's weight for the coming colony (before turn factors), or None if the trail may change.
+
+        Only when no ant changes the trail while it walks (no ``pre_add``, no
+        local update): then each edge's weight is the same at every step of
+        the colony, and :func:`_fill_weights` computes it once, with the
+        kernel's own expression, into a buffer kept between colonies (one
+        float64 per listed edge).
+        """
+        if rules.pre_add.size or rules.local_update:
+            return None
+        adj_ptr, adj_node, adj_edge, _, w_mul, w_add = self.adjacency(rules)
+        if self.weights.size != adj_node.size:
+            self.weights = np.empty(adj_node.size)
+        _fill_weights(self.weights, adj_node, adj_edge, w_mul, w_add, trail.x, trail.scale, trail.lo, trail.hi,
+                      trail.on_nodes, rules.tau_exp)
+        return self.weights
+
     def walk(self, rules: WalkRules, trail: Pheromone, n_ants: int, seed: int,
              allowance: int = 2**62) -> Walks:
         """Send ``n_ants`` ants from the start; the trail is changed in place by local rules.
@@ -521,13 +539,7 @@ class WalkEngine:
         counters = np.zeros(4, dtype=np.int64)
         offsets = np.zeros(n_ants + 1, dtype=np.int64)
         adjacency = self.adjacency(rules)
-        weights = None
-        if rules.pre_add.size == 0 and not rules.local_update:  # the trail stays as it is until the colony ends
-            if self.weights.size != adjacency[1].size:
-                self.weights = np.empty(adjacency[1].size)
-            weights = self.weights
-            _fill_weights(weights, adjacency[1], adjacency[2], adjacency[4], adjacency[5], trail.x, trail.scale,
-                          trail.lo, trail.hi, trail.on_nodes, rules.tau_exp)
+        weights = self.colony_weights(rules, trail)
         _seed(seed)
         while True:
             status = _colony(
