@@ -55,6 +55,16 @@ def _trail_weight(t, mul, tau_exp, lo, lo_pow):
     return t**tau_exp * mul
 
 
+@numba.njit(cache=True, inline="always")
+def _add_candidate(e, w, cand_e, cand_w, nc, total_w):
+    """Append edge ``e`` of weight ``w`` to the candidates if ``w > 0``; return the new count and total."""
+    if w > 0.0:
+        cand_e[nc] = e
+        cand_w[nc] = w
+        return nc + 1, total_w + w
+    return nc, total_w
+
+
 @numba.njit(cache=True)
 def _colony(indices, offset_id, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, w_add, weights, horizontal, turn,
             x, scale, lo, hi, on_nodes,
@@ -164,14 +174,8 @@ def _colony(indices, offset_id, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, 
                         if f <= 0.0:
                             continue
                     n_open += 1
-                    w = weights[q]
-                    if use_turn:
-                        w *= f
-                    if w > 0.0:
-                        cand_e[nc] = e
-                        cand_w[nc] = w
-                        total_w += w
-                        nc += 1
+                    nc, total_w = _add_candidate(e, weights[q] * f if use_turn else weights[q], cand_e, cand_w, nc,
+                                                 total_w)
                     continue
                 k = j if on_nodes else e
                 if has_pre:  # added to every edge leaving the cell, tabu or not, before the choice
@@ -196,11 +200,7 @@ def _colony(indices, offset_id, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, 
                     w += w_add[q]
                 if use_turn:
                     w *= f
-                if w > 0.0:
-                    cand_e[nc] = e
-                    cand_w[nc] = w
-                    total_w += w
-                    nc += 1
+                nc, total_w = _add_candidate(e, w, cand_e, cand_w, nc, total_w)
             if nc == 0 and n_open > 0:  # maybe every trail is 0: weigh the allowed edges by the heuristic alone
                 for q in range(e0, e1):
                     if stamp[adj_node[q]] == wid:
