@@ -64,6 +64,9 @@ EXTRA = (  # planner, scenario id, parameters: non-default settings that take ot
     ("aco.as", "gant.fig7", {"n_ants": 100}),  # 400 walks one by one: the byte tabu stamps wrap after 255
     ("aco.gant", "gant.fig7", {"n_ants": 300}),  # more ants in a colony than byte stamps can tell apart
     ("aco.ggaco", "ggaco.case1", {"n_ants": 5}),  # a memory-mapped graph: pages released, walk geometry from cells
+    ("aco.as", "gant.fig7", {"alpha": 0.5}),  # precomputed colony weights with a power of the trail
+    ("aco.mmas", "random60", {"alpha": 1.5}),  # precomputed weights: power, floor and ceiling of the trail
+    ("aco.iaca", "iaca.offroad", {"decr": 0.0}),  # precomputed weights of a node trail (no local update)
 )
 LONG = (  # planner, scenario id, parameters, iterations: whole runs (schedules, evaporation, p decay)
     ("aco.dsaco", "dsaco.complex", {}, 500),

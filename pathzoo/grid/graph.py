@@ -20,6 +20,7 @@ from dataclasses import dataclass
 from functools import cached_property
 from typing import TYPE_CHECKING
 
+import numba
 import numpy as np
 import scipy.sparse as sp
 
@@ -200,6 +201,20 @@ def move_values(scenario: "Scenario", off: np.ndarray, cells: np.ndarray
     return horiz, 0.0
 
 
+@numba.njit(cache=True)
+def _place_edges(filled, cells, shift, move, move_length, move_slope, indices, length, slope, offset_id):
+    """Write one move's edges into the next free slot of each of ``cells`` (one value or one per cell for length, slope)."""
+    per_cell = move_length.size > 1
+    for i in range(cells.size):
+        c = cells[i]
+        e = filled[c]
+        filled[c] = e + 1
+        indices[e] = c + shift
+        length[e] = move_length[i if per_cell else 0]
+        slope[e] = move_slope[i if per_cell else 0]
+        offset_id[e] = move
+
+
 def build_graph(scenario: "Scenario") -> GridGraph:
     """Build the neighbourhood graph of a scenario (vectorised over cells, one move at a time).
 
@@ -236,13 +251,9 @@ def build_graph(scenario: "Scenario") -> GridGraph:
     filled = indptr[:-1].copy()  # next free edge slot of every node: edges are in move order within a node
     for j, off in enumerate(offsets):
         cells = np.flatnonzero(valid[j])
-        slots = filled[cells]
-        filled[cells] += 1
-        indices[slots] = cells + _shift(off, shape)
         move_length, move_slope = move_values(scenario, off, cells)
-        length[slots] = move_length
-        slope[slots] = move_slope
-        offset_id[slots] = j
+        _place_edges(filled, cells, _shift(off, shape), j, np.atleast_1d(move_length), np.atleast_1d(move_slope),
+                     indices, length, slope, offset_id)
     graph = GridGraph(
         shape=tuple(shape),
         indptr=indptr,

@@ -370,8 +370,46 @@ def slope_exceeds(grad_lo: np.ndarray, grad_hi: np.ndarray, cell_size: float, ve
     """
     lo = np.asarray(grad_lo, dtype=np.float64)
     hi = np.asarray(grad_hi, dtype=np.float64)
-    with np.errstate(invalid="ignore"):
-        climb = np.degrees(np.arctan2(hi, cell_size))
-        descent = np.degrees(np.arctan2(-lo, cell_size))
-        ok = (climb <= vehicle.max_climb_deg) & (descent <= vehicle.max_descent_deg)
+    ok = _angle_within(hi, cell_size, vehicle.max_climb_deg)
+    ok &= _angle_within(-lo, cell_size, vehicle.max_descent_deg)
     return ~ok
+
+
+_CUT_MARGIN = 1e-6
+"""Relative band around a limit's gradient inside which :func:`_angle_within` computes the angle itself."""
+
+
+def _angle_within(grad: np.ndarray, cell_size: float, limit_deg: float) -> np.ndarray:
+    """``degrees(arctan2(grad, cell_size)) <= limit_deg`` elementwise (False for NaN), with the angle rarely computed.
+
+    The angle grows with the gradient, so away from the gradient ``cut`` of
+    the limit a comparison with ``cut`` decides. Only gradients within a
+    relative :data:`_CUT_MARGIN` of it get the angle's own expression: that
+    band moves the angle by at least ``57.3 * sin(2 limit) / 2 * 1e-6``
+    degrees, some 1e-9 degrees for the limits allowed here, far more than the
+    rounding of ``arctan2`` and ``degrees`` (about 1e-14 degrees), so every
+    answer is the expression's. Limits within 0.001 degrees of 0 or 90, or an
+    unusual cell size, take the expression everywhere.
+    """
+    with np.errstate(invalid="ignore"):
+        if not (0.001 <= limit_deg <= 89.999 and 0.0 < cell_size < math.inf):
+            return np.degrees(np.arctan2(grad, cell_size)) <= limit_deg
+        cut = cell_size * math.tan(math.radians(limit_deg))
+        ok, near = _split_at_cut(np.ravel(grad), cut * (1.0 - _CUT_MARGIN), cut * (1.0 + _CUT_MARGIN))
+        ok[near] = np.degrees(np.arctan2(grad.ravel()[near], cell_size)) <= limit_deg
+    return ok.reshape(grad.shape)
+
+
+@numba.njit(cache=True)
+def _split_at_cut(grad: np.ndarray, below: float, above: float) -> tuple[np.ndarray, np.ndarray]:
+    """``grad < below`` per value, and the positions of the values within ``[below, above]`` (one pass, no temporaries)."""
+    ok = np.empty(grad.size, dtype=np.bool_)
+    near = np.empty(grad.size, dtype=np.int64)
+    m = 0
+    for i in range(grad.size):
+        g = grad[i]
+        ok[i] = g < below
+        if g >= below and g <= above:
+            near[m] = i
+            m += 1
+    return ok, near[:m]

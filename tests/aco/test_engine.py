@@ -340,3 +340,44 @@ def test_walk_totals_equal_differences_of_one_running_sum():
         cum = np.concatenate([[0.0], np.cumsum(per_edge[flat])])  # the plain numpy definition, bit for bit
         want = np.where(lengths > 0, cum[offsets[1:]] - cum[offsets[:-1]], np.inf)
         assert np.array_equal(walks.totals(per_edge), want) and np.array_equal(walks.sums(per_edge[flat]), want)
+
+
+@pytest.mark.parametrize("alpha, bounds, race, turns, zero_weights", [
+    (1.0, (0.0, math.inf), False, False, False),  # AS, G-Ant: tau_exp 1
+    (0.4, (0.05, 2.0), False, False, False),  # a power, a floor shared by many trails and a ceiling
+    (2.0, (0.05, math.inf), True, False, True),  # race; edges of weight 0 left out of the list
+    (1.5, (0.0, math.inf), False, True, False),  # turn factors on top of the weights
+])
+def test_precomputed_colony_weights_give_the_walks_of_the_per_step_weights(monkeypatch, alpha, bounds, race, turns,
+                                                                           zero_weights):
+    """A colony reading the weights filled before it walks takes exactly the walks of one computing them per step."""
+    scenario = hill() if turns else walled_grid()
+    problem = ColonyProblem(scenario)
+    g = problem.graph
+    rng = np.random.default_rng(2)
+    eta = 1.0 / (g.length + problem.goal_distance[g.indices])
+    factor = np.where(rng.random(g.n_edges) < 0.2, 0.0, 1.0) if zero_weights else None
+    k = len(g.offsets)
+    turn = np.where(np.random.default_rng(0).random((k + 1, k)) < 0.3, 0.0, 0.5) if turns else np.zeros((0, 0))
+    rules = replace(WalkRules.product(alpha, eta, 2.0, factor, max_steps=10**9, turn=turn), race=race)
+    trail = Pheromone(g.n_edges, rng.uniform(0.0, 1.5, g.n_edges), lo=bounds[0], hi=bounds[1])
+    trail.evaporate(0.3)  # a scale other than 1
+    fast = WalkEngine(problem)
+    got = fast.walk(rules, trail, 12, seed=9)
+    t = np.clip(trail.scale * trail.x, trail.lo, trail.hi)
+    mul = rules.weight_mul.astype(np.float64)
+    expected = (t * mul if alpha == 1.0 else np.where(t <= trail.lo, trail.lo**alpha, t**alpha) * mul)[mul != 0.0]
+    np.testing.assert_allclose(fast.colony_weights(rules, trail), expected, rtol=1e-14, atol=0.0)
+    monkeypatch.setattr(WalkEngine, "colony_weights", lambda self, rules, trail: None)
+    want = WalkEngine(problem).walk(rules, trail, 12, seed=9)
+    assert want.reached.any() and got.steps.sum() > 20
+    for name in ("flat", "offsets", "flags", "steps"):
+        np.testing.assert_array_equal(getattr(got, name), getattr(want, name))
+
+
+def test_colonies_that_change_the_trail_while_walking_compute_weights_per_step():
+    problem = ColonyProblem(walled_grid())
+    engine = WalkEngine(problem)
+    trail = Pheromone(problem.graph.n_edges, 1.0)
+    assert engine.colony_weights(_rules(problem, local_keep=0.9, local_add=0.01), trail) is None
+    assert engine.colony_weights(_rules(problem, pre_add=np.full(problem.graph.n_edges, 0.1)), trail) is None

@@ -198,3 +198,28 @@ def test_air_segment_within_the_margin_of_a_voxel_is_blocked():
     # a segment passing 5e-10 below the blocked voxel's bottom face, then 2e-9 below it
     assert segment_blocked_3d(blocked, np.array([0.5, 1.5, 1 - 5e-10]), np.array([2.5, 1.5, 1 - 5e-10]))
     assert not segment_blocked_3d(blocked, np.array([0.5, 1.5, 1 - 2e-9]), np.array([2.5, 1.5, 1 - 2e-9]))
+
+
+@pytest.mark.parametrize("limit", [0.0005, 0.001, 20.0, 25.0, 45.0, 89.999, 90.0])
+@pytest.mark.parametrize("cell_size", [0.5, 1.0, 30.0])
+def test_slope_limit_test_is_the_angle_expression_at_the_cut(limit, cell_size):
+    """slope_exceeds compares gradients with the limit's gradient: the verdicts are the angle expression's, ulp by ulp."""
+    from types import SimpleNamespace
+
+    from pathzoo.grid.terrain import slope_exceeds
+
+    rng = np.random.default_rng(3)
+    vehicle = SimpleNamespace(max_climb_deg=limit, max_descent_deg=limit / 2)
+    cuts = [cell_size * math.tan(math.radians(d)) for d in (limit, limit / 2)]
+    values = [rng.normal(0.0, 3.0 * cell_size, 20_000), np.array([np.nan, np.inf, -np.inf, 0.0, -0.0])]
+    for cut in cuts:
+        values.append(cut + np.arange(-3000, 3000) * np.spacing(cut))  # every double around the cut
+        values.append(cut * (1.0 + rng.uniform(-3e-6, 3e-6, 20_000)))  # across the exact-evaluation band
+    grad = np.concatenate(values)
+    lo, hi = -rng.permutation(grad), rng.permutation(grad)
+    with np.errstate(invalid="ignore"):
+        want = ~((np.degrees(np.arctan2(hi, cell_size)) <= vehicle.max_climb_deg)
+                 & (np.degrees(np.arctan2(-lo, cell_size)) <= vehicle.max_descent_deg))
+    got = slope_exceeds(lo, hi, cell_size, vehicle)
+    np.testing.assert_array_equal(got, want)
+    assert want.any() and not want.all()

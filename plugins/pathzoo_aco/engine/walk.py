@@ -45,8 +45,28 @@ _FRESH, _RUNNING, OUTRUN = -2, -1, 5
 """Walk states before an outcome: not started, walking; and the race outcome "another ant reached the goal first"."""
 
 
+@numba.njit(cache=True, inline="always")
+def _trail_weight(t, mul, tau_exp, lo, lo_pow):
+    """``t ** tau_exp * mul`` for a trail value ``t`` already within its bounds (``lo_pow`` is ``lo ** tau_exp``)."""
+    if tau_exp == 1.0:
+        return t * mul
+    if t <= lo:  # trails resting on the floor share one power
+        return lo_pow * mul
+    return t**tau_exp * mul
+
+
+@numba.njit(cache=True, inline="always")
+def _add_candidate(e, w, cand_e, cand_w, nc, total_w):
+    """Append edge ``e`` of weight ``w`` to the candidates if ``w > 0``; return the new count and total."""
+    if w > 0.0:
+        cand_e[nc] = e
+        cand_w[nc] = w
+        return nc + 1, total_w + w
+    return nc, total_w
+
+
 @numba.njit(cache=True)
-def _colony(indices, offset_id, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, w_add, horizontal, turn,
+def _colony(indices, offset_id, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, w_add, weights, horizontal, turn,
             x, scale, lo, hi, on_nodes,
             tau_exp, q0, local_keep, local_add, pre_add,
             start, goal, backtrack, max_steps, allowance, race, walk_base,
@@ -69,7 +89,9 @@ def _colony(indices, offset_id, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, 
     moves and weights in the same order (:meth:`WalkEngine.adjacency`).
     Position ``q`` of that list is graph edge ``adj_edge[q]`` (edges of
     weight 0 left out), or edge ``q`` when ``adj_edge`` is None (numba then
-    compiles the kernel without the lookup).
+    compiles the kernel without the lookup). ``weights``, when not None,
+    holds each position's weight before the turn factor, filled by
+    :func:`_fill_weights` for a trail that no ant changes while it walks.
     """
     n_ants = flags.size
     use_turn = turn.shape[0] > 0
@@ -143,6 +165,18 @@ def _colony(indices, offset_id, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, 
                 else:
                     e = adj_edge[q]
                 j = adj_node[q]
+                if weights is not None:  # the colony's weights, computed before it started
+                    if stamp[j] == wid:
+                        continue
+                    f = 1.0
+                    if use_turn:
+                        f = turn[pv, adj_offset[q]]
+                        if f <= 0.0:
+                            continue
+                    n_open += 1
+                    nc, total_w = _add_candidate(e, weights[q] * f if use_turn else weights[q], cand_e, cand_w, nc,
+                                                 total_w)
+                    continue
                 k = j if on_nodes else e
                 if has_pre:  # added to every edge leaving the cell, tabu or not, before the choice
                     t = min(max(min(max(scale * x[k], lo), hi) + pre_add[q], lo), hi)
@@ -161,21 +195,12 @@ def _colony(indices, offset_id, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, 
                     if bounded:
                         t = min(max(t, lo), hi)
                 n_open += 1
-                if tau_exp == 1.0:
-                    w = t * w_mul[q]
-                elif t <= lo:  # trails resting on the floor share one power
-                    w = lo_pow * w_mul[q]
-                else:
-                    w = t**tau_exp * w_mul[q]
+                w = _trail_weight(t, w_mul[q], tau_exp, lo, lo_pow)
                 if has_add:
                     w += w_add[q]
                 if use_turn:
                     w *= f
-                if w > 0.0:
-                    cand_e[nc] = e
-                    cand_w[nc] = w
-                    total_w += w
-                    nc += 1
+                nc, total_w = _add_candidate(e, w, cand_e, cand_w, nc, total_w)
             if nc == 0 and n_open > 0:  # maybe every trail is 0: weigh the allowed edges by the heuristic alone
                 for q in range(e0, e1):
                     if stamp[adj_node[q]] == wid:
@@ -270,6 +295,33 @@ def _colony(indices, offset_id, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, 
         a += 1
     counters[0] = a
     return _DONE
+
+
+@numba.njit(cache=True)
+def _fill_weights(out, adj_node, adj_edge, w_mul, w_add, x, scale, lo, hi, on_nodes, tau_exp):
+    """Each listed edge's weight ``τ ** tau_exp * w_mul (+ w_add)`` into ``out``, as :func:`_colony` computes it.
+
+    The same operations in the same order, so the doubles are identical; the
+    walks of a colony whose trail does not change while it walks (no
+    ``pre_add``, no local update) then read one array per edge instead of the
+    trail, both factors and a power.
+    """
+    has_add = w_add.size > 0
+    bounded = lo > 0.0 or hi < np.inf
+    lo_pow = lo**tau_exp
+    for q in range(out.size):
+        if adj_edge is None:
+            e = q
+        else:
+            e = adj_edge[q]
+        k = adj_node[q] if on_nodes else e
+        t = scale * x[k]
+        if bounded:
+            t = min(max(t, lo), hi)
+        w = _trail_weight(t, w_mul[q], tau_exp, lo, lo_pow)
+        if has_add:
+            w += w_add[q]
+        out[q] = w
 
 
 @dataclass(frozen=True, eq=False)
@@ -385,6 +437,7 @@ class WalkEngine:
         self.flat = np.zeros(1024, dtype=np.int64)
         self.offset_id = problem.offset_id_small  # moves: compact
         self.indices = problem.indices32  # half the memory traffic of the int64 CSR arrays
+        self.weights = np.zeros(0)  # per-colony weights of the listed edges (see :func:`_fill_weights`)
         self.total_steps = 0
 
     def adjacency(self, rules: WalkRules) -> tuple[np.ndarray | None, ...]:
@@ -424,6 +477,24 @@ class WalkEngine:
                 adjacency = (adj_ptr, self.indices[adj_edge], adj_edge, self.offset_id[adj_edge],
                              rules.weight_mul[adj_edge], add)
         return adjacency
+
+    def colony_weights(self, rules: WalkRules, trail: Pheromone) -> np.ndarray | None:
+        """Every listed edge's weight for the coming colony (before turn factors), or None if the trail may change.
+
+        Only when no ant changes the trail while it walks (no ``pre_add``, no
+        local update): then each edge's weight is the same at every step of
+        the colony, and :func:`_fill_weights` computes it once, with the
+        kernel's own expression, into a buffer kept between colonies (one
+        float64 per listed edge).
+        """
+        if rules.pre_add.size or rules.local_update:
+            return None
+        adj_ptr, adj_node, adj_edge, _, w_mul, w_add = self.adjacency(rules)
+        if self.weights.size != adj_node.size:
+            self.weights = np.empty(adj_node.size)
+        _fill_weights(self.weights, adj_node, adj_edge, w_mul, w_add, trail.x, trail.scale, trail.lo, trail.hi,
+                      trail.on_nodes, rules.tau_exp)
+        return self.weights
 
     def walk(self, rules: WalkRules, trail: Pheromone, n_ants: int, seed: int,
              allowance: int = 2**62) -> Walks:
@@ -468,10 +539,11 @@ class WalkEngine:
         counters = np.zeros(4, dtype=np.int64)
         offsets = np.zeros(n_ants + 1, dtype=np.int64)
         adjacency = self.adjacency(rules)
+        weights = self.colony_weights(rules, trail)
         _seed(seed)
         while True:
             status = _colony(
-                self.indices, self.offset_id, *adjacency, p.horizontal_offsets, rules.turn,
+                self.indices, self.offset_id, *adjacency, weights, p.horizontal_offsets, rules.turn,
                 trail.x, trail.scale, trail.lo, trail.hi, trail.on_nodes,
                 rules.tau_exp, rules.q0, rules.local_keep, rules.local_add,
                 rules.pre_add, p.start, p.goal, rules.backtrack, rules.max_steps, allowance, rules.race,
