@@ -265,7 +265,7 @@ def compiled_priority() -> CompiledPriority:
 def _membership(v, a, b, c):
     if v < a or v > c:
         return 0.0
-    if v < b:
+    if v < b:  # then a < b: never a division by zero
         return (v - a) / (b - a)
     if v > b:
         return (c - v) / (c - b)
@@ -304,39 +304,44 @@ def clipped_centroid(s0, s1, s2, cons, area_w, moment_w):
     return moment / max(area, 2.220446049250313e-16)
 
 
-@numba.njit(cache=True, fastmath=True)
-def rule_ceilings(target, angle, vertices, rules, out):
-    """How strongly each priority term can fire through each obstacle term, from a move's target and angle alone.
+@numba.njit(cache=True, fastmath=True, error_model="numpy")
+def rule_ceilings(target, angle, vertices, rules, out, e):
+    """How strongly each priority term can fire through each obstacle term, from move ``e``'s target and angle alone.
 
-    Fills ``out[term, k]`` (the first 3 x 3 entries of ``out``) with the largest
-    ``min(μ_target, μ_angle)`` over the rules with obstacle term ``k`` and
-    priority term ``term``. Since ``min`` and ``max`` only select values, the
-    firing strength of ``term`` for an obstacle input with memberships ``μ_k``
-    is exactly ``max(0, max_k min(out[term, k], μ_k))``
+    Fills ``out[e, term, k]`` (the first 3 x 3 entries of record ``e``) with
+    the largest ``min(μ_target, μ_angle)`` over the rules with obstacle term
+    ``k`` and priority term ``term``. Since ``min`` and ``max`` only select
+    values, the firing strength of ``term`` for an obstacle input with
+    memberships ``μ_k`` is exactly ``max(0, max_k min(out[e, term, k], μ_k))``
     (:func:`fired_strengths`): the number :func:`priority_one` finds by going
     through all 27 rules. ``vertices`` and ``rules`` are those of
-    :class:`CompiledPriority`.
+    :class:`CompiledPriority`. The walks pass their whole per-move table and
+    an index rather than a view of one record, which would cost a reference count.
     """
-    out[:3, :3] = 0.0
+    for term in range(3):
+        for k in range(3):
+            out[e, term, k] = 0.0
     for r in range(rules.shape[0]):
         i, j, k, term = rules[r, 0], rules[r, 1], rules[r, 2], rules[r, 3]
         s = min(_membership(target, vertices[0, i, 0], vertices[0, i, 1], vertices[0, i, 2]),
                 _membership(angle, vertices[1, j, 0], vertices[1, j, 1], vertices[1, j, 2]))
-        if s > out[term, k]:
-            out[term, k] = s
+        if s > out[e, term, k]:
+            out[e, term, k] = s
 
 
-@numba.njit(cache=True, fastmath=True)
-def fired_strengths(ceilings, obstacle, vertices):
-    """Firing strengths of the low, medium and high priority terms of a move whose :func:`rule_ceilings` are given.
+@numba.njit(cache=True, fastmath=True, error_model="numpy")
+def fired_strengths(ceilings, e, obstacle, vertices):
+    """Firing strengths of the low, medium and high priority terms of move ``e``, whose :func:`rule_ceilings` are given.
 
-    ``clipped_centroid(*fired_strengths(ceilings[e], obstacle, vertices), ...)``
+    ``ceilings[e]`` holds the move's ceilings (as :func:`rule_ceilings` leaves
+    them). ``clipped_centroid(*fired_strengths(ceilings, e, obstacle, vertices), ...)``
     is exactly :func:`priority_one` of that move: only the obstacle input is
     new, so the 27 rules reduce to nine ``min`` and three ``max``.
     """
     m0 = _membership(obstacle, vertices[2, 0, 0], vertices[2, 0, 1], vertices[2, 0, 2])
     m1 = _membership(obstacle, vertices[2, 1, 0], vertices[2, 1, 1], vertices[2, 1, 2])
     m2 = _membership(obstacle, vertices[2, 2, 0], vertices[2, 2, 1], vertices[2, 2, 2])
-    return (max(0.0, min(ceilings[0, 0], m0), min(ceilings[0, 1], m1), min(ceilings[0, 2], m2)),
-            max(0.0, min(ceilings[1, 0], m0), min(ceilings[1, 1], m1), min(ceilings[1, 2], m2)),
-            max(0.0, min(ceilings[2, 0], m0), min(ceilings[2, 1], m1), min(ceilings[2, 2], m2)))
+    c = ceilings
+    return (max(0.0, min(c[e, 0, 0], m0), min(c[e, 0, 1], m1), min(c[e, 0, 2], m2)),
+            max(0.0, min(c[e, 1, 0], m0), min(c[e, 1, 1], m1), min(c[e, 1, 2], m2)),
+            max(0.0, min(c[e, 2, 0], m0), min(c[e, 2, 1], m1), min(c[e, 2, 2], m2)))

@@ -144,7 +144,8 @@ def _timed_walk(indptr, indices, offset_id, horizontal, turn, length,
                             ahead[n_near, 0, 0] = -1.0  # no arrival position of this obstacle computed yet
                             ahead[n_near, 1, 0] = -1.0
                             n_near += 1
-                stack_gap[depth, :] = gap  # restored if the ant backs up to here
+                for k in range(n_obs):  # restored if the ant backs up to here (loops: a slice costs a reference count)
+                    stack_gap[depth, k] = gap[k]
                 for e in range(indptr[cur], indptr[cur + 1]):
                     j = indices[e]
                     if stamp[j] == wid:
@@ -194,18 +195,19 @@ def _timed_walk(indptr, indices, offset_id, horizontal, turn, length,
                         timed_out = True
                         continue
                     if near < clear_in[j]:  # the fuzzy inference of priority_one, in two exact steps
-                        memo = fuzzy_memo[e]  # one edge's 4 x 4 record: two cache lines
-                        if memo[0, 3] == 0.0:  # first time: the ceilings; no strengths seen yet
-                            rule_ceilings(target_in[j], angle_in[e], vertices, rules, memo)
-                            memo[0, 3] = 1.0
-                            memo[3, :3] = np.nan
-                        s0, s1, s2 = fired_strengths(memo, near, vertices)
-                        if s0 != memo[3, 0] or s1 != memo[3, 1] or s2 != memo[3, 2]:
-                            memo[3, 0] = s0
-                            memo[3, 1] = s1
-                            memo[3, 2] = s2
-                            memo[3, 3] = clipped_centroid(s0, s1, s2, cons, area_w, moment_w)**beta
-                        h = memo[3, 3]
+                        if fuzzy_memo[e, 0, 3] == 0.0:  # first time: the ceilings; no strengths seen yet
+                            rule_ceilings(target_in[j], angle_in[e], vertices, rules, fuzzy_memo, e)
+                            fuzzy_memo[e, 0, 3] = 1.0
+                            fuzzy_memo[e, 3, 0] = np.nan
+                            fuzzy_memo[e, 3, 1] = np.nan
+                            fuzzy_memo[e, 3, 2] = np.nan
+                        s0, s1, s2 = fired_strengths(fuzzy_memo, e, near, vertices)
+                        if s0 != fuzzy_memo[e, 3, 0] or s1 != fuzzy_memo[e, 3, 1] or s2 != fuzzy_memo[e, 3, 2]:
+                            fuzzy_memo[e, 3, 0] = s0
+                            fuzzy_memo[e, 3, 1] = s1
+                            fuzzy_memo[e, 3, 2] = s2
+                            fuzzy_memo[e, 3, 3] = clipped_centroid(s0, s1, s2, cons, area_w, moment_w)**beta
+                        h = fuzzy_memo[e, 3, 3]
                     else:
                         h = w_mul[e]
                     t = min(max(scale * x[e], lo), hi)
@@ -232,7 +234,8 @@ def _timed_walk(indptr, indices, offset_id, horizontal, turn, length,
                 depth -= 1
                 cur = indices[stack_e[depth - 1]] if depth > 0 else start
                 t_cur = stack_t[depth - 1] if depth > 0 else t_head
-                gap[:] = stack_gap[depth]
+                for k in range(n_obs):
+                    gap[k] = stack_gap[depth, k]
                 returned = True
                 if use_turn:
                     prev = stack_prev[depth - 1] if depth > 0 else no_prev

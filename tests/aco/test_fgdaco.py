@@ -111,12 +111,12 @@ def test_two_step_inference_of_the_walks_is_bit_identical_to_the_compiled_twin()
     x = np.vstack([rng.random((3000, 3)), on_universe, np.clip(on_universe + rng.normal(0, 1e-13, (3000, 3)), 0, 1),
                    np.array(CRISP)])
     cp = compiled_priority()
-    ceilings = np.empty((3, 3))
+    ceilings = np.empty((1, 3, 3))
     for t, a, o in x:
         want = priority_one(t, a, o, cp.vertices, cp.rules, cp.consequents, cp.area_w, cp.moment_w,
                             np.zeros((3, 3)), np.zeros(3))
-        rule_ceilings(t, a, cp.vertices, cp.rules, ceilings)
-        got = clipped_centroid(*fired_strengths(ceilings, o, cp.vertices), cp.consequents, cp.area_w, cp.moment_w)
+        rule_ceilings(t, a, cp.vertices, cp.rules, ceilings, 0)
+        got = clipped_centroid(*fired_strengths(ceilings, 0, o, cp.vertices), cp.consequents, cp.area_w, cp.moment_w)
         assert got == want, (t, a, o)
 
 
@@ -139,6 +139,10 @@ def test_compiled_obstacle_geometry_matches_moving_obstacle():
         assert obstacle_position(*arrays, k, t0) == pytest.approx(tuple(obstacles[k].position(t0)), abs=1e-9)
         expected = obstacles[k].min_distance(p0, p1, t0, t1)
         assert obstacle_min_distance(*arrays, k, *p0, *p1, t0, t1) == pytest.approx(expected, abs=1e-9)
+    alone = pack_obstacles(obstacles[3:])  # only one route point in the whole pack: padded to a two-point piece
+    alone_arrays = (alone.points, alone.cum, alone.count, alone.speed, alone.phase)
+    assert obstacle_position(*alone_arrays, 0, 7.0) == (5.0, 5.0)
+    assert obstacle_min_distance(*alone_arrays, 0, 5.0, 8.0, 5.0, 9.0, 0.0, 1.0) == 3.0
     # the clearance to a whole route bounds the distance to the disc at any time, and is reached on the route
     points = rng.uniform(-5, 25, (300, 2))
     bound = route_clearance(packed, points)
