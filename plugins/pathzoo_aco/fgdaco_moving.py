@@ -24,10 +24,14 @@ from typing import Sequence
 
 import numba
 import numpy as np
+from llvmlite import ir
+from numba import types
+from numba.extending import intrinsic
 
 from pathzoo.core.moving import MovingObstacle
 
-__all__ = ["ObstacleArrays", "pack_obstacles", "route_clearance", "obstacle_position", "obstacle_min_distance"]
+__all__ = ["ObstacleArrays", "pack_obstacles", "route_clearance", "obstacle_position", "obstacle_min_distance",
+           "floored_mod"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -96,6 +100,45 @@ def route_clearance(obstacles: ObstacleArrays, points: np.ndarray) -> np.ndarray
     return out
 
 
+@intrinsic
+def _fma(typingctx, a, b, c):
+    """``a * b + c`` rounded once (LLVM's ``llvm.fma.f64``: one instruction where the CPU has FMA)."""
+    sig = types.float64(types.float64, types.float64, types.float64)
+
+    def codegen(context, builder, signature, args):
+        double = ir.DoubleType()
+        fma = builder.module.declare_intrinsic("llvm.fma", [double], ir.FunctionType(double, [double] * 3))
+        return builder.call(fma, args)
+
+    return sig, codegen
+
+
+@numba.njit(cache=True)
+def floored_mod(a, b):
+    """``a % b`` (Python's floored modulo), bit for bit, mostly without the library's ``fmod`` call.
+
+    For ``a >= 0 < b`` the result is ``a - n b`` with ``n`` the integer part
+    of ``a / b``, and that number is exactly representable, so one fused
+    multiply-add gives it exactly once ``n`` is right. Since rounding is
+    monotonic and integers below 2**53 are representable, ``q = floor(a / b)``
+    is ``n`` or ``n + 1`` (when the rounded quotient reaches the next
+    integer); ``n + 1`` leaves a negative remainder and is corrected. Other
+    signs, non-finite numbers and quotients of 2**52 or more take ``%`` itself.
+    """
+    q = 4503599627370496.0  # 2**52
+    if a >= 0.0 and 0.0 < b < math.inf:
+        q = np.floor(a / b)  # a float (math.floor gives an int64, which overflows)
+    r = 0.0
+    if q < 4503599627370496.0:
+        r = _fma(-q, b, a)
+        if r < 0.0:
+            r = _fma(1.0 - q, b, a)
+        r += 0.0  # a zero remainder is +0.0, as Python's (a = -0.0 gives -0.0 otherwise)
+    else:
+        r = a % b
+    return r
+
+
 @numba.njit(cache=True)
 def _locate(cum, count, speed, phase, k, t):
     """Route distance ``s`` at time ``t`` and the index ``i`` of the route piece holding it (``-1``: parked)."""
@@ -106,7 +149,7 @@ def _locate(cum, count, speed, phase, k, t):
     s = 0.0
     i = -1
     if n >= 2 and total != 0.0 and v != 0.0:
-        s = ((t + shift) * v) % total
+        s = floored_mod((t + shift) * v, total)
         i = 0
         while i < n - 2 and cum[k, i + 1] <= s:
             i += 1

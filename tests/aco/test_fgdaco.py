@@ -32,7 +32,13 @@ from pathzoo_aco.fgdaco_fuzzy import (
     rule_ceilings,
     triangle,
 )
-from pathzoo_aco.fgdaco_moving import obstacle_min_distance, obstacle_position, pack_obstacles, route_clearance
+from pathzoo_aco.fgdaco_moving import (
+    floored_mod,
+    obstacle_min_distance,
+    obstacle_position,
+    pack_obstacles,
+    route_clearance,
+)
 
 from aco_maps import walled_grid
 
@@ -152,6 +158,21 @@ def test_compiled_obstacle_geometry_matches_moving_obstacle():
         gaps = np.linalg.norm(points[:, None, :] - centres[None, :, :], axis=2).min(axis=1) - ob.radius
         assert (bound[:, k] <= gaps).all()
         assert bound[:, k] == pytest.approx(gaps, abs=2e-3)  # sampled every ~1/20000 of the route
+
+
+def test_floored_mod_is_python_modulo_bit_for_bit():
+    # the obstacles' route positions use it instead of %: random operands, exact multiples and their neighbours
+    rng = np.random.default_rng(11)
+    b = rng.uniform(1e-3, 100.0, 20000)
+    q = rng.integers(0, 10**6, 20000).astype(float)
+    a = np.concatenate([rng.uniform(0.0, 5000.0, 20000), q * b, np.nextafter(q * b, np.inf), np.nextafter(q * b, -np.inf),
+                        -rng.uniform(0.0, 50.0, 20000), [0.0, -0.0, 1e300, 5e-324, np.inf, np.nan, 7.0]])
+    b = np.concatenate([b, b, b, b, b, [3.0, 3.0, 7.0, 3.0, 2.0, 2.0, np.inf]])
+    for x, y in zip(a, b):
+        with np.errstate(invalid="ignore"):  # inf % 2.0 is nan
+            want = x % y
+        got = floored_mod(x, y)
+        assert got == want and math.copysign(1.0, got) == math.copysign(1.0, want) or (got != got and want != want), (x, y)
 
 
 # ------------------------------------------------------------------ gain and update
