@@ -194,9 +194,10 @@ def defuzzify(strength: np.ndarray, cons: np.ndarray, universe: np.ndarray, chun
     out = np.empty(strength.shape[1])
     weights = _centroid_weights(universe)
     aggregate = np.empty((min(chunk, out.size), universe.size))
+    support = np.array([(p.argmax(), p.size - p[::-1].argmax()) if p.any() else (0, 0) for p in cons > 0.0])
     for lo in range(0, out.size, chunk):
         rows = aggregate[: min(chunk, out.size - lo)]
-        _clip_and_aggregate(strength[:, lo : lo + chunk], cons, rows)
+        _clip_and_aggregate(strength[:, lo : lo + chunk], cons, support, rows)
         out[lo : lo + chunk] = centroid(universe, rows, weights)
     return out
 
@@ -216,16 +217,20 @@ def _fire_rules(mt, ma, mo, rules):
 
 
 @numba.njit(cache=True)
-def _clip_and_aggregate(strength, cons, out):
-    """``out[i, p] = max_t min(strength[t, i], cons[t, p])``: the clipped consequents' maximum (compiled; exact)."""
+def _clip_and_aggregate(strength, cons, support, out):
+    """``out[i, p] = max_t min(strength[t, i], cons[t, p])``: the clipped consequents' maximum (compiled; exact).
+
+    Consequents and strengths are never negative, so a term adds nothing
+    outside its support ``support[t, 0] <= p < support[t, 1]`` (where
+    ``cons[t] > 0``): rows start at zero and each term is applied on its
+    support only, which gives the same numbers with fewer operations.
+    """
     for i in range(out.shape[0]):
         row = out[i]
-        s = strength[0, i]
-        for p in range(row.size):
-            row[p] = min(s, cons[0, p])
-        for t in range(1, cons.shape[0]):
+        row[:] = 0.0
+        for t in range(cons.shape[0]):
             s = strength[t, i]
-            for p in range(row.size):  # contiguous: vectorised
+            for p in range(support[t, 0], support[t, 1]):  # contiguous: vectorised
                 row[p] = max(row[p], min(s, cons[t, p]))
 
 

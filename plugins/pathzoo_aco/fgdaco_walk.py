@@ -344,10 +344,8 @@ class TimedWalkEngine(WalkEngine):
         s = problem.scenario
         g = problem.graph
         self.buffers = _TimedBuffers.allocate(problem, len(s.moving_obstacles))
-        self.obstacles = pack_obstacles(s.moving_obstacles)
-        self.route_gap = route_clearance(self.obstacles, s.point_of(np.arange(g.n_nodes)))
-        self.graph_arrays = (g.indptr, g.indices.astype(np.int32), g.offset_id.astype(np.int32),
-                             problem.horizontal_offsets)
+        self.obstacles, self.route_gap, self.graph_arrays = problem.memo(
+            ("fgdaco_walk", "scenario_tables"), lambda: self._scenario_tables(problem))
         self.length = np.ascontiguousarray(g.length)
         self.target_in = np.ascontiguousarray(target_in, dtype=np.float64)
         self.angle_in = np.ascontiguousarray(angle_in, dtype=np.float64)
@@ -361,6 +359,15 @@ class TimedWalkEngine(WalkEngine):
                              for ob in s.moving_obstacles)
         tail_time = float(np.linalg.norm(s.goal - centres[1])) / speed
         self.tail = np.array([*centres[1], *s.goal, tail_time])
+
+    @staticmethod
+    def _scenario_tables(problem: ColonyProblem) -> tuple:
+        """The packed obstacles, each node's :func:`route_clearance` and the int32 graph arrays (kept per scenario)."""
+        s = problem.scenario
+        g = problem.graph
+        obstacles = pack_obstacles(s.moving_obstacles)
+        return (obstacles, route_clearance(obstacles, s.point_of(np.arange(g.n_nodes))),
+                (g.indptr, g.indices.astype(np.int32), g.offset_id.astype(np.int32), problem.horizontal_offsets))
 
     def walk(self, rules: WalkRules, trail: Pheromone, n_ants: int, seed: int,
              allowance: int = 2**62) -> Walks:
