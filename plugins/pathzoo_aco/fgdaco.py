@@ -145,7 +145,9 @@ class FGDACO(AntColonyPlanner):
         target = np.minimum(to_goal / max(float(to_goal[problem.start]), 1e-12), 1.0)
         move = xy[g.indices] - xy[problem.sources]
         bearing = xy[problem.goal] - xy[problem.sources]
-        norm = np.linalg.norm(move, axis=1) * np.linalg.norm(bearing, axis=1)
+        # |move| |bearing|, as np.linalg.norm(., axis=1) computes them (square, add, sqrt) without its slow reduction
+        norm = np.sqrt(move[:, 0] * move[:, 0] + move[:, 1] * move[:, 1]) * np.sqrt(
+            bearing[:, 0] * bearing[:, 0] + bearing[:, 1] * bearing[:, 1])
         with np.errstate(invalid="ignore", divide="ignore"):
             cos = np.where(norm > 0, np.einsum("ij,ij->i", move, bearing) / norm, 1.0)
         angle = np.arccos(np.clip(cos, -1.0, 1.0)) / np.pi
@@ -155,8 +157,7 @@ class FGDACO(AntColonyPlanner):
     def heuristic(self, problem: ColonyProblem) -> np.ndarray:
         """``η_ij``: the fuzzy priority of node ``j`` reached by the move ``i -> j`` (eqs. 10-13, static obstacles)."""
         inp = self.fuzzy_inputs(problem)
-        j = problem.graph.indices
-        return fuzzy_priority(inp.target[j], inp.angle, inp.obstacle[j])
+        return fuzzy_priority(inp.target, inp.angle, inp.obstacle, nodes=problem.graph.indices)
 
     def walk_rules(self, problem: ColonyProblem) -> WalkRules:
         """Eq. 10: ``τ^α η^β`` with roulette choice."""

@@ -163,25 +163,40 @@ def consequents() -> np.ndarray:
     return out
 
 
-def fuzzy_priority(target: np.ndarray, angle: np.ndarray, obstacle: np.ndarray, *, chunk: int = 1024) -> np.ndarray:
+def fuzzy_priority(target: np.ndarray, angle: np.ndarray, obstacle: np.ndarray, *, nodes: np.ndarray | None = None,
+                   chunk: int = 1024) -> np.ndarray:
     """Crisp priority of every node: Mamdani inference over :data:`RULES` with centroid defuzzification.
 
     Parameters
     ----------
     target, angle, obstacle : array_like
         Normalised inputs in ``[0, 1]`` (broadcast together).
+    nodes : ndarray of int, optional
+        If given, ``target`` and ``obstacle`` are per-node inputs and the
+        priority of value ``i`` of ``angle`` reads them at node ``nodes[i]``:
+        the memberships are then computed once per node (they are elementwise,
+        so the numbers are those of the gathered inputs).
     chunk : int
         Nodes per vectorised batch (bounds the memory of the aggregates).
 
     Returns
     -------
     ndarray
-        Priorities in ``[0, 1]``, of the broadcast shape.
+        Priorities in ``[0, 1]``, of the broadcast shape (of ``angle``'s shape with ``nodes``).
     """
-    t, a, o = np.broadcast_arrays(*(np.asarray(v, dtype=np.float64) for v in (target, angle, obstacle)))
-    mt, ma, mo = (memberships(INPUT_SUPPORTS[name], v.ravel()) for name, v in zip(INPUT_SUPPORTS, (t, a, o)))
+    as_float = lambda v: np.asarray(v, dtype=np.float64)  # noqa: E731
+    if nodes is None:
+        t, a, o = np.broadcast_arrays(*(as_float(v) for v in (target, angle, obstacle)))
+        mt, ma, mo = (memberships(INPUT_SUPPORTS[name], v.ravel()) for name, v in zip(INPUT_SUPPORTS, (t, a, o)))
+        shape = t.shape
+    else:
+        a = as_float(angle)
+        shape = a.shape
+        mt = memberships(INPUT_SUPPORTS["target"], as_float(target).ravel())[:, nodes.ravel()]
+        ma = memberships(INPUT_SUPPORTS["angle"], a.ravel())
+        mo = memberships(INPUT_SUPPORTS["obstacle"], as_float(obstacle).ravel())[:, nodes.ravel()]
     strength = _fire_rules(mt, ma, mo, compiled_priority().rules)
-    return defuzzify(strength, consequents(), UNIVERSE, chunk).reshape(t.shape)
+    return defuzzify(strength, consequents(), UNIVERSE, chunk).reshape(shape)
 
 
 def defuzzify(strength: np.ndarray, cons: np.ndarray, universe: np.ndarray, chunk: int) -> np.ndarray:
