@@ -82,6 +82,8 @@ LONG = (  # planner, scenario id, parameters, iterations: whole runs (schedules,
     ("aco.fgdaco", "fgdaco.trap", {}, 30),
     ("aco.fgdaco", "fgdaco.scenario2", {"sensing_m": 25.0, "alpha": 1.0}, 30),
     ("aco.fgdaco", "fgdaco.scenario3", {"n_ants": 3, "beta": 2.0}, 30),
+    ("aco.fgdaco", "fgdaco.scenario3", {"rho": 0.3}, 30),  # an evaporation scale that is not a power of two
+    ("aco.fgdaco", "fgdaco.scenario1", {"rho": 0.7, "tau_floor": 0.05}, 30),
 )
 
 

@@ -9,6 +9,11 @@ from a vehicle driving one straight segment at constant speed; the minimum
 distance on each such piece has a closed form. The tests check both
 functions against :meth:`MovingObstacle.position` and
 :meth:`MovingObstacle.min_distance`.
+
+The compiled functions have one exit, read each array on every path and
+raise nothing: numba then prunes the reference counts of their array
+arguments. Otherwise every call costs two atomic operations per array, which
+took about 6 % of ``fgdaco.scenario3``'s CPU time (``docs/planners/aco.fgdaco.md``).
 """
 
 from __future__ import annotations
@@ -19,10 +24,14 @@ from typing import Sequence
 
 import numba
 import numpy as np
+from llvmlite import ir
+from numba import types
+from numba.extending import intrinsic
 
 from pathzoo.core.moving import MovingObstacle
 
-__all__ = ["ObstacleArrays", "pack_obstacles", "route_clearance", "obstacle_position", "obstacle_min_distance"]
+__all__ = ["ObstacleArrays", "pack_obstacles", "route_clearance", "obstacle_position", "obstacle_min_distance",
+           "floored_mod"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -58,8 +67,8 @@ def pack_obstacles(obstacles: Sequence[MovingObstacle]) -> ObstacleArrays:
     """Pack a scenario's moving obstacles (possibly none) into :class:`ObstacleArrays`."""
     n = len(obstacles)
     width = max((len(ob.cycle[0]) for ob in obstacles), default=1)
-    points = np.zeros((n, width, 2))
-    cum = np.zeros((n, width))
+    points = np.zeros((n, max(width, 2), 2))  # two points at least: the compiled functions read a whole piece
+    cum = np.zeros((n, max(width, 2)))
     count = np.zeros(n, dtype=np.int64)
     for k, ob in enumerate(obstacles):
         route, dist = ob.cycle
@@ -91,37 +100,90 @@ def route_clearance(obstacles: ObstacleArrays, points: np.ndarray) -> np.ndarray
     return out
 
 
-@numba.njit(cache=True, inline="always")
+@intrinsic
+def _fma(typingctx, a, b, c):
+    """``a * b + c`` rounded once (LLVM's ``llvm.fma.f64``: one instruction where the CPU has FMA)."""
+    sig = types.float64(types.float64, types.float64, types.float64)
+
+    def codegen(context, builder, signature, args):
+        double = ir.DoubleType()
+        fma = builder.module.declare_intrinsic("llvm.fma", [double], ir.FunctionType(double, [double] * 3))
+        return builder.call(fma, args)
+
+    return sig, codegen
+
+
+@numba.njit(cache=True)
+def floored_mod(a, b):
+    """``a % b`` (Python's floored modulo), bit for bit, mostly without the library's ``fmod`` call.
+
+    For ``a >= 0 < b`` the result is ``a - n b`` with ``n`` the integer part
+    of ``a / b``, and that number is exactly representable, so one fused
+    multiply-add gives it exactly once ``n`` is right. Since rounding is
+    monotonic and integers below 2**53 are representable, ``q = floor(a / b)``
+    is ``n`` or ``n + 1`` (when the rounded quotient reaches the next
+    integer); ``n + 1`` leaves a negative remainder and is corrected. Other
+    signs, non-finite numbers and quotients of 2**52 or more take ``%`` itself.
+    """
+    q = 4503599627370496.0  # 2**52
+    if a >= 0.0 and 0.0 < b < math.inf:
+        q = np.floor(a / b)  # a float (math.floor gives an int64, which overflows)
+    r = 0.0
+    if q < 4503599627370496.0:
+        r = _fma(-q, b, a)
+        if r < 0.0:
+            r = _fma(1.0 - q, b, a)
+        r += 0.0  # a zero remainder is +0.0, as Python's (a = -0.0 gives -0.0 otherwise)
+    else:
+        r = a % b
+    return r
+
+
+@numba.njit(cache=True)
 def _locate(cum, count, speed, phase, k, t):
     """Route distance ``s`` at time ``t`` and the index ``i`` of the route piece holding it (``-1``: parked)."""
-    total = cum[k, count[k] - 1]
-    if count[k] < 2 or total == 0.0 or speed[k] == 0.0:
-        return 0.0, -1
-    s = ((t + phase[k]) * speed[k]) % total
-    i = 0
-    while i < count[k] - 2 and cum[k, i + 1] <= s:
-        i += 1
+    n = count[k]
+    total = cum[k, n - 1]
+    v = speed[k]
+    shift = phase[k]
+    s = 0.0
+    i = -1
+    if n >= 2 and total != 0.0 and v != 0.0:
+        s = floored_mod((t + shift) * v, total)
+        i = 0
+        while i < n - 2 and cum[k, i + 1] <= s:
+            i += 1
     return s, i
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=True)
 def _point_on(points, cum, k, i, s):
-    if i < 0:
-        return points[k, 0, 0], points[k, 0, 1]
-    length = cum[k, i + 1] - cum[k, i]
-    u = (s - cum[k, i]) / length if length > 0.0 else 0.0
-    return (points[k, i, 0] + u * (points[k, i + 1, 0] - points[k, i, 0]),
-            points[k, i, 1] + u * (points[k, i + 1, 1] - points[k, i, 1]))
+    """Point at route distance ``s`` on piece ``i`` of obstacle ``k``'s route (its first point if ``i < 0``)."""
+    j = max(i, 0)  # every array is read on every path (routes are padded to two points at least)
+    ax = points[k, j, 0]
+    ay = points[k, j, 1]
+    bx = points[k, j + 1, 0]
+    by = points[k, j + 1, 1]
+    s0 = cum[k, j]
+    s1 = cum[k, j + 1]
+    x = ax
+    y = ay
+    if i >= 0:
+        length = s1 - s0
+        u = (s - s0) / length if length > 0.0 else 0.0
+        x = ax + u * (bx - ax)
+        y = ay + u * (by - ay)
+    return x, y
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=True)
 def obstacle_position(points, cum, count, speed, phase, k, t):
     """Centre ``(x, y)`` of obstacle ``k`` at time ``t`` (as :meth:`MovingObstacle.position`)."""
     s, i = _locate(cum, count, speed, phase, k, t)
     return _point_on(points, cum, k, i, s)
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=True)
 def _closest(ax, ay, bx, by):
     """Distance from the origin to the segment ``a -> b``."""
     dx = bx - ax
@@ -133,7 +195,7 @@ def _closest(ax, ay, bx, by):
     return math.hypot(ax + u * dx, ay + u * dy)
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, error_model="numpy")  # its divisions are by non-zero numbers: no raise paths
 def obstacle_min_distance(points, cum, count, speed, phase, k, x0, y0, x1, y1, t0, t1):
     """Least distance from obstacle ``k``'s centre to a vehicle driving ``(x0, y0) -> (x1, y1)`` during ``[t0, t1]``.
 
@@ -143,31 +205,31 @@ def obstacle_min_distance(points, cum, count, speed, phase, k, x0, y0, x1, y1, t
     """
     s, i = _locate(cum, count, speed, phase, k, t0)
     ox, oy = _point_on(points, cum, k, i, s)
-    if t1 <= t0:
-        return math.hypot(x0 - ox, y0 - oy)
-    span = t1 - t0
-    ta = t0
     ax = x0 - ox
     ay = y0 - oy
     best = math.hypot(ax, ay)
+    span = t1 - t0
+    ta = t0
     last = count[k] - 1
-    while True:
+    v = speed[k]
+    more = t1 > t0
+    while more:
         tb = t1
         if i >= 0:
-            tb = min(t1, ta + (cum[k, i + 1] - s) / speed[k])
+            tb = min(t1, ta + (cum[k, i + 1] - s) / v)
         if i >= 0 and tb < t1:  # the obstacle reaches route point i + 1 before the vehicle arrives
             ox, oy = points[k, i + 1, 0], points[k, i + 1, 1]
             i = i + 1 if i + 1 < last else 0
             s = cum[k, i]
         else:
-            s_end = s + (tb - ta) * speed[k] if i >= 0 else 0.0
+            s_end = s + (tb - ta) * v if i >= 0 else 0.0
             ox, oy = _point_on(points, cum, k, i, s_end)
         f = (tb - t0) / span
         bx = x0 + f * (x1 - x0) - ox
         by = y0 + f * (y1 - y0) - oy
         best = min(best, _closest(ax, ay, bx, by))
-        if tb >= t1:
-            return best
+        more = tb < t1
         ta = tb
         ax = bx
         ay = by
+    return best

@@ -144,7 +144,8 @@ def _timed_walk(indptr, indices, offset_id, horizontal, turn, length,
                             ahead[n_near, 0, 0] = -1.0  # no arrival position of this obstacle computed yet
                             ahead[n_near, 1, 0] = -1.0
                             n_near += 1
-                stack_gap[depth, :] = gap  # restored if the ant backs up to here
+                for k in range(n_obs):  # restored if the ant backs up to here (loops: a slice costs a reference count)
+                    stack_gap[depth, k] = gap[k]
                 for e in range(indptr[cur], indptr[cur + 1]):
                     j = indices[e]
                     if stamp[j] == wid:
@@ -194,18 +195,19 @@ def _timed_walk(indptr, indices, offset_id, horizontal, turn, length,
                         timed_out = True
                         continue
                     if near < clear_in[j]:  # the fuzzy inference of priority_one, in two exact steps
-                        memo = fuzzy_memo[e]  # one edge's 4 x 4 record: two cache lines
-                        if memo[0, 3] == 0.0:  # first time: the ceilings; no strengths seen yet
-                            rule_ceilings(target_in[j], angle_in[e], vertices, rules, memo)
-                            memo[0, 3] = 1.0
-                            memo[3, :3] = np.nan
-                        s0, s1, s2 = fired_strengths(memo, near, vertices)
-                        if s0 != memo[3, 0] or s1 != memo[3, 1] or s2 != memo[3, 2]:
-                            memo[3, 0] = s0
-                            memo[3, 1] = s1
-                            memo[3, 2] = s2
-                            memo[3, 3] = clipped_centroid(s0, s1, s2, cons, area_w, moment_w)**beta
-                        h = memo[3, 3]
+                        if fuzzy_memo[e, 0, 3] == 0.0:  # first time: the ceilings; no strengths seen yet
+                            rule_ceilings(target_in[j], angle_in[e], vertices, rules, fuzzy_memo, e)
+                            fuzzy_memo[e, 0, 3] = 1.0
+                            fuzzy_memo[e, 3, 0] = np.nan
+                            fuzzy_memo[e, 3, 1] = np.nan
+                            fuzzy_memo[e, 3, 2] = np.nan
+                        s0, s1, s2 = fired_strengths(fuzzy_memo, e, near, vertices)
+                        if s0 != fuzzy_memo[e, 3, 0] or s1 != fuzzy_memo[e, 3, 1] or s2 != fuzzy_memo[e, 3, 2]:
+                            fuzzy_memo[e, 3, 0] = s0
+                            fuzzy_memo[e, 3, 1] = s1
+                            fuzzy_memo[e, 3, 2] = s2
+                            fuzzy_memo[e, 3, 3] = clipped_centroid(s0, s1, s2, cons, area_w, moment_w)**beta
+                        h = fuzzy_memo[e, 3, 3]
                     else:
                         h = w_mul[e]
                     t = min(max(scale * x[e], lo), hi)
@@ -232,7 +234,8 @@ def _timed_walk(indptr, indices, offset_id, horizontal, turn, length,
                 depth -= 1
                 cur = indices[stack_e[depth - 1]] if depth > 0 else start
                 t_cur = stack_t[depth - 1] if depth > 0 else t_head
-                gap[:] = stack_gap[depth]
+                for k in range(n_obs):
+                    gap[k] = stack_gap[depth, k]
                 returned = True
                 if use_turn:
                     prev = stack_prev[depth - 1] if depth > 0 else no_prev
@@ -341,10 +344,8 @@ class TimedWalkEngine(WalkEngine):
         s = problem.scenario
         g = problem.graph
         self.buffers = _TimedBuffers.allocate(problem, len(s.moving_obstacles))
-        self.obstacles = pack_obstacles(s.moving_obstacles)
-        self.route_gap = route_clearance(self.obstacles, s.point_of(np.arange(g.n_nodes)))
-        self.graph_arrays = (g.indptr, g.indices.astype(np.int32), g.offset_id.astype(np.int32),
-                             problem.horizontal_offsets)
+        self.obstacles, self.route_gap, self.graph_arrays = problem.memo(
+            ("fgdaco_walk", "scenario_tables"), lambda: self._scenario_tables(problem))
         self.length = np.ascontiguousarray(g.length)
         self.target_in = np.ascontiguousarray(target_in, dtype=np.float64)
         self.angle_in = np.ascontiguousarray(angle_in, dtype=np.float64)
@@ -358,6 +359,15 @@ class TimedWalkEngine(WalkEngine):
                              for ob in s.moving_obstacles)
         tail_time = float(np.linalg.norm(s.goal - centres[1])) / speed
         self.tail = np.array([*centres[1], *s.goal, tail_time])
+
+    @staticmethod
+    def _scenario_tables(problem: ColonyProblem) -> tuple:
+        """The packed obstacles, each node's :func:`route_clearance` and the int32 graph arrays (kept per scenario)."""
+        s = problem.scenario
+        g = problem.graph
+        obstacles = pack_obstacles(s.moving_obstacles)
+        return (obstacles, route_clearance(obstacles, s.point_of(np.arange(g.n_nodes))),
+                (g.indptr, g.indices.astype(np.int32), g.offset_id.astype(np.int32), problem.horizontal_offsets))
 
     def walk(self, rules: WalkRules, trail: Pheromone, n_ants: int, seed: int,
              allowance: int = 2**62) -> Walks:

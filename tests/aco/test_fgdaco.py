@@ -32,7 +32,13 @@ from pathzoo_aco.fgdaco_fuzzy import (
     rule_ceilings,
     triangle,
 )
-from pathzoo_aco.fgdaco_moving import obstacle_min_distance, obstacle_position, pack_obstacles, route_clearance
+from pathzoo_aco.fgdaco_moving import (
+    floored_mod,
+    obstacle_min_distance,
+    obstacle_position,
+    pack_obstacles,
+    route_clearance,
+)
 
 from aco_maps import walled_grid
 
@@ -111,12 +117,12 @@ def test_two_step_inference_of_the_walks_is_bit_identical_to_the_compiled_twin()
     x = np.vstack([rng.random((3000, 3)), on_universe, np.clip(on_universe + rng.normal(0, 1e-13, (3000, 3)), 0, 1),
                    np.array(CRISP)])
     cp = compiled_priority()
-    ceilings = np.empty((3, 3))
+    ceilings = np.empty((1, 3, 3))
     for t, a, o in x:
         want = priority_one(t, a, o, cp.vertices, cp.rules, cp.consequents, cp.area_w, cp.moment_w,
                             np.zeros((3, 3)), np.zeros(3))
-        rule_ceilings(t, a, cp.vertices, cp.rules, ceilings)
-        got = clipped_centroid(*fired_strengths(ceilings, o, cp.vertices), cp.consequents, cp.area_w, cp.moment_w)
+        rule_ceilings(t, a, cp.vertices, cp.rules, ceilings, 0)
+        got = clipped_centroid(*fired_strengths(ceilings, 0, o, cp.vertices), cp.consequents, cp.area_w, cp.moment_w)
         assert got == want, (t, a, o)
 
 
@@ -139,6 +145,10 @@ def test_compiled_obstacle_geometry_matches_moving_obstacle():
         assert obstacle_position(*arrays, k, t0) == pytest.approx(tuple(obstacles[k].position(t0)), abs=1e-9)
         expected = obstacles[k].min_distance(p0, p1, t0, t1)
         assert obstacle_min_distance(*arrays, k, *p0, *p1, t0, t1) == pytest.approx(expected, abs=1e-9)
+    alone = pack_obstacles(obstacles[3:])  # only one route point in the whole pack: padded to a two-point piece
+    alone_arrays = (alone.points, alone.cum, alone.count, alone.speed, alone.phase)
+    assert obstacle_position(*alone_arrays, 0, 7.0) == (5.0, 5.0)
+    assert obstacle_min_distance(*alone_arrays, 0, 5.0, 8.0, 5.0, 9.0, 0.0, 1.0) == 3.0
     # the clearance to a whole route bounds the distance to the disc at any time, and is reached on the route
     points = rng.uniform(-5, 25, (300, 2))
     bound = route_clearance(packed, points)
@@ -148,6 +158,21 @@ def test_compiled_obstacle_geometry_matches_moving_obstacle():
         gaps = np.linalg.norm(points[:, None, :] - centres[None, :, :], axis=2).min(axis=1) - ob.radius
         assert (bound[:, k] <= gaps).all()
         assert bound[:, k] == pytest.approx(gaps, abs=2e-3)  # sampled every ~1/20000 of the route
+
+
+def test_floored_mod_is_python_modulo_bit_for_bit():
+    # the obstacles' route positions use it instead of %: random operands, exact multiples and their neighbours
+    rng = np.random.default_rng(11)
+    b = rng.uniform(1e-3, 100.0, 20000)
+    q = rng.integers(0, 10**6, 20000).astype(float)
+    a = np.concatenate([rng.uniform(0.0, 5000.0, 20000), q * b, np.nextafter(q * b, np.inf), np.nextafter(q * b, -np.inf),
+                        -rng.uniform(0.0, 50.0, 20000), [0.0, -0.0, 1e300, 5e-324, np.inf, np.nan, 7.0]])
+    b = np.concatenate([b, b, b, b, b, [3.0, 3.0, 7.0, 3.0, 2.0, 2.0, np.inf]])
+    for x, y in zip(a, b):
+        with np.errstate(invalid="ignore"):  # inf % 2.0 is nan
+            want = x % y
+        got = floored_mod(x, y)
+        assert got == want and math.copysign(1.0, got) == math.copysign(1.0, want) or (got != got and want != want), (x, y)
 
 
 # ------------------------------------------------------------------ gain and update
