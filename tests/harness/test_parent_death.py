@@ -66,7 +66,6 @@ def test_children_die_with_a_killed_harness(tmp_path):
     script.write_text(SCRIPT)
     proc = subprocess.Popen([sys.executable, str(script)], cwd=tmp_path, stdout=subprocess.PIPE, text=True)
     try:
-        line = ""
         deadline = time.monotonic() + 240
         lines: list[str] = []
         while not (lines and lines[-1].startswith("PIDS")) and time.monotonic() < deadline:

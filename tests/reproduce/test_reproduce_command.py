@@ -78,7 +78,7 @@ def test_unregistered_planner_is_listed_not_available(tmp_path):
     assert (ghost["verdict"] == "not testable: rival not reconstructed").all()
     assert rep.wtl.set_index(["metric", "planner"]).loc[("eq21_distance", "ghost"), "ours"] == "–"
     text = format_reproduction(rep)
-    assert text.count(f"Ghost (aco.not_reconstructed)") == 2 and NOT_AVAILABLE in text
+    assert text.count("Ghost (aco.not_reconstructed)") == 2 and NOT_AVAILABLE in text
 
 
 def test_bad_paper_is_a_one_line_error_with_exit_2(capsys):
