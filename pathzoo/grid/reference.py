@@ -25,13 +25,12 @@ cells' centres.
 from __future__ import annotations
 
 import math
-import threading
-import weakref
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Callable, TypeVar
+from typing import TYPE_CHECKING
 
 import numpy as np
 
+from pathzoo.core.object_memo import ObjectMemo
 from pathzoo.grid.anyangle import AnyAngleError, AnyAnglePath, anyangle_path
 from pathzoo.grid.paths import centre_path
 
@@ -78,21 +77,8 @@ class ReferencePath:
 ANYANGLE_KINDS: frozenset[str] = frozenset({"grid2d"})
 """Kinds with an any-angle optimum: static 2-D grids measured by plane length."""
 
-_T = TypeVar("_T")
-_cache: "weakref.WeakKeyDictionary[Scenario, ReferencePath | None]" = weakref.WeakKeyDictionary()
-_anyangle_cache: "weakref.WeakKeyDictionary[Scenario, AnyAnglePath | None | AnyAngleError]" = weakref.WeakKeyDictionary()
-_lock = threading.Lock()
-
-
-def _cached(cache: "weakref.WeakKeyDictionary[Scenario, _T]", scenario: "Scenario", compute: Callable[[], _T]) -> _T:
-    """``cache[scenario]``, computed (outside the lock) on first use."""
-    with _lock:
-        if scenario in cache:
-            return cache[scenario]
-    value = compute()
-    with _lock:
-        cache[scenario] = value
-    return value
+_references: "ObjectMemo[Scenario, ReferencePath | None]" = ObjectMemo()
+_anyangle_references: "ObjectMemo[Scenario, AnyAnglePath | None | AnyAngleError]" = ObjectMemo()
 
 
 def _compute(scenario: "Scenario") -> ReferencePath | None:
@@ -123,7 +109,7 @@ def reference_path(scenario: "Scenario") -> ReferencePath | None:
     Computed once per scenario object (Dijkstra from the start cell with
     :func:`scipy.sparse.csgraph.dijkstra`) and cached while the scenario lives.
     """
-    return _cached(_cache, scenario, lambda: _compute(scenario))
+    return _references.value(scenario, lambda: _compute(scenario))
 
 
 def reference_length(scenario: "Scenario") -> float:
@@ -162,7 +148,7 @@ def anyangle_reference(scenario: "Scenario") -> AnyAnglePath | None:
         :data:`pathzoo.grid.anyangle.MAX_EXACT_CELLS` and endpoints off the
         search's lattice: the optimum is then not computed, never approximated.
     """
-    ref = _cached(_anyangle_cache, scenario, lambda: _compute_anyangle(scenario))
+    ref = _anyangle_references.value(scenario, lambda: _compute_anyangle(scenario))
     if isinstance(ref, AnyAngleError):
         raise ref
     return ref

@@ -20,13 +20,13 @@ expansion is exact):
 
 from __future__ import annotations
 
-import weakref
 from functools import partial
 from typing import ClassVar
 
 import numpy as np
 
 from pathzoo.core import Param, Scenario
+from pathzoo.core.object_memo import ObjectMemo
 from pathzoo.grid.graph import GridGraph
 from pathzoo_exact.base import BatchFn, GraphSearchPlanner
 from pathzoo_exact.kernel import H_EUCLID, H_OCTILE, astar_batch, astar_moves_batch, goal_cell, run_batch
@@ -34,7 +34,7 @@ from pathzoo_exact.moves import move_table
 
 __all__ = ["AStarPlanner", "least_energy_per_metre"]
 
-_E_MIN: weakref.WeakKeyDictionary[GridGraph, float] = weakref.WeakKeyDictionary()
+_E_MIN: "ObjectMemo[GridGraph, float]" = ObjectMemo()
 
 
 def least_energy_per_metre(graph: GridGraph) -> float:
@@ -43,11 +43,7 @@ def least_energy_per_metre(graph: GridGraph) -> float:
     Computed on the first call for a graph (a pass over every edge, about
     10 ms on a 500 x 500 terrain) and kept while the graph lives.
     """
-    e_min = _E_MIN.get(graph)
-    if e_min is None:
-        e_min = float(np.min(graph.energy / graph.length)) if graph.n_edges else 0.0
-        _E_MIN[graph] = e_min
-    return e_min
+    return _E_MIN.value(graph, lambda: float(np.min(graph.energy / graph.length)) if graph.n_edges else 0.0)
 
 
 class AStarPlanner(GraphSearchPlanner):

@@ -61,13 +61,13 @@ from __future__ import annotations
 import abc
 import math
 import threading
-import weakref
 from typing import Callable, ClassVar, NamedTuple
 
 import numba
 import numpy as np
 
 from pathzoo.core import Budget, BudgetClock, Planner, PlanResult, ProgressCallback, Scenario, Status
+from pathzoo.core.object_memo import ObjectMemo
 from pathzoo.grid.paths import centre_path, on_centre
 from pathzoo.grid.terrain import segment_profile
 from pathzoo.rules import segment_problem
@@ -130,19 +130,19 @@ class Endpoints(NamedTuple):
     goal_on_centre: bool
 
 
-_ENDPOINTS: weakref.WeakKeyDictionary[Scenario, Endpoints] = weakref.WeakKeyDictionary()
+_ENDPOINTS: "ObjectMemo[Scenario, Endpoints]" = ObjectMemo()
 
 
 def endpoints(scenario: Scenario) -> Endpoints:
     """The :class:`Endpoints` of ``scenario``, worked out on the first call and kept while the (frozen) scenario lives."""
-    found = _ENDPOINTS.get(scenario)
-    if found is None:
-        source, target = scenario.start_node, scenario.goal_node
-        centres = scenario.point_of(np.array([source, target]))
-        found = Endpoints(source, target, on_centre(scenario, scenario.start, centres[0]),
-                          on_centre(scenario, scenario.goal, centres[1]))
-        _ENDPOINTS[scenario] = found
-    return found
+    return _ENDPOINTS.value(scenario, lambda: _find_endpoints(scenario))
+
+
+def _find_endpoints(scenario: Scenario) -> Endpoints:
+    source, target = scenario.start_node, scenario.goal_node
+    centres = scenario.point_of(np.array([source, target]))
+    return Endpoints(source, target, on_centre(scenario, scenario.start, centres[0]),
+                     on_centre(scenario, scenario.goal, centres[1]))
 
 
 def connector_cost(scenario: Scenario, p0: np.ndarray, p1: np.ndarray, cost: str) -> float:

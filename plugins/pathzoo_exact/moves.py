@@ -28,12 +28,12 @@ cost and kept while the graph lives (about 2 ms and one byte per cell on a
 
 from __future__ import annotations
 
-import weakref
 from dataclasses import dataclass
 
 import numba
 import numpy as np
 
+from pathzoo.core.object_memo import ObjectMemo
 from pathzoo.grid.graph import GridGraph
 
 __all__ = ["MoveTable", "MAX_MOVES", "move_table"]
@@ -41,7 +41,7 @@ __all__ = ["MoveTable", "MAX_MOVES", "move_table"]
 MAX_MOVES = 63
 """Most moves a table can hold: the kernel reads a mask as a signed 64-bit integer."""
 
-_TABLES: "weakref.WeakKeyDictionary[GridGraph, dict[str, MoveTable | None]]" = weakref.WeakKeyDictionary()
+_TABLES: "ObjectMemo[GridGraph, dict[str, MoveTable | None]]" = ObjectMemo()
 
 
 @dataclass(frozen=True)
@@ -139,7 +139,7 @@ def move_table(graph: GridGraph, cost: str) -> MoveTable | None:
     Built on the first call for a graph and cost, then reused while the
     graph lives.
     """
-    tables = _TABLES.setdefault(graph, {})
+    tables = _TABLES.value(graph, dict)
     if cost not in tables:
         tables[cost] = _build(graph, cost)
     return tables[cost]

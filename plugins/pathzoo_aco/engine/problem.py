@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import math
-import weakref
 from collections import OrderedDict
 from dataclasses import dataclass, field
 from functools import cached_property
@@ -11,6 +10,7 @@ from typing import Any, Callable, Hashable, Iterator, TypeVar
 
 import numpy as np
 
+from pathzoo.core.object_memo import ObjectMemo
 from pathzoo.core.scenario import Scenario
 from pathzoo.grid.graph import GridGraph, move_values
 from pathzoo.grid.graph_cache import release_pages
@@ -20,7 +20,7 @@ __all__ = ["ColonyProblem"]
 
 T = TypeVar("T")
 
-_TABLES: "weakref.WeakKeyDictionary[Scenario, dict[str, Any]]" = weakref.WeakKeyDictionary()
+_TABLES: "ObjectMemo[Scenario, dict[str, Any]]" = ObjectMemo()
 """Per live scenario object: its problem's computed arrays and memo. The values never refer to the
 scenario, so an entry goes with its scenario."""
 
@@ -73,10 +73,7 @@ class ColonyProblem:
         like ``scenario.graph``.
         """
         problem = cls(scenario)
-        tables = _TABLES.get(scenario)
-        if tables is None:
-            tables = _TABLES[scenario] = {}
-        object.__setattr__(problem, "_tables", tables)
+        object.__setattr__(problem, "_tables", _TABLES.value(scenario, dict))
         return problem
 
     def memo(self, key: Hashable, build: Callable[[], T]) -> T:
