@@ -39,6 +39,7 @@ from multiprocessing.connection import Connection, wait
 from typing import TYPE_CHECKING, Any
 
 from pathzoo.harness.launch import NoMainContext, die_with_harness, harness_alive
+from pathzoo.harness.specs import HeldScenarios
 from pathzoo.harness.worker import (SETUP_TIMEOUT_S, describe_exception, ensure_plugins, keep_payload, load_cached,
                                     quiet_registry)
 from pathzoo.plugins.manager import get_registry, limit_kinds
@@ -184,7 +185,7 @@ class JudgeWorker:
         self._process: BaseProcess | None = None
         self._conn: Connection | None = None
         self._ready = False
-        self._payloads: set[str] = set()  # digests of the scenario objects the judge process holds
+        self._held = HeldScenarios()
 
     def __enter__(self) -> "JudgeWorker":
         self._launch()  # it starts while the first runs execute
@@ -197,7 +198,7 @@ class JudgeWorker:
         """Start the judge process if there is none (or take over :func:`start_judge`'s), without waiting for it."""
         if self._conn is None:
             self._process, self._conn = _take_early() or _spawn_judge()
-            self._ready, self._payloads = False, set()
+            self._ready, self._held = False, HeldScenarios()
 
     def _start(self) -> Connection:
         """The connection to a judge process that said it is ready."""
@@ -225,15 +226,7 @@ class JudgeWorker:
         scenarios or metrics, never a planner's; a scenario object the judge
         process holds already goes by reference.
         """
-        spec = task.scenario
-        if spec.digest in self._payloads:
-            spec = spec.by_reference()
-        return replace(task, scenario=spec, plugin_modules=get_registry().judge_modules(task.plugin_modules))
-
-    def _sent(self, task: "RunTask") -> None:
-        """Count the task's scenario object as held by the judge process (it keeps it on receipt)."""
-        if task.scenario.payload:
-            self._payloads.add(task.scenario.digest)
+        return replace(self._held.outgoing(task), plugin_modules=get_registry().judge_modules(task.plugin_modules))
 
     def prepare(self, task: "RunTask") -> None:
         """Let the judge load the task's scenario and warm up on it now.
@@ -245,7 +238,7 @@ class JudgeWorker:
         assert self._conn is not None
         try:
             self._conn.send(("warm", self._for_judge(task)))
-            self._sent(task)
+            self._held.sent(task)
         except (OSError, EOFError):  # the judge died: judge() notices and restarts it
             pass
 
@@ -283,7 +276,7 @@ class JudgeWorker:
         conn = self._start()
         try:
             conn.send((self._for_judge(task), outcome, isolated))
-            self._sent(task)
+            self._held.sent(task)
         except Exception as exc:  # noqa: BLE001 - e.g. a scenario object that does not pickle
             return unjudged(task, outcome, f"the run could not be sent to the judge ({type(exc).__name__})",
                             isolated=isolated)

@@ -29,7 +29,7 @@ from pathzoo.core.planner import Planner, config_name, params_hash
 if TYPE_CHECKING:
     from pathzoo.core.scenario import Scenario
 
-__all__ = ["PlannerSpec", "ScenarioSpec", "RunTask", "run_key", "run_seed", "ScenarioSource", "planner_by_value"]
+__all__ = ["PlannerSpec", "ScenarioSpec", "RunTask", "HeldScenarios", "run_key", "run_seed", "ScenarioSource", "planner_by_value"]
 
 ScenarioSource = Literal["registry", "file", "object"]
 
@@ -294,3 +294,27 @@ class RunTask:
             cls = pickle.loads(self.planner_class)  # pickled by the harness process (see the module docstring)
             return cls(**self.planner.params)
         return self.planner.build()
+
+
+@dataclass
+class HeldScenarios:
+    """The scenario objects one process (a worker, the judge) holds already, as the harness tracks them.
+
+    A process keeps the payload of every scenario object it receives
+    (:func:`pathzoo.harness.worker.keep_payload`); later tasks on that
+    object go to it by reference. A sender asks :meth:`outgoing` for the
+    task to send and, once it is sent, tells :meth:`sent`. A process that
+    is replaced starts with a new, empty ledger.
+    """
+
+    digests: set[str] = field(default_factory=set)
+
+    def outgoing(self, task: RunTask) -> RunTask:
+        """``task`` with its scenario object by reference if the process holds it, else as it is."""
+        spec = task.scenario
+        return replace(task, scenario=spec.by_reference()) if spec.payload and spec.digest in self.digests else task
+
+    def sent(self, task: RunTask) -> None:
+        """Count ``task``'s scenario object as held by the process from now on."""
+        if task.scenario.payload:
+            self.digests.add(task.scenario.digest)

@@ -64,6 +64,7 @@ from typing import TYPE_CHECKING, Any
 from pathzoo.core.errors import PathzooError
 from pathzoo.harness.executors.base import RunExecutor
 from pathzoo.harness.launch import NoMainContext, default_start_method, die_with_harness, harness_alive, start_server
+from pathzoo.harness.specs import HeldScenarios
 from pathzoo.harness.tamper import ModuleFingerprint
 from pathzoo.harness.wire import MAX_OUTCOME_BYTES, decode_outcome, encode_outcome
 from pathzoo.harness.worker import (SETUP_TIMEOUT_S, RunOutcome, execute_task, keep_payload, utc_now, warm_up_pairs,
@@ -179,7 +180,7 @@ class _Worker:
     plan_t0: float = math.nan
     plan_c0: float = math.nan
     had_share: bool = False
-    payloads: set[str] = field(default_factory=set)  # digests of the scenario objects this worker holds
+    held: HeldScenarios = field(default_factory=HeldScenarios)
 
     @property
     def listening(self) -> bool:
@@ -331,14 +332,9 @@ class ProcessExecutor(RunExecutor):
             worker.plan_t0 = worker.plan_c0 = math.nan
             worker.deadline = worker.sent_at + max(task.timeout_s, SETUP_TIMEOUT_S)
             worker.in_setup = True
-            spec = task.scenario
             try:
-                if spec.digest in worker.payloads:
-                    worker.conn.send(replace(task, scenario=spec.by_reference()))
-                else:
-                    worker.conn.send(task)
-                    if spec.payload:
-                        worker.payloads.add(spec.digest)
+                worker.conn.send(worker.held.outgoing(task))
+                worker.held.sent(task)
             except (OSError, EOFError):  # the idle worker had died: retry the task on a fresh one
                 worker.task, worker.future = None, None
                 self._retire(worker)
