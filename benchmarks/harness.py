@@ -55,6 +55,8 @@ from typing import Callable
 
 import psutil
 
+from pathzoo.cli.cmd_run import positive_int
+
 FIRST_RESULT_TARGET_S = 1.0
 DEFAULT_COLD_TARGET_S = 60.0
 JOBS_RATIO_TARGET = 1.8
@@ -225,8 +227,8 @@ def throughput_line(label: str, n: int, one: TreeUsage, two: TreeUsage) -> str:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="skip the cold default experiment")
-    parser.add_argument("--tiny", type=int, default=140, help="tiny runs per jobs setting (default 140)")
-    parser.add_argument("--short", type=int, default=40, help="short aco.as runs per jobs setting (default 40)")
+    parser.add_argument("--tiny", type=positive_int, default=140, help="tiny runs per jobs setting (default 140)")
+    parser.add_argument("--short", type=positive_int, default=40, help="short aco.as runs per jobs setting (default 40)")
     args = parser.parse_args()
     print(f"load average {os.getloadavg()[0]:.2f} {os.getloadavg()[1]:.2f} on {os.cpu_count()} cores; "
           "wall times are inflated by other load, CPU times (whole process tree) much less")

@@ -54,6 +54,7 @@ from typing import Any, Callable, Iterator
 
 import pathzoo
 from pathzoo import Budget
+from pathzoo.cli.cmd_run import positive_int
 from pathzoo.harness import Experiment, run_experiment
 from pathzoo.harness.store import ResultStore, read_runs
 
@@ -227,7 +228,7 @@ def rows(stats: dict[str, Any]) -> Iterator[tuple[str, str, str]]:
 def main(argv: list[str] | None = None) -> int:
     """Start the cluster, run the sweep, print the figures, stop the cluster."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--runs", type=int, default=10_000, help="at least this many runs (default 10,000)")
+    parser.add_argument("--runs", type=positive_int, default=10_000, help="at least this many runs (default 10,000)")
     parser.add_argument("--db", type=Path, help="result database (default: a temporary file, deleted)")
     args = parser.parse_args(argv)
     if args.runs < 1:

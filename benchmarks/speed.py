@@ -35,6 +35,7 @@ import numpy as np
 
 import pathzoo
 from pathzoo import Budget
+from pathzoo.cli.cmd_run import positive_int
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from aco import room512  # noqa: E402  (the benchmark scripts share their scenario builders)
@@ -288,8 +289,8 @@ def dsaco_all_in() -> None:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="skip ggaco.case1 and gant.simple.1")
-    parser.add_argument("--repeats", type=int, default=3, help="warm plan() calls per row (median)")
-    parser.add_argument("--astar-problems", type=int, default=8, help="8room_000 problems for the A* rows")
+    parser.add_argument("--repeats", type=positive_int, default=3, help="warm plan() calls per row (median)")
+    parser.add_argument("--astar-problems", type=positive_int, default=8, help="8room_000 problems for the A* rows")
     args = parser.parse_args()
     print(f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} CPUs; CPU seconds of one plan()\n")
     planner_rows(ROWS + (() if args.quick else BIG_ROWS), args.repeats)
