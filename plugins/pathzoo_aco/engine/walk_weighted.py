@@ -22,8 +22,18 @@ import numpy as np
 
 from pathzoo_aco.engine.outcomes import ABORTED, DONE, EXHAUSTED, NEED_SPACE, REACHED, RUNNING, STEP_CAP, STUCK
 from pathzoo_aco.engine.prefetch import prefetch
+from pathzoo_aco.engine.problem import ColonyProblem
 
-__all__ = ["weighted_colony"]
+__all__ = ["weighted_colony", "narrow_adjacency"]
+
+
+def narrow_adjacency(problem: ColonyProblem, adjacency: tuple[np.ndarray | None, ...]) -> tuple[np.ndarray | None, ...]:
+    """``adjacency`` (:meth:`WalkEngine.adjacency <pathzoo_aco.engine.walk.WalkEngine.adjacency>`) with the
+    graph's list pointers as int32 (:attr:`ColonyProblem.indptr32`) when the lists are the graph's own.
+    """
+    if adjacency[0] is problem.graph.indptr:
+        return (problem.indptr32, *adjacency[1:])
+    return adjacency
 
 
 @numba.njit(cache=True)
