@@ -20,7 +20,7 @@ from pathzoo_aco.engine import ABORTED, EXHAUSTED, REACHED, STEP_CAP, STUCK, Col
 from pathzoo_aco.engine import WalkRules
 from pathzoo_aco.engine.outcomes import DONE, FRESH
 from pathzoo_aco.engine.walk import _colony, _seed
-from pathzoo_aco.engine.walk_weighted import narrow_adjacency, weighted_colony
+from pathzoo_aco.engine.walk_weighted import unsigned_lists, weighted_colony
 
 from aco_maps import hill, open_grid, walled_grid
 
@@ -49,10 +49,10 @@ def _run(specialised: bool, problem: ColonyProblem, rules: WalkRules, trail: Phe
     while True:
         calls += 1
         if specialised:
-            status = weighted_colony(engine.indices, *narrow_adjacency(problem, adjacency), weights,
+            status = weighted_colony(*unsigned_lists(problem, engine.indices, adjacency), weights,
                                      problem.horizontal_offsets, rules.turn,
                                      rules.q0, problem.start, problem.goal, rules.backtrack, rules.max_steps,
-                                     allowance, 1, stamps[0], stacks[0], prevs[0], engine.cand_e, engine.cand_w,
+                                     allowance, 1, stamps[0], stacks[0], prevs[0], engine.cand_w,
                                      depth, steps, flags, counters, flat, offsets)
         else:
             status = _colony(engine.indices, engine.offset_id, *adjacency, weights, problem.horizontal_offsets,

@@ -31,7 +31,7 @@ from pathzoo_aco.engine.pheromone import Pheromone
 from pathzoo_aco.engine.prefetch import AHEAD, prefetch
 from pathzoo_aco.engine.problem import ColonyProblem
 from pathzoo_aco.engine.rules import WalkRules
-from pathzoo_aco.engine.walk_weighted import narrow_adjacency, weighted_colony
+from pathzoo_aco.engine.walk_weighted import unsigned_lists, weighted_colony
 
 __all__ = ["Walks", "WalkEngine", "REACHED", "STUCK", "STEP_CAP", "EXHAUSTED", "ABORTED", "OUTRUN"]
 
@@ -543,9 +543,9 @@ class WalkEngine:
         while True:
             if weights is not None and not rules.race:  # the common case, compiled on its own (walk_weighted.py)
                 status = weighted_colony(
-                    self.indices, *narrow_adjacency(p, adjacency), weights, p.horizontal_offsets, rules.turn,
+                    *unsigned_lists(p, self.indices, adjacency), weights, p.horizontal_offsets, rules.turn,
                     rules.q0, p.start, p.goal, rules.backtrack, rules.max_steps, allowance, self.walk_base,
-                    self.stamps[0], stacks[0], prevs[0], self.cand_e, self.cand_w, depth, steps, flags, counters,
+                    self.stamps[0], stacks[0], prevs[0], self.cand_w, depth, steps, flags, counters,
                     self.flat, offsets,
                 )
             else:

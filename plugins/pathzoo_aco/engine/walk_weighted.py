@@ -24,29 +24,34 @@ from pathzoo_aco.engine.outcomes import ABORTED, DONE, EXHAUSTED, NEED_SPACE, RE
 from pathzoo_aco.engine.prefetch import prefetch
 from pathzoo_aco.engine.problem import ColonyProblem
 
-__all__ = ["weighted_colony", "narrow_adjacency"]
+__all__ = ["weighted_colony", "unsigned_lists"]
 
 
-def narrow_adjacency(problem: ColonyProblem, adjacency: tuple[np.ndarray | None, ...]) -> tuple[np.ndarray | None, ...]:
-    """``adjacency`` (:meth:`WalkEngine.adjacency <pathzoo_aco.engine.walk.WalkEngine.adjacency>`) with the
-    graph's list pointers as int32 (:attr:`ColonyProblem.indptr32`) when the lists are the graph's own.
+def unsigned_lists(problem: ColonyProblem, indices: np.ndarray,
+                   adjacency: tuple[np.ndarray | None, ...]) -> tuple[np.ndarray | None, ...]:
+    """``indices`` and ``adjacency`` (:meth:`WalkEngine.adjacency <pathzoo_aco.engine.walk.WalkEngine.adjacency>`)
+    as :func:`weighted_colony` reads them: node ids (int32 arrays) viewed as uint32, and the list pointers as
+    uint32 (:attr:`ColonyProblem.indptr32`) when the lists are the graph's own. An unsigned index needs no
+    fix-up for negative values at every read, and 32-bit pointers take half the cache lines of 64-bit ones.
     """
-    if adjacency[0] is problem.graph.indptr:
-        return (problem.indptr32, *adjacency[1:])
-    return adjacency
+    adj_ptr, adj_node = adjacency[:2]
+    if adj_ptr is problem.graph.indptr and problem.indptr32.dtype == np.int32:
+        adj_ptr = problem.indptr32.view(np.uint32)
+    return (indices.view(np.uint32), adj_ptr, adj_node.view(np.uint32), *adjacency[2:])
 
 
 @numba.njit(cache=True)
 def weighted_colony(indices, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, w_add, weights, horizontal, turn,
                     q0, start, goal, backtrack, max_steps, allowance, walk_base,
-                    stamp, stack_e, stack_prev, cand_q, cand_w, depth, steps, flags, counters, flat, offsets):
+                    stamp, stack_e, stack_prev, cand_w, depth, steps, flags, counters, flat, offsets):
     """Move the colony's ants one after another; return ``DONE`` or ``NEED_SPACE`` (grow ``flat``, call again).
 
     The arguments are those of the generic kernel on its sequential,
     precomputed-weights path (``weights`` holds each list position's weight
     before the turn factor), with ``stamp``, ``stack_e`` and ``stack_prev``
     the one row the ants share (the stacks have room for the longest simple
-    walk, so they never grow) and ``cand_q`` the candidates' list positions.
+    walk, so they never grow). ``indices``, ``adj_ptr`` and ``adj_node`` come
+    from :func:`unsigned_lists`.
     ``counters`` holds (next ant, ants started, steps taken, a finished walk
     waiting for room in ``flat``), so a call resumes where the previous one
     stopped.
@@ -55,6 +60,7 @@ def weighted_colony(indices, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, w_a
     use_turn = turn.shape[0] > 0
     no_prev = turn.shape[0] - 1
     has_add = w_add.size > 0
+    cand_q = np.empty(cand_w.size, dtype=np.uint32)  # the candidates' list positions (unsigned, as the node ids)
     a = counters[0]
     total = counters[2]
     if counters[3] > 0:  # copy the walk that waited for room in ``flat``
@@ -69,7 +75,7 @@ def weighted_colony(indices, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, w_a
         flags[a] = RUNNING
         counters[1] += 1
         stamp[start] = wid
-        c = start
+        c = np.uint32(start)  # node ids are uint32, so ``c`` keeps one type
         d = 0
         pv = no_prev
         n = 0
@@ -125,7 +131,7 @@ def weighted_colony(indices, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, w_a
                     flag = EXHAUSTED
                     break
                 d -= 1
-                c = indices[stack_e[d - 1]] if d > 0 else start
+                c = indices[stack_e[d - 1]] if d > 0 else np.uint32(start)
                 if use_turn:
                     pv = stack_prev[d - 1] if d > 0 else no_prev
             else:
