@@ -60,7 +60,7 @@ def weighted_colony(indices, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, w_a
     use_turn = turn.shape[0] > 0
     no_prev = turn.shape[0] - 1
     has_add = w_add.size > 0
-    cand_q = np.empty(cand_w.size, dtype=np.uint32)  # the candidates' list positions (unsigned, as the node ids)
+    cand_q = np.empty(cand_w.size, dtype=adj_ptr.dtype)  # the candidates' list positions, typed as the pointers
     a = counters[0]
     total = counters[2]
     if counters[3] > 0:  # copy the walk that waited for room in ``flat``
