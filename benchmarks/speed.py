@@ -4,7 +4,6 @@ Run from the repository root (``../shared`` must sit beside it)::
 
     python benchmarks/speed.py            # every row (ggaco.case1 runs 1000 iterations: a few minutes)
     python benchmarks/speed.py --quick    # without ggaco.case1 and gant.simple.1
-    python benchmarks/speed.py --only gant.simple.1,aco.as   # just these rows
 
 Times are CPU seconds (``time.process_time``) of one ``plan()`` call, the
 median of ``--repeats`` calls, so other processes on a shared machine
@@ -287,41 +286,22 @@ def dsaco_all_in() -> None:
                       f"| {total:.3f} s | 0.04 s | {'yes' if total <= 0.04 else 'no'} |", flush=True)
 
 
-FIGURES = ("aco.as", "exact.astar", "list", "dsaco.all-in", "ggaco.case1")
-"""Names of the figure rows for ``--only`` (the planner rows go by their setting's label)."""
-
-
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="skip ggaco.case1 and gant.simple.1")
     parser.add_argument("--repeats", type=positive_int, default=3, help="warm plan() calls per row (median)")
     parser.add_argument("--astar-problems", type=positive_int, default=8, help="8room_000 problems for the A* rows")
-    parser.add_argument("--only", help="comma-separated rows to run: planner rows by scenario (e.g. gant.simple.1), "
-                                       f"figures by name ({', '.join(FIGURES)})")
     args = parser.parse_args()
-    only = None if args.only is None else set(args.only.split(","))
-    known = {row[0].split(",")[0] for row in ROWS + BIG_ROWS} | set(FIGURES)
-    if only is not None and not only <= known:
-        parser.error(f"unknown rows {sorted(only - known)}; choose from {sorted(known)}")
-
-    def wanted(name: str, big: bool = False) -> bool:  # a planner row goes by its label's first part
-        return name.split(",")[0] in only if only is not None else not (big and args.quick)
-
     print(f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} CPUs; CPU seconds of one plan()\n")
-    rows = [row for row in ROWS if wanted(row[0])] + [row for row in BIG_ROWS if wanted(row[0], big=True)]
-    if rows:
-        planner_rows(rows, args.repeats)
-    figures = [(name, run) for name, run, big in (
-        ("aco.as", lambda: as_throughput(args.repeats), False),
-        ("exact.astar", lambda: astar_against_pathfinding(args.astar_problems), False),
-        ("list", list_planners_time, False),
-        ("dsaco.all-in", dsaco_all_in, False),
-        ("ggaco.case1", ggaco_case1, True),
-    ) if wanted(name, big)]
-    if figures:
-        print("\n| figure | measured | target | met |\n|---|---|---|---|")
-    for _, run in figures:
-        run()
+    planner_rows(ROWS + (() if args.quick else BIG_ROWS), args.repeats)
+    print("\n| figure | measured | target | met |\n|---|---|---|---|")
+    as_throughput(args.repeats)
+    astar_against_pathfinding(args.astar_problems)
+    list_planners_time()
+    dsaco_all_in()
+    if not args.quick:
+        ggaco_case1()
+
 
 if __name__ == "__main__":
     main()
