@@ -4,6 +4,7 @@ Run from the repository root (``../shared`` must sit beside it)::
 
     python benchmarks/speed.py            # every row (ggaco.case1 runs 1000 iterations: a few minutes)
     python benchmarks/speed.py --quick    # without ggaco.case1 and gant.simple.1
+    python benchmarks/speed.py --quick --only fgdaco   # the planner rows whose label contains "fgdaco", nothing else
 
 Times are CPU seconds (``time.process_time``) of one ``plan()`` call, the
 median of ``--repeats`` calls, so other processes on a shared machine
@@ -291,9 +292,15 @@ def main() -> None:
     parser.add_argument("--quick", action="store_true", help="skip ggaco.case1 and gant.simple.1")
     parser.add_argument("--repeats", type=positive_int, default=3, help="warm plan() calls per row (median)")
     parser.add_argument("--astar-problems", type=positive_int, default=8, help="8room_000 problems for the A* rows")
+    parser.add_argument("--only", metavar="TEXT",
+                        help="only the planner rows whose label contains TEXT (e.g. fgdaco); no other figures")
     args = parser.parse_args()
     print(f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} CPUs; CPU seconds of one plan()\n")
-    planner_rows(ROWS + (() if args.quick else BIG_ROWS), args.repeats)
+    rows = ROWS + (() if args.quick else BIG_ROWS)
+    if args.only is not None:
+        planner_rows(tuple(row for row in rows if args.only in row[0]), args.repeats)
+        return
+    planner_rows(rows, args.repeats)
     print("\n| figure | measured | target | met |\n|---|---|---|---|")
     as_throughput(args.repeats)
     astar_against_pathfinding(args.astar_problems)
