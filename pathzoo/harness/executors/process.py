@@ -33,7 +33,10 @@ them re-import ``__main__`` is left out (:class:`~pathzoo.harness.launch.NoMainC
 script without an ``if __name__ == "__main__":`` guard (or ``python - <
 script.py``) works; planner classes defined in ``__main__`` travel by value
 (:attr:`~pathzoo.harness.specs.RunTask.planner_class`). Replacing a worker
-costs a fork of the server, which has every entry-point plugin imported.
+costs a fork of the server, which has numba and pathzoo's shared code loaded
+(:mod:`~pathzoo.harness.executors.warmup`); each worker discovers the plugins
+and imports the planner classes it runs itself, since the judge is forked
+from the same server and must never inherit planner code.
 Workers ignore ``SIGINT``; Ctrl-C reaches the harness, which kills them on shutdown,
 and they die with the harness however it ends (:func:`~pathzoo.harness.launch.die_with_harness`).
 
