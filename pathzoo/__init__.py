@@ -11,9 +11,10 @@ The public API is small:
 from __future__ import annotations
 
 import functools
-import importlib
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Iterable, Sequence
+
+from pathzoo.lazy_names import lazy_getattr
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -94,6 +95,9 @@ def _installed_version() -> str:
         return "0.0.0+unknown"
 
 
+_public = lazy_getattr(__name__, _WHERE)
+
+
 def __getattr__(name: str) -> Any:
     """The public classes and ``__version__``, loaded on first use (PEP 562).
 
@@ -101,15 +105,7 @@ def __getattr__(name: str) -> Any:
     :mod:`importlib.metadata`, so ``pathzoo run`` can start its fork server
     at once (:func:`pathzoo.harness.launch.start_server`).
     """
-    if name in _WHERE:
-        return getattr(importlib.import_module(_WHERE[name]), name)
-    if name == "__version__":
-        return _installed_version()
-    raise AttributeError(f"module 'pathzoo' has no attribute {name!r}")
-
-
-def __dir__() -> list[str]:
-    return sorted({*globals(), *_WHERE})
+    return _installed_version() if name == "__version__" else _public(name)
 
 
 def load_scenario(id_or_path: str | Path) -> Scenario:

@@ -7,8 +7,9 @@ say, as the command line does) does not import numpy.
 
 from __future__ import annotations
 
-import importlib
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
+
+from pathzoo.lazy_names import lazy_getattr
 
 if TYPE_CHECKING:
     from pathzoo.core.budget import Budget, BudgetClock
@@ -58,11 +59,4 @@ _WHERE = {
 __all__ = sorted(_WHERE)
 
 
-def __getattr__(name: str) -> Any:
-    if name in _WHERE:
-        return getattr(importlib.import_module(f"pathzoo.core.{_WHERE[name]}"), name)
-    raise AttributeError(f"module 'pathzoo.core' has no attribute {name!r}")
-
-
-def __dir__() -> list[str]:
-    return sorted({*globals(), *_WHERE})
+__getattr__ = lazy_getattr(__name__, _WHERE)
