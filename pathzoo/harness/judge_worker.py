@@ -64,7 +64,7 @@ _clock = time.perf_counter
 
 
 def _launch_judge() -> "tuple[BaseProcess, Connection]":
-    """A new judge process, forked from the ``forkserver`` (spawned where there is none), and the harness's end of its pipe.
+    """A new judge process (a fork of the ``forkserver``; spawned where there is none) and our end of its pipe.
 
     With ``forkserver`` this returns once the server has forked it, so after
     the server's imports (:func:`~pathzoo.harness.launch.start_server`
