@@ -35,6 +35,7 @@ __all__ = [
     "lattice_slope_range",
     "segments_slope_range",
     "slope_exceeds",
+    "slope_limit_band",
     "MAX_PIECE_CELLS",
 ]
 
@@ -379,23 +380,42 @@ _CUT_MARGIN = 1e-6
 """Relative band around a limit's gradient inside which :func:`_angle_within` computes the angle itself."""
 
 
+def slope_limit_band(cell_size: float, limit_deg: float) -> tuple[float, float]:
+    """Gradients ``(below, above)`` that bracket a slope limit: what :func:`slope_exceeds` decides by comparison.
+
+    ``degrees(arctan2(grad, cell_size)) <= limit_deg`` holds for every
+    gradient below ``below`` and fails for every gradient above ``above``
+    (and for NaN); only gradients in ``[below, above]`` need the expression
+    itself. The angle grows with the gradient, so away from the gradient
+    ``cut`` of the limit a comparison with ``cut`` decides: the band is a
+    relative :data:`_CUT_MARGIN` around it, which moves the angle by at
+    least ``57.3 * sin(2 limit) / 2 * 1e-6`` degrees, some 1e-9 degrees for
+    limits between 0.001 and 89.999 degrees, far more than the rounding of
+    ``arctan2`` and ``degrees`` (about 1e-14 degrees). Other limits have no
+    such cut: when the angle of the largest finite gradient is within the
+    limit (a limit of 90 degrees), every finite gradient is, and only an
+    infinite one is left to the expression; otherwise, and for an unusual
+    cell size, every gradient is.
+    """
+    if not 0.0 < cell_size < math.inf:
+        return -math.inf, math.inf
+    if 0.001 <= limit_deg <= 89.999:
+        cut = cell_size * math.tan(math.radians(limit_deg))
+        return cut * (1.0 - _CUT_MARGIN), cut * (1.0 + _CUT_MARGIN)
+    steepest = np.degrees(np.arctan2(np.array([np.finfo(np.float64).max]), cell_size))[0]
+    return (math.inf, math.inf) if steepest <= limit_deg else (-math.inf, math.inf)
+
+
 def _angle_within(grad: np.ndarray, cell_size: float, limit_deg: float) -> np.ndarray:
     """``degrees(arctan2(grad, cell_size)) <= limit_deg`` elementwise (False for NaN), with the angle rarely computed.
 
-    The angle grows with the gradient, so away from the gradient ``cut`` of
-    the limit a comparison with ``cut`` decides. Only gradients within a
-    relative :data:`_CUT_MARGIN` of it get the angle's own expression: that
-    band moves the angle by at least ``57.3 * sin(2 limit) / 2 * 1e-6``
-    degrees, some 1e-9 degrees for the limits allowed here, far more than the
-    rounding of ``arctan2`` and ``degrees`` (about 1e-14 degrees), so every
-    answer is the expression's. Limits within 0.001 degrees of 0 or 90, or an
-    unusual cell size, take the expression everywhere.
+    Gradients outside :func:`slope_limit_band`'s band are decided by
+    comparison; only those inside get the angle's own expression, so every
+    answer is the expression's.
     """
+    below, above = slope_limit_band(cell_size, limit_deg)
     with np.errstate(invalid="ignore"):
-        if not (0.001 <= limit_deg <= 89.999 and 0.0 < cell_size < math.inf):
-            return np.degrees(np.arctan2(grad, cell_size)) <= limit_deg
-        cut = cell_size * math.tan(math.radians(limit_deg))
-        ok, near = _split_at_cut(np.ravel(grad), cut * (1.0 - _CUT_MARGIN), cut * (1.0 + _CUT_MARGIN))
+        ok, near = _split_at_cut(np.ravel(grad), below, above)
         ok[near] = np.degrees(np.arctan2(grad.ravel()[near], cell_size)) <= limit_deg
     return ok.reshape(grad.shape)
 
