@@ -25,7 +25,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from pathzoo.grid.segments import touched_cells_2d, touched_cells_3d
-from pathzoo.grid.terrain import segment_slope_range, segments_slope_range, slope_exceeds, slope_limit_band
+from pathzoo.grid.terrain import neighbour_slope_range, segments_slope_range, slope_exceeds, slope_limit_band
 
 if TYPE_CHECKING:
     from pathzoo.core.scenario import Scenario
@@ -195,8 +195,10 @@ def _move_verdicts(free_padded, dims, pads, touched_ptr, touched_shift, move_ok,
     ``touched_ptr[j]:touched_ptr[j + 1]``, the padded flat offsets of the
     cells its segment touches, all of which must be free. On terrain
     (``z``: the heights), the two heights must be finite and
-    :func:`pathzoo.grid.terrain.segment_slope_range` of the move's segment
-    (centre to centre, cell units; ``steps[j]`` = rows, columns) must lie
+    the gradient range of the move's segment from centre to centre
+    (:func:`pathzoo.grid.terrain.neighbour_slope_range`, the validator's
+    :func:`~pathzoo.grid.terrain.segment_slope_range` for these segments;
+    ``steps[j]`` = rows, columns) must lie
     below both limits' bands (:func:`pathzoo.grid.terrain.slope_limit_band`):
     the climb limit's for the greatest gradient, the descent limit's for the
     negated least. Returns the number of undecided moves.
@@ -228,9 +230,7 @@ def _move_verdicts(free_padded, dims, pads, touched_ptr, touched_shift, move_ok,
                         continue
                     if not math.isfinite(z_flat[c + shift[j]] - z_flat[c]):
                         continue
-                    x0 = col + 0.5
-                    y0 = r + 0.5
-                    lo, hi = segment_slope_range(z, x0, y0, x0 + steps[j, 1], y0 + steps[j, 0])
+                    lo, hi = neighbour_slope_range(z, r, col, steps[j, 0], steps[j, 1])
                     if hi < climb_band[0] and -lo < descent_band[0]:
                         verdict[c, j] = 1
                     elif hi <= climb_band[1] and -lo <= descent_band[1]:
@@ -329,7 +329,7 @@ def build_graph(scenario: "Scenario", allocate: "Callable[[str, type, int], np.n
                         for horiz, vert in runs], dtype=np.bool_)
     terrain = _on_terrain(scenario)
     z = np.ascontiguousarray(scenario.elevation, dtype=np.float64) if terrain else np.zeros((1, 1))
-    steps = offsets[:, -2:].astype(np.float64)  # rows, columns
+    steps = np.ascontiguousarray(offsets[:, -2:])  # rows, columns
     cell = float(scenario.cell_sizes[0])
     verdict = np.empty((blocked.size, len(offsets)), dtype=np.uint8)
     undecided = _move_verdicts(free_padded.ravel(), dims, pads, touched_ptr, np.concatenate(touched), move_ok, shift,

@@ -34,6 +34,7 @@ __all__ = [
     "path_slope_ranges",
     "lattice_slope_range",
     "segments_slope_range",
+    "neighbour_slope_range",
     "slope_exceeds",
     "slope_limit_band",
     "MAX_PIECE_CELLS",
@@ -242,6 +243,47 @@ def _crossing_t(k: int, end: int, step: int, a0: float, da: float) -> float:
 
 
 @numba.njit(cache=True)
+def neighbour_slope_range(z: np.ndarray, r: int, c: int, dr: int, dc: int) -> tuple[float, float]:
+    """:func:`segment_slope_range` of the move from the centre of cell ``(r, c)`` to its neighbour ``(r + dr, c + dc)``.
+
+    ``dr, dc`` in ``{-1, 0, 1}``, not both 0, and both cells inside the
+    grid. The same result bit for bit, the general path's arithmetic for
+    these segments only: the step between the two centres on a lattice
+    diagonal (:func:`_lattice_diagonal_range`), or the one piece of a
+    straight move, which lies in one patch on a centre line. The graph
+    builder calls it for every candidate edge.
+    """
+    h, w = z.shape
+    if dr != 0 and dc != 0:  # on a lattice diagonal: the step between the two centres, from left to right
+        if dc == 1:
+            g = 1.0 * (z[r + dr, c + dc] - z[r, c]) / math.sqrt(2.0)
+        else:
+            g = -1.0 * (z[r, c] - z[r + dr, c + dc]) / math.sqrt(2.0)
+        if not math.isfinite(g):
+            return math.nan, math.nan
+        return g, g
+    if dr == 0:  # along a row: the piece lies in patch (i, j) at v = 0
+        i, j = min(c, c + dc), r
+        g = 0.0 + (0.0 + (z[j, i + 1] - z[j, i]) * (1.0 - 0.0)) * float(dc)
+        vary_other = 0 < r < h - 1
+        ex, ey = float(dc), 0.0
+    else:  # along a column: patch (i, j) at u = 0
+        i, j = c, min(r, r + dr)
+        vary_other = 0 < c < w - 1
+        g = 0.0 + (0.0 + (z[j + 1, i] - z[j, i]) * (1.0 - 0.0)) * float(dr)
+        ex, ey = 0.0, float(dr)
+    if not math.isfinite(g):
+        return math.nan, math.nan
+    twist = 0.0
+    if vary_other:
+        twist = abs(z[j, i] + z[j + 1, i + 1] - z[j, i + 1] - z[j + 1, i])
+        if not math.isfinite(twist):
+            twist = 0.0
+    widen = 2.0 * _EPS * twist * (abs(ex) + abs(ey))
+    return g - widen, g + widen
+
+
+@numba.njit(cache=True)
 def segment_slope_range(z: np.ndarray, x0: float, y0: float, x1: float, y1: float) -> tuple[float, float]:
     """Least and greatest ground gradient along a segment (height units per cell travelled).
 
@@ -255,7 +297,25 @@ def segment_slope_range(z: np.ndarray, x0: float, y0: float, x1: float, y1: floa
     the margin times the patch's twist) is added to both ends. NaN when the
     segment uses a height that is missing. A zero-length segment has range
     ``(0, 0)``.
+
+    A segment between the centres of two neighbouring cells (the graph's
+    moves) takes a shortcut, :func:`neighbour_slope_range`, with the same
+    result bit for bit (``tests/core/test_validation.py`` compares the two
+    on every move of several terrains).
     """
+    h, w = z.shape
+    dx, dy = x1 - x0, y1 - y0
+    c, r = x0 - 0.5, y0 - 0.5
+    if (abs(dx) == 1.0 or dx == 0.0) and (abs(dy) == 1.0 or dy == 0.0) and (dx != 0.0 or dy != 0.0) \
+            and c == math.floor(c) and r == math.floor(r) and 0.0 <= min(c, c + dx) and max(c, c + dx) <= w - 1.0 \
+            and 0.0 <= min(r, r + dy) and max(r, r + dy) <= h - 1.0:
+        return neighbour_slope_range(z, int(r), int(c), int(dy), int(dx))
+    return _segment_slope_range(z, x0, y0, x1, y1)
+
+
+@numba.njit(cache=True)
+def _segment_slope_range(z: np.ndarray, x0: float, y0: float, x1: float, y1: float) -> tuple[float, float]:
+    # the general path of segment_slope_range
     h, w = z.shape
     dx, dy = x1 - x0, y1 - y0
     length = math.hypot(dx, dy)
