@@ -259,6 +259,7 @@ def load_case(
     rows, cols, source = CASES[case]
     elevation, cell, record = source_dem(source)
     resampled, new_cell, how = resample_to(elevation, cell, (rows, cols))
+    resampled.setflags(write=False)  # the scenario keeps this array rather than a copy
     meta = pack_metadata(
         "ggaco",
         PACK_VERSION,
