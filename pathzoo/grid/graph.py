@@ -140,8 +140,7 @@ def _touched(offset: np.ndarray) -> np.ndarray:
 
 def _shift(off: np.ndarray, shape: tuple[int, ...]) -> int:
     """Flat-id difference between a cell and its neighbour by move ``off`` (row-major)."""
-    strides = [int(np.prod(shape[i + 1 :])) for i in range(len(shape))]
-    return int(np.dot(off, strides))
+    return sum(int(d) * math.prod(shape[i + 1 :]) for i, d in enumerate(off))
 
 
 def _on_terrain(scenario: "Scenario") -> bool:

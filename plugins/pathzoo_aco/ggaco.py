@@ -45,10 +45,13 @@ __all__ = ["GGACO", "GgacoState"]
 
 @dataclass
 class GgacoState(ColonyState):
-    """Colony state plus the lengths and slopes of the latest colony's walked edges (its costs and deposits share them)."""
+    """Colony state plus the lengths, slopes and energies of the latest colony's walked edges.
+
+    The colony's costs (eq. 6) and deposits (eq. 18) both need them.
+    """
 
     geometry_of: Walks | None = None
-    geometry: tuple[np.ndarray, np.ndarray] | None = None
+    geometry: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
 
 
 class GGACO(AntColonyPlanner):
@@ -127,10 +130,15 @@ class GGACO(AntColonyPlanner):
         return GgacoState(problem, rules, trail, rng)
 
     @staticmethod
-    def walked_geometry(state: GgacoState, walks: Walks) -> tuple[np.ndarray, np.ndarray]:
-        """3-D lengths and slopes of the walked edges (:meth:`ColonyProblem.walk_geometry`), once per colony."""
+    def walked_geometry(state: GgacoState, walks: Walks) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """3-D lengths, slopes and energies (eq. 6) of the walked edges, computed once per colony.
+
+        Lengths and slopes come from :meth:`ColonyProblem.walk_geometry`.
+        """
         if state.geometry_of is not walks:
-            state.geometry_of, state.geometry = walks, state.problem.walk_geometry(walks.flat, walks.offsets)
+            length, slope = state.problem.walk_geometry(walks.flat, walks.offsets)
+            energy = state.problem.scenario.vehicle.segment_energy(length, slope)
+            state.geometry_of, state.geometry = walks, (length, slope, energy)
         return state.geometry
 
     @staticmethod
@@ -144,16 +152,17 @@ class GGACO(AntColonyPlanner):
         g = problem.graph
         return self.deposit_of(problem, g.length[edges], g.slope[edges])
 
-    def deposit_of(self, problem: ColonyProblem, length: np.ndarray, slope: np.ndarray) -> np.ndarray:
-        """Eq. 18 for edges of the given 3-D lengths and slopes (eq. 17's ``d``, eq. 6's ``E``)."""
-        energy = np.maximum(problem.scenario.vehicle.segment_energy(length, slope), self.energy_floor_j)
-        return 1.0 / (length * (1.0 + problem.tangent_from(slope))) + 1.0 / energy
+    def deposit_of(self, problem: ColonyProblem, length: np.ndarray, slope: np.ndarray,
+                   energy: np.ndarray | None = None) -> np.ndarray:
+        """Eq. 18 for edges of the given 3-D lengths and slopes (eq. 17's ``d``, eq. 6's ``E``, unless given)."""
+        if energy is None:
+            energy = problem.scenario.vehicle.segment_energy(length, slope)
+        return 1.0 / (length * (1.0 + problem.tangent_from(slope))) + 1.0 / np.maximum(energy, self.energy_floor_j)
 
     def walk_costs(self, state: GgacoState, walks: Walks) -> np.ndarray:
         """Energy (J, eq. 6) or length (m, eq. 5) of each walk (computed for the walked edges only)."""
         if self.objective == "energy":
-            length, slope = self.walked_geometry(state, walks)
-            return walks.sums(state.problem.scenario.vehicle.segment_energy(length, slope))
+            return walks.sums(self.walked_geometry(state, walks)[2])
         return walks.totals(state.problem.graph.length)
 
     def update_trail(self, state: GgacoState, walks: Walks, costs: np.ndarray) -> None:
