@@ -1,7 +1,7 @@
 """On-disk cache of large neighbourhood graphs: memory-mapped ``.npy`` files keyed by the scenario's digest.
 
-Building the graph of a 2569 x 1919 terrain takes about 10 s and 2 GB; every
-worker process of an experiment would do it again. :func:`cached_graph`
+Building the graph of a 2569 x 1919 terrain takes a few seconds and 0.8 GB;
+every worker process of an experiment would do it again. :func:`cached_graph`
 stores the CSR arrays of a graph with at least :data:`MIN_CELLS` cells once,
 under ``<cache>/graphs/<digest>/``, and later loads them memory-mapped and
 read-only, so the operating system shares one copy of the pages between all
@@ -17,8 +17,9 @@ processes and the graph costs no build time.
   :mod:`pathzoo.grid.terrain` and :mod:`pathzoo.core.tolerances`,
   so a changed scenario or a changed edge rule gets a new entry. Old entries
   are never read again and may be deleted at any time.
-- Writers save into a private temporary directory and rename it into place,
-  so concurrent workers never read a half-written entry.
+- A new entry is built straight into memory-mapped files in a private
+  temporary directory, which is then renamed into place, so concurrent
+  workers never read a half-written entry.
 
 See ``docs/graph-cache.md``.
 """
