@@ -110,7 +110,11 @@ def _npy_file(path: Path, dtype: type, size: int) -> np.ndarray:
         np.lib.format.write_array_header_1_0(out, header)
         offset = out.tell()
         if size:
-            os.posix_fallocate(out.fileno(), 0, offset + size * np.dtype(dtype).itemsize)
+            total = offset + size * np.dtype(dtype).itemsize
+            if hasattr(os, "posix_fallocate"):
+                os.posix_fallocate(out.fileno(), 0, total)
+            else:  # nothing reserves the space on this system: a full disk would fault while the graph is written
+                out.truncate(total)
     if not size:
         return np.empty(0, dtype)
     return np.asarray(np.memmap(path, dtype=dtype, mode="r+", offset=offset, shape=(size,)))
