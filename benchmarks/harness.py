@@ -20,7 +20,9 @@ printed first, and the CPU figures are the ones to compare.
   Measured twice on a fresh numba cache: empty, then warmed by the first
   attempt (the target's figure). Printed with the CPU seconds the command's
   process tree had used by its first stored run: the harness, the fork
-  server (numba and every plugin), the judge (numba again), the workers.
+  server (numpy, numba, scipy and pathzoo's shared code, numba's start-up),
+  and its forks, the judge and the workers (each worker imports its own
+  planners).
 - *default experiment, cold*: ``pathzoo run`` of the bundled default
   experiment with an empty ``NUMBA_CACHE_DIR``, so every numba function is
   compiled during the run.

@@ -4,6 +4,8 @@ Run from the repository root (``../shared`` must sit beside it)::
 
     python benchmarks/speed.py            # every row (ggaco.case1 runs 1000 iterations: a few minutes)
     python benchmarks/speed.py --quick    # without ggaco.case1 and gant.simple.1
+    python benchmarks/speed.py --only ggaco,dsaco   # some sections only (see --help)
+    python benchmarks/speed.py --only planners --rows fgdaco   # the planner rows whose label contains "fgdaco"
 
 Times are CPU seconds (``time.process_time``) of one ``plan()`` call, the
 median of ``--repeats`` calls, so other processes on a shared machine
@@ -286,21 +288,45 @@ def dsaco_all_in() -> None:
                       f"| {total:.3f} s | 0.04 s | {'yes' if total <= 0.04 else 'no'} |", flush=True)
 
 
+SECTIONS = ("planners", "as", "astar", "list", "dsaco", "ggaco")
+"""Parts of the table, in the order they are printed (``--only``)."""
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="skip ggaco.case1 and gant.simple.1")
     parser.add_argument("--repeats", type=positive_int, default=3, help="warm plan() calls per row (median)")
     parser.add_argument("--astar-problems", type=positive_int, default=8, help="8room_000 problems for the A* rows")
+    parser.add_argument("--only", type=_sections, default=SECTIONS, metavar="SECTIONS",
+                        help=f"comma-separated parts to run, of: {', '.join(SECTIONS)} (default: all)")
+    parser.add_argument("--rows", metavar="TEXT", default="",
+                        help="in the planners section, only the rows whose label contains TEXT (e.g. fgdaco)")
     args = parser.parse_args()
     print(f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} CPUs; CPU seconds of one plan()\n")
-    planner_rows(ROWS + (() if args.quick else BIG_ROWS), args.repeats)
+    if "planners" in args.only:
+        rows = ROWS + (() if args.quick else BIG_ROWS)
+        planner_rows(tuple(row for row in rows if args.rows in row[0]), args.repeats)
     print("\n| figure | measured | target | met |\n|---|---|---|---|")
-    as_throughput(args.repeats)
-    astar_against_pathfinding(args.astar_problems)
-    list_planners_time()
-    dsaco_all_in()
-    if not args.quick:
+    if "as" in args.only:
+        as_throughput(args.repeats)
+    if "astar" in args.only:
+        astar_against_pathfinding(args.astar_problems)
+    if "list" in args.only:
+        list_planners_time()
+    if "dsaco" in args.only:
+        dsaco_all_in()
+    if "ggaco" in args.only and not args.quick:
         ggaco_case1()
+
+
+def _sections(text: str) -> tuple[str, ...]:
+    """``--only``'s value: known section names, or a usage error."""
+    chosen = tuple(part.strip() for part in text.split(",") if part.strip())
+    unknown = [part for part in chosen if part not in SECTIONS]
+    if unknown or not chosen:
+        raise argparse.ArgumentTypeError(f"unknown section(s) {', '.join(unknown) or '(none)'}; "
+                                         f"choose from {', '.join(SECTIONS)}")
+    return chosen
 
 
 if __name__ == "__main__":

@@ -10,41 +10,37 @@ The public API is small:
 
 from __future__ import annotations
 
-from importlib.metadata import PackageNotFoundError, version
+import functools
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Iterable, Sequence
 
-from pathzoo.core import (
-    Budget,
-    InvalidExperimentError,
-    InvalidParameterError,
-    InvalidScenarioError,
-    Metric,
-    MovingObstacle,
-    Param,
-    PathzooError,
-    Planner,
-    PlanResult,
-    RunRecord,
-    RunStatus,
-    Scenario,
-    Status,
-    TerrainRules,
-    UnknownPluginError,
-    UnsupportedScenarioError,
-    VehicleModel,
-)
-from pathzoo.plugins.entries import LazyMetric, LazyPlanner, PluginEntry, ScenarioEntry
-from pathzoo.io.paths import looks_like_path
-from pathzoo.plugins.hookspecs import hookimpl
+from pathzoo.lazy_names import lazy_getattr
 
 if TYPE_CHECKING:
     import pandas as pd
 
-try:
-    __version__ = version("pathzoo")
-except PackageNotFoundError:  # running from a source tree
-    __version__ = "0.0.0+unknown"
+    from pathzoo.core import (
+        Budget,
+        InvalidExperimentError,
+        InvalidParameterError,
+        InvalidScenarioError,
+        Metric,
+        MovingObstacle,
+        Param,
+        PathzooError,
+        Planner,
+        PlanResult,
+        RunRecord,
+        RunStatus,
+        Scenario,
+        Status,
+        TerrainRules,
+        UnknownPluginError,
+        UnsupportedScenarioError,
+        VehicleModel,
+    )
+    from pathzoo.plugins.entries import LazyMetric, LazyPlanner, PluginEntry, ScenarioEntry
+    from pathzoo.plugins.hookspecs import hookimpl
 
 __all__ = [
     "Budget",
@@ -78,6 +74,39 @@ __all__ = [
     "__version__",
 ]
 
+_WHERE = {
+    **{name: "pathzoo.core" for name in ("Budget", "InvalidExperimentError", "InvalidParameterError",
+                                         "InvalidScenarioError", "Metric", "MovingObstacle", "Param", "PathzooError",
+                                         "PlanResult", "Planner", "RunRecord", "RunStatus", "Scenario", "Status",
+                                         "TerrainRules", "UnknownPluginError", "UnsupportedScenarioError",
+                                         "VehicleModel")},
+    **{name: "pathzoo.plugins.entries" for name in ("LazyMetric", "LazyPlanner", "PluginEntry", "ScenarioEntry")},
+    "hookimpl": "pathzoo.plugins.hookspecs",
+}
+
+
+@functools.cache
+def _installed_version() -> str:
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        return version("pathzoo")
+    except PackageNotFoundError:  # running from a source tree
+        return "0.0.0+unknown"
+
+
+_public = lazy_getattr(__name__, _WHERE)
+
+
+def __getattr__(name: str) -> Any:
+    """The public classes and ``__version__``, loaded on first use (PEP 562).
+
+    ``import pathzoo`` alone then imports neither numpy nor pluggy nor
+    :mod:`importlib.metadata`, so ``pathzoo run`` can start its fork server
+    at once (:func:`pathzoo.harness.launch.start_server`).
+    """
+    return _installed_version() if name == "__version__" else _public(name)
+
 
 def load_scenario(id_or_path: str | Path) -> Scenario:
     """Load one scenario by registered id or from a file.
@@ -95,6 +124,9 @@ def load_scenario(id_or_path: str | Path) -> Scenario:
     InvalidScenarioError
         The file is malformed; the message names the file and field.
     """
+    from pathzoo.core.errors import UnknownPluginError
+    from pathzoo.io.paths import looks_like_path
+
     text = str(id_or_path)
     if isinstance(id_or_path, Path) or looks_like_path(text):
         from pathzoo.io import load_scenario_file
@@ -116,6 +148,8 @@ def load_scenarios(path: str | Path) -> list[Scenario]:
     length as ``reference_length``); a scenario TOML gives one; a glob pattern
     of registered ids (``"movingai.arena.*"``) gives every match.
     """
+    from pathzoo.io.paths import looks_like_path
+
     text = str(path)
     if isinstance(path, Path) or looks_like_path(text):
         from pathzoo.io import load_scenario_files

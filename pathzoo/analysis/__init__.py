@@ -10,11 +10,9 @@ stays light (scipy.stats and matplotlib load only when needed).
 
 from __future__ import annotations
 
-import importlib
-from typing import Any
-
 from pathzoo.analysis.leaderboard import format_leaderboard, leaderboard
 from pathzoo.analysis.summary import summarize, summarize_metrics
+from pathzoo.lazy_names import lazy_getattr
 
 _LAZY = {
     "pairwise_tests": "pathzoo.analysis.stats",
@@ -31,7 +29,4 @@ _LAZY = {
 __all__ = ["leaderboard", "format_leaderboard", "summarize", "summarize_metrics", *_LAZY]
 
 
-def __getattr__(name: str) -> Any:
-    if name in _LAZY:
-        return getattr(importlib.import_module(_LAZY[name]), name)
-    raise AttributeError(f"module 'pathzoo.analysis' has no attribute {name!r}")
+__getattr__ = lazy_getattr(__name__, _LAZY)

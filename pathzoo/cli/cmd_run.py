@@ -76,13 +76,9 @@ def _harness_info_on_stderr() -> Iterator[None]:
 
 def _run(args: argparse.Namespace) -> int:
     executor = executor_of(args)
-    from pathzoo.harness.judge_worker import start_judge
+    from pathzoo.harness.launch import start_server
 
-    start_judge()  # the judge process and the workers' server import while this process reads the experiment
-    if executor == "process":
-        from pathzoo.harness.launch import start_server
-
-        start_server()
+    start_server()  # it imports while this process reads the experiment; the judge and the workers are its forks
     with ExitStack() as stack:
         if args.experiment is None:
             path = stack.enter_context(resources.as_file(resources.files("pathzoo.experiments") / "default.toml"))

@@ -18,14 +18,14 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from functools import cached_property
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Callable
 
 import numba
 import numpy as np
 import scipy.sparse as sp
 
 from pathzoo.grid.segments import touched_cells_2d, touched_cells_3d
-from pathzoo.grid.terrain import segments_slope_range, slope_exceeds
+from pathzoo.grid.terrain import neighbour_slope_range, segments_slope_range, slope_exceeds, slope_limit_band
 
 if TYPE_CHECKING:
     from pathzoo.core.scenario import Scenario
@@ -138,122 +138,233 @@ def _touched(offset: np.ndarray) -> np.ndarray:
     return touched_cells_3d(np.array([0.5, 0.5, 0.5]), np.array([0.5 + dx, 0.5 + dy, 0.5 + dz]))
 
 
-def _move_cells(scenario: "Scenario", off: np.ndarray, free_padded: np.ndarray, pad: int) -> np.ndarray:
-    """Flat ids of the cells that may make one move: every touched cell free and, on terrain, the slope allowed.
-
-    On terrain the slope test (:func:`pathzoo.grid.terrain.segments_slope_range`,
-    the validator's own rule and the costly part of the build) runs only for
-    the cells that pass the geometric test, with the same segment end points
-    :func:`pathzoo.grid.terrain.lattice_slope_range` would use for them.
-    """
-    shape = scenario.blocked.shape
-    vehicle = scenario.vehicle
-    ok = np.ones(shape, dtype=bool)
-    for rel in _touched(off):
-        ok &= free_padded[tuple(slice(pad + r, pad + r + s) for r, s in zip(rel, shape))]
-    cells = np.flatnonzero(ok)
-    if len(shape) == 3:
-        step = off * scenario.cell_sizes[::-1]
-        pitch = math.degrees(math.atan2(abs(float(step[0])), float(np.hypot(step[-1], step[-2]))))
-        return cells[:0] if pitch > vehicle.max_pitch_deg else cells
-    if scenario.elevation is None or scenario.kind != "terrain":
-        return cells
-    elev = scenario.elevation.ravel()
-    cells = cells[np.isfinite(elev[cells + _shift(off, shape)] - elev[cells])]
-    keep = np.empty(len(cells), dtype=bool)
-    block = 1 << 20  # the slope test's coordinates and ranges for a block of cells at a time (bounded memory)
-    for lo in range(0, len(cells), block):
-        part = cells[lo : lo + block]
-        src = np.empty((len(part), 2))
-        src[:, 0] = part % shape[1]
-        src[:, 1] = part // shape[1]
-        src += 0.5
-        dst = src + np.array([off[1], off[0]], dtype=np.float64)
-        grad_lo, grad_hi = segments_slope_range(scenario.elevation, src, dst)
-        with np.errstate(invalid="ignore"):
-            keep[lo : lo + len(part)] = ~slope_exceeds(grad_lo, grad_hi, float(scenario.cell_sizes[0]), vehicle)
-    return cells[keep]
-
-
 def _shift(off: np.ndarray, shape: tuple[int, ...]) -> int:
     """Flat-id difference between a cell and its neighbour by move ``off`` (row-major)."""
-    strides = [int(np.prod(shape[i + 1 :])) for i in range(len(shape))]
-    return int(np.dot(off, strides))
+    return sum(int(d) * math.prod(shape[i + 1 :]) for i, d in enumerate(off))
+
+
+def _on_terrain(scenario: "Scenario") -> bool:
+    """Whether edges get the ground's heights (lengths, slopes and the slope limits)."""
+    return scenario.elevation is not None and scenario.kind == "terrain"
+
+
+def _move_run(scenario: "Scenario", off: np.ndarray) -> tuple[float, float]:
+    """Horizontal and vertical run in metres of one move (vertical 0 on 2-D maps: the ground's rise is separate)."""
+    step = off * scenario.cell_sizes[::-1]  # array-axis order
+    return float(np.hypot(step[-1], step[-2])), float(step[0]) if len(off) == 3 else 0.0
 
 
 def move_values(scenario: "Scenario", off: np.ndarray, cells: np.ndarray
                 ) -> tuple[np.ndarray | float, np.ndarray | float]:
     """3-D length and signed slope of one move from each of ``cells`` (one number for every cell off terrain).
 
-    The builder fills ``GridGraph.length`` and ``GridGraph.slope`` with it, so
-    for an edge of the graph it gives exactly the stored values. The move must
-    be allowed from every cell given (on terrain both heights are finite).
+    :func:`build_graph` fills ``GridGraph.length`` and ``GridGraph.slope``
+    with the same expressions, so for an edge of the graph it gives exactly
+    the stored values. The move must be allowed from every cell given (on
+    terrain both heights are finite).
     """
-    step = off * scenario.cell_sizes[::-1]  # array-axis order
-    horiz = float(np.hypot(step[-1], step[-2]))
+    horiz, vert = _move_run(scenario, off)
     if len(off) == 3:
-        vert = float(step[0])
         return math.sqrt(horiz**2 + vert**2), math.atan2(vert, horiz)
-    if scenario.elevation is not None and scenario.kind == "terrain":
+    if _on_terrain(scenario):
         elev = scenario.elevation.ravel()
-        dz = elev[cells + _shift(off, scenario.blocked.shape)] - elev[cells]  # finite: _move_cells checked it
-        return np.sqrt(horiz**2 + dz**2), np.arctan2(dz, horiz)
+        dz = elev[cells + _shift(off, scenario.blocked.shape)] - elev[cells]  # finite: the builder checked it
+        return np.sqrt(horiz**2 + dz**2), _terrain_slope(dz, horiz)
     return horiz, 0.0
 
 
+def _terrain_slope(dz: np.ndarray, horiz: float) -> np.ndarray:
+    """Signed slope of terrain edges of one move from their rises (a contiguous array) and the move's run."""
+    return np.arctan2(dz, horiz)
+
+
+_UNDECIDED = 2
+"""A move's verdict in :func:`_move_verdicts` when the slope limits need the angle expression itself."""
+
+
 @numba.njit(cache=True)
-def _place_edges(filled, cells, shift, move, move_length, move_slope, indices, length, slope, offset_id):
-    """Write one move's edges into the next free slot of each of ``cells`` (one value or one per cell for length, slope)."""
-    per_cell = move_length.size > 1
-    for i in range(cells.size):
-        c = cells[i]
-        e = filled[c]
-        filled[c] = e + 1
-        indices[e] = c + shift
-        length[e] = move_length[i if per_cell else 0]
-        slope[e] = move_slope[i if per_cell else 0]
-        offset_id[e] = move
+def _move_verdicts(free_padded, dims, pads, touched_ptr, touched_shift, move_ok, shift, terrain, z, steps,
+                   climb_band, descent_band, verdict):
+    """Per cell and move: 1 an edge, 0 none, :data:`_UNDECIDED` when the slope verdict needs the angle expression.
+
+    ``free_padded`` is the flat free-cell grid padded by ``pads`` cells
+    (layers, rows, columns) on each side (``dims``: layers, rows, columns
+    of the unpadded grid; 2-D maps are one layer, padded by none);
+    ``touched_shift`` holds, for move ``j`` at
+    ``touched_ptr[j]:touched_ptr[j + 1]``, the padded flat offsets of the
+    cells its segment touches, all of which must be free. On terrain
+    (``z``: the heights), the two heights must be finite and
+    the gradient range of the move's segment from centre to centre
+    (:func:`pathzoo.grid.terrain.neighbour_slope_range`, the validator's
+    :func:`~pathzoo.grid.terrain.segment_slope_range` for these segments;
+    ``steps[j]`` = rows, columns) must lie
+    below both limits' bands (:func:`pathzoo.grid.terrain.slope_limit_band`):
+    the climb limit's for the greatest gradient, the descent limit's for the
+    negated least. Returns the number of undecided moves.
+    """
+    n_layers, h, w = dims[0], dims[1], dims[2]
+    hp = h + 2 * pads[1]
+    wp = w + 2 * pads[2]
+    z_flat = z.ravel()
+    k = move_ok.size
+    undecided = 0
+    c = 0
+    for layer in range(n_layers):
+        for r in range(h):
+            q = ((layer + pads[0]) * hp + r + pads[1]) * wp + pads[2]
+            for col in range(w):
+                for j in range(k):
+                    verdict[c, j] = 0
+                    if not move_ok[j]:
+                        continue
+                    free = True
+                    for m in range(touched_ptr[j], touched_ptr[j + 1]):
+                        if not free_padded[q + touched_shift[m]]:
+                            free = False
+                            break
+                    if not free:
+                        continue
+                    if not terrain:
+                        verdict[c, j] = 1
+                        continue
+                    if not math.isfinite(z_flat[c + shift[j]] - z_flat[c]):
+                        continue
+                    lo, hi = neighbour_slope_range(z, r, col, steps[j, 0], steps[j, 1])
+                    if hi < climb_band[0] and -lo < descent_band[0]:
+                        verdict[c, j] = 1
+                    elif hi <= climb_band[1] and -lo <= descent_band[1]:
+                        verdict[c, j] = _UNDECIDED
+                        undecided += 1
+                q += 1
+                c += 1
+    return undecided
 
 
-def build_graph(scenario: "Scenario") -> GridGraph:
-    """Build the neighbourhood graph of a scenario (vectorised over cells, one move at a time).
+@numba.njit(cache=True)
+def _count_edges(verdict, indptr):
+    """``indptr`` of the CSR arrays from the verdicts (each 0 or 1)."""
+    indptr[0] = 0
+    total = 0
+    for c in range(verdict.shape[0]):
+        for j in range(verdict.shape[1]):
+            total += verdict[c, j]
+        indptr[c + 1] = total
+
+
+@numba.njit(cache=True)
+def _write_edges(verdict, lo, hi, first, shift, terrain, z_flat, run2, move_length, move_slope,
+                 indices, length, slope, offset_id, rise, rise_at, rise_count):
+    """Write the edges of cells ``lo:hi`` from slot ``first`` on, in cell order and move order within a cell.
+
+    Off terrain each move's length and slope are ``move_length[j]``,
+    ``move_slope[j]``. On terrain the length is ``sqrt(run2[j] + dz**2)``
+    (``run2``: the squared horizontal run) and the rise ``dz`` of each edge
+    is gathered per move into ``rise[j, :rise_count[j]]`` with its slot in
+    ``rise_at``: the slopes are computed from them per move afterwards.
+    Returns the slot after the last edge written.
+    """
+    e = first
+    rise_count[:] = 0
+    for c in range(lo, hi):
+        for j in range(verdict.shape[1]):
+            if verdict[c, j] == 0:
+                continue
+            t = c + shift[j]
+            indices[e] = t
+            offset_id[e] = j
+            if terrain:
+                dz = z_flat[t] - z_flat[c]
+                length[e] = math.sqrt(run2[j] + dz * dz)
+                m = rise_count[j]
+                rise[j, m] = dz
+                rise_at[j, m] = e
+                rise_count[j] = m + 1
+            else:
+                length[e] = move_length[j]
+                slope[e] = move_slope[j]
+            e += 1
+    return e
+
+
+def build_graph(scenario: "Scenario", allocate: "Callable[[str, type, int], np.ndarray] | None" = None) -> GridGraph:
+    """Build the neighbourhood graph of a scenario (two compiled passes over the cells).
 
     Runs once per scenario; :attr:`Scenario.graph` caches it (large graphs
-    on disk, :mod:`pathzoo.grid.graph_cache`). A first pass over the moves
-    finds each move's cells (the slope test, the costly part, once per
-    candidate edge) and keeps them as one boolean per cell and move; a
-    second fills the CSR arrays in place, computing lengths and slopes for
-    the edges only. No (cells x moves) table of values is ever held.
+    on disk, :mod:`pathzoo.grid.graph_cache`). The first pass decides every
+    cell's moves (:func:`_move_verdicts`: free touched cells, and on terrain
+    the validator's exact slope test, once per candidate edge), one byte per
+    cell and move; the few slope verdicts a comparison cannot settle get
+    :func:`pathzoo.grid.terrain.slope_exceeds` itself. The second writes the
+    CSR arrays in order (:func:`_write_edges`), with lengths and slopes by
+    :func:`move_values`'s expressions.
+
+    Parameters
+    ----------
+    scenario : Scenario
+        The map, its heights and the vehicle.
+    allocate : callable, optional
+        ``allocate(name, dtype, size)`` returns the writable one-dimensional
+        array to fill for ``indptr``, ``indices``, ``length``, ``slope`` and
+        ``offset_id`` (the graph cache hands out memory-mapped files);
+        ``numpy.empty`` by default.
     """
+    if allocate is None:
+        allocate = _allocate_in_memory
     blocked = scenario.blocked
     shape = blocked.shape
-    ndim = blocked.ndim
-    offsets = neighbour_offsets(ndim, scenario.max_step)
+    offsets = neighbour_offsets(blocked.ndim, scenario.max_step)
     pad = int(np.abs(offsets).max())
     free_padded = np.pad(~blocked, pad, constant_values=False)
-    n = blocked.size
-    k = len(offsets)
-    valid = np.zeros((k, n), dtype=bool)  # move-major: each move's row is contiguous
-    for j, off in enumerate(offsets):
-        valid[j, _move_cells(scenario, off, free_padded, pad)] = True
+    dims = np.array((1, *shape) if blocked.ndim == 2 else shape, dtype=np.int64)
+    pads = np.array((0, pad, pad) if blocked.ndim == 2 else (pad, pad, pad), dtype=np.int64)
+    padded_strides = np.array([int(np.prod(free_padded.shape[i + 1 :])) for i in range(blocked.ndim)], dtype=np.int64)
+    touched = [_touched(off) @ padded_strides for off in offsets]
+    touched_ptr = np.zeros(len(offsets) + 1, dtype=np.int64)
+    np.cumsum([len(t) for t in touched], out=touched_ptr[1:])
+    shift = np.array([_shift(off, shape) for off in offsets], dtype=np.int64)
+    vehicle = scenario.vehicle
+    runs = [_move_run(scenario, off) for off in offsets]
+    move_ok = np.array([math.degrees(math.atan2(abs(vert), horiz)) <= vehicle.max_pitch_deg if len(shape) == 3 else True
+                        for horiz, vert in runs], dtype=np.bool_)
+    terrain = _on_terrain(scenario)
+    z = np.ascontiguousarray(scenario.elevation, dtype=np.float64) if terrain else np.zeros((1, 1))
+    steps = np.ascontiguousarray(offsets[:, -2:])  # rows, columns
+    cell = float(scenario.cell_sizes[0])
+    verdict = np.empty((blocked.size, len(offsets)), dtype=np.uint8)
+    undecided = _move_verdicts(free_padded.ravel(), dims, pads, touched_ptr, np.concatenate(touched), move_ok, shift,
+                               terrain, z, steps, np.array(slope_limit_band(cell, vehicle.max_climb_deg)),
+                               np.array(slope_limit_band(cell, vehicle.max_descent_deg)), verdict)
     del free_padded
-    degree = valid.sum(axis=0)
-    indptr = np.zeros(n + 1, dtype=np.int64)
-    np.cumsum(degree, out=indptr[1:])
-    del degree
+    if undecided:
+        cells, moves = np.nonzero(verdict == _UNDECIDED)
+        src = np.empty((len(cells), 2))
+        src[:, 0] = cells % shape[1]
+        src[:, 1] = cells // shape[1]
+        src += 0.5
+        grad_lo, grad_hi = segments_slope_range(z, src, src + steps[moves][:, ::-1])
+        verdict[cells, moves] = ~slope_exceeds(grad_lo, grad_hi, cell, vehicle)
+    indptr = allocate("indptr", np.int64, blocked.size + 1)
+    _count_edges(verdict, indptr)
     n_edges = int(indptr[-1])
-    indices = np.empty(n_edges, dtype=np.int64)
-    length = np.empty(n_edges)
-    slope = np.empty(n_edges)
-    offset_id = np.empty(n_edges, dtype=np.int16)
-    # the target cell is always among the touched cells, so ``valid`` already
-    # excludes moves that leave the grid and a flat shift gives the target id
-    filled = indptr[:-1].copy()  # next free edge slot of every node: edges are in move order within a node
-    for j, off in enumerate(offsets):
-        cells = np.flatnonzero(valid[j])
-        move_length, move_slope = move_values(scenario, off, cells)
-        _place_edges(filled, cells, _shift(off, shape), j, np.atleast_1d(move_length), np.atleast_1d(move_slope),
-                     indices, length, slope, offset_id)
+    indices = allocate("indices", np.int64, n_edges)
+    length = allocate("length", np.float64, n_edges)
+    slope = allocate("slope", np.float64, n_edges)
+    offset_id = allocate("offset_id", np.int16, n_edges)
+    if terrain:
+        values = np.zeros((2, len(offsets)))
+    else:
+        values = np.array([move_values(scenario, off, shift[:0]) for off in offsets], dtype=np.float64).T
+    run2 = np.array([horiz**2 for horiz, _ in runs])  # as move_values squares it
+    block = _WRITE_BLOCK if terrain else blocked.size
+    rise = np.empty((len(offsets), block if terrain else 0))
+    rise_at = np.empty(rise.shape, dtype=np.int64)
+    rise_count = np.zeros(len(offsets), dtype=np.int64)
+    edge = 0
+    for lo in range(0, blocked.size, block):
+        edge = _write_edges(verdict, lo, min(lo + block, blocked.size), edge, shift, terrain, z.ravel(), run2,
+                            values[0], values[1], indices, length, slope, offset_id, rise, rise_at, rise_count)
+        for j in np.flatnonzero(rise_count):
+            slope[rise_at[j, : rise_count[j]]] = _terrain_slope(rise[j, : rise_count[j]], runs[j][0])
     graph = GridGraph(
         shape=tuple(shape),
         indptr=indptr,
@@ -262,8 +373,17 @@ def build_graph(scenario: "Scenario") -> GridGraph:
         slope=slope,
         offset_id=offset_id,
         offsets=offsets,
-        vehicle=scenario.vehicle,
+        vehicle=vehicle,
     )
     for arr in (graph.indptr, graph.indices, graph.length, graph.slope, graph.offset_id):
         arr.setflags(write=False)
     return graph
+
+
+_WRITE_BLOCK = 1 << 16
+"""Cells whose terrain edges :func:`build_graph` writes at a time (bounds the per-move rise buffers)."""
+
+
+def _allocate_in_memory(name: str, dtype: type, size: int) -> np.ndarray:
+    """:func:`build_graph`'s default allocator: an uninitialised array in memory."""
+    return np.empty(size, dtype=dtype)

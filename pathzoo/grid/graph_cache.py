@@ -1,7 +1,7 @@
 """On-disk cache of large neighbourhood graphs: memory-mapped ``.npy`` files keyed by the scenario's digest.
 
-Building the graph of a 2569 x 1919 terrain takes about 10 s and 2 GB; every
-worker process of an experiment would do it again. :func:`cached_graph`
+Building the graph of a 2569 x 1919 terrain takes a few seconds and 0.8 GB;
+every worker process of an experiment would do it again. :func:`cached_graph`
 stores the CSR arrays of a graph with at least :data:`MIN_CELLS` cells once,
 under ``<cache>/graphs/<digest>/``, and later loads them memory-mapped and
 read-only, so the operating system shares one copy of the pages between all
@@ -17,8 +17,9 @@ processes and the graph costs no build time.
   :mod:`pathzoo.grid.terrain` and :mod:`pathzoo.core.tolerances`,
   so a changed scenario or a changed edge rule gets a new entry. Old entries
   are never read again and may be deleted at any time.
-- Writers save into a private temporary directory and rename it into place,
-  so concurrent workers never read a half-written entry.
+- A new entry is built straight into memory-mapped files in a private
+  temporary directory, which is then renamed into place, so concurrent
+  workers never read a half-written entry.
 
 See ``docs/graph-cache.md``.
 """
@@ -98,24 +99,58 @@ def _load(entry: Path, scenario: "Scenario") -> "GridGraph | None":
     return GridGraph(shape=tuple(scenario.shape), vehicle=scenario.vehicle, **arrays)
 
 
-def _store(entry: Path, graph: "GridGraph") -> bool:
-    """Write the entry; True when it is in place (written here or, concurrently, by another process)."""
+def _npy_file(path: Path, dtype: type, size: int) -> np.ndarray:
+    """A new ``.npy`` file of ``size`` elements, its disk space reserved, memory-mapped for writing.
+
+    The space is reserved up front (``posix_fallocate``), so a full disk is
+    an ``OSError`` here rather than a fault while the graph is written.
+    """
+    header = {"descr": np.lib.format.dtype_to_descr(np.dtype(dtype)), "fortran_order": False, "shape": (size,)}
+    with open(path, "wb") as out:
+        np.lib.format.write_array_header_1_0(out, header)
+        offset = out.tell()
+        if size:
+            total = offset + size * np.dtype(dtype).itemsize
+            if hasattr(os, "posix_fallocate"):
+                os.posix_fallocate(out.fileno(), 0, total)
+            else:  # nothing reserves the space on this system: a full disk would fault while the graph is written
+                out.truncate(total)
+    if not size:
+        return np.empty(0, dtype)
+    return np.asarray(np.memmap(path, dtype=dtype, mode="r+", offset=offset, shape=(size,)))
+
+
+def _build_stored(entry: Path, scenario: "Scenario") -> "GridGraph | None":
+    """Build the graph straight into the files of a new entry and return it memory-mapped from there.
+
+    The arrays are written once, into the page cache, instead of built in
+    memory and then copied to disk. The entry is filled in a private
+    temporary directory and renamed into place, so concurrent workers never
+    read a half-written one; if another process stored it first, its copy
+    is used. None when the cache cannot be written (the caller builds in
+    memory).
+    """
+    from pathzoo.grid.graph import build_graph
+
     try:
         entry.parent.mkdir(parents=True, exist_ok=True)
         tmp = Path(tempfile.mkdtemp(prefix=f".{entry.name}-", dir=entry.parent))
     except OSError:
-        return False
+        return None
     try:
-        for name in _ARRAYS:
-            np.save(tmp / f"{name}.npy", getattr(graph, name), allow_pickle=False)
+        graph = build_graph(scenario, lambda name, dtype, size: _npy_file(tmp / f"{name}.npy", dtype, size))
+        np.save(tmp / "offsets.npy", graph.offsets, allow_pickle=False)
+        del graph  # the writable mappings go; the pages stay in the page cache
         os.rename(tmp, entry)
-    except OSError:  # another process stored it first, or the disk is full: keep the in-memory graph
-        shutil.rmtree(tmp, ignore_errors=True)
-    return entry.is_dir()
+    except OSError:  # another process stored it first, or the disk is full
+        pass
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)  # nothing left after the rename
+    return _load(entry, scenario) if entry.is_dir() else None
 
 
 def cached_graph(scenario: "Scenario") -> "GridGraph":
-    """The scenario's graph: loaded memory-mapped from the cache, or built (and stored when large)."""
+    """The scenario's graph: loaded memory-mapped from the cache, or built (into the cache when large)."""
     from pathzoo.grid.graph import build_graph
 
     if not _enabled(scenario):
@@ -126,11 +161,8 @@ def cached_graph(scenario: "Scenario") -> "GridGraph":
         if graph is not None:
             return graph
         shutil.rmtree(entry, ignore_errors=True)  # damaged: store it again
-    graph = build_graph(scenario)
-    if _store(entry, graph):
-        # the stored copy, memory-mapped: the built arrays are freed, and pages are shared with other workers
-        return _load(entry, scenario) or graph
-    return graph
+    # stored and handed back memory-mapped: the pages are shared with other workers
+    return _build_stored(entry, scenario) or build_graph(scenario)
 
 
 def release_pages(graph: "GridGraph", edges: slice | None = None) -> None:

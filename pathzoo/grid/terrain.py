@@ -34,7 +34,9 @@ __all__ = [
     "path_slope_ranges",
     "lattice_slope_range",
     "segments_slope_range",
+    "neighbour_slope_range",
     "slope_exceeds",
+    "slope_limit_band",
     "MAX_PIECE_CELLS",
 ]
 
@@ -241,6 +243,47 @@ def _crossing_t(k: int, end: int, step: int, a0: float, da: float) -> float:
 
 
 @numba.njit(cache=True)
+def neighbour_slope_range(z: np.ndarray, r: int, c: int, dr: int, dc: int) -> tuple[float, float]:
+    """:func:`segment_slope_range` of the move from the centre of cell ``(r, c)`` to its neighbour ``(r + dr, c + dc)``.
+
+    ``dr, dc`` in ``{-1, 0, 1}``, not both 0, and both cells inside the
+    grid. The same result bit for bit, the general path's arithmetic for
+    these segments only: the step between the two centres on a lattice
+    diagonal (:func:`_lattice_diagonal_range`), or the one piece of a
+    straight move, which lies in one patch on a centre line. The graph
+    builder calls it for every candidate edge.
+    """
+    h, w = z.shape
+    if dr != 0 and dc != 0:  # on a lattice diagonal: the step between the two centres, from left to right
+        if dc == 1:
+            g = 1.0 * (z[r + dr, c + dc] - z[r, c]) / math.sqrt(2.0)
+        else:
+            g = -1.0 * (z[r, c] - z[r + dr, c + dc]) / math.sqrt(2.0)
+        if not math.isfinite(g):
+            return math.nan, math.nan
+        return g, g
+    if dr == 0:  # along a row: the piece lies in patch (i, j) at v = 0
+        i, j = min(c, c + dc), r
+        g = 0.0 + (0.0 + (z[j, i + 1] - z[j, i]) * (1.0 - 0.0)) * float(dc)
+        vary_other = 0 < r < h - 1
+        ex, ey = float(dc), 0.0
+    else:  # along a column: patch (i, j) at u = 0
+        i, j = c, min(r, r + dr)
+        vary_other = 0 < c < w - 1
+        g = 0.0 + (0.0 + (z[j + 1, i] - z[j, i]) * (1.0 - 0.0)) * float(dr)
+        ex, ey = 0.0, float(dr)
+    if not math.isfinite(g):
+        return math.nan, math.nan
+    twist = 0.0
+    if vary_other:
+        twist = abs(z[j, i] + z[j + 1, i + 1] - z[j, i + 1] - z[j + 1, i])
+        if not math.isfinite(twist):
+            twist = 0.0
+    widen = 2.0 * _EPS * twist * (abs(ex) + abs(ey))
+    return g - widen, g + widen
+
+
+@numba.njit(cache=True)
 def segment_slope_range(z: np.ndarray, x0: float, y0: float, x1: float, y1: float) -> tuple[float, float]:
     """Least and greatest ground gradient along a segment (height units per cell travelled).
 
@@ -254,7 +297,25 @@ def segment_slope_range(z: np.ndarray, x0: float, y0: float, x1: float, y1: floa
     the margin times the patch's twist) is added to both ends. NaN when the
     segment uses a height that is missing. A zero-length segment has range
     ``(0, 0)``.
+
+    A segment between the centres of two neighbouring cells (the graph's
+    moves) takes a shortcut, :func:`neighbour_slope_range`, with the same
+    result bit for bit (``tests/core/test_validation.py`` compares the two
+    on every move of several terrains).
     """
+    h, w = z.shape
+    dx, dy = x1 - x0, y1 - y0
+    c, r = x0 - 0.5, y0 - 0.5
+    if (abs(dx) == 1.0 or dx == 0.0) and (abs(dy) == 1.0 or dy == 0.0) and (dx != 0.0 or dy != 0.0) \
+            and c == math.floor(c) and r == math.floor(r) and 0.0 <= min(c, c + dx) and max(c, c + dx) <= w - 1.0 \
+            and 0.0 <= min(r, r + dy) and max(r, r + dy) <= h - 1.0:
+        return neighbour_slope_range(z, int(r), int(c), int(dy), int(dx))
+    return _segment_slope_range(z, x0, y0, x1, y1)
+
+
+@numba.njit(cache=True)
+def _segment_slope_range(z: np.ndarray, x0: float, y0: float, x1: float, y1: float) -> tuple[float, float]:
+    # the general path of segment_slope_range
     h, w = z.shape
     dx, dy = x1 - x0, y1 - y0
     length = math.hypot(dx, dy)
@@ -379,23 +440,42 @@ _CUT_MARGIN = 1e-6
 """Relative band around a limit's gradient inside which :func:`_angle_within` computes the angle itself."""
 
 
+def slope_limit_band(cell_size: float, limit_deg: float) -> tuple[float, float]:
+    """Gradients ``(below, above)`` that bracket a slope limit: what :func:`slope_exceeds` decides by comparison.
+
+    ``degrees(arctan2(grad, cell_size)) <= limit_deg`` holds for every
+    gradient below ``below`` and fails for every gradient above ``above``
+    (and for NaN); only gradients in ``[below, above]`` need the expression
+    itself. The angle grows with the gradient, so away from the gradient
+    ``cut`` of the limit a comparison with ``cut`` decides: the band is a
+    relative :data:`_CUT_MARGIN` around it, which moves the angle by at
+    least ``57.3 * sin(2 limit) / 2 * 1e-6`` degrees, some 1e-9 degrees for
+    limits between 0.001 and 89.999 degrees, far more than the rounding of
+    ``arctan2`` and ``degrees`` (about 1e-14 degrees). Other limits have no
+    such cut: when the angle of the largest finite gradient is within the
+    limit (a limit of 90 degrees), every finite gradient is, and only an
+    infinite one is left to the expression; otherwise, and for an unusual
+    cell size, every gradient is.
+    """
+    if not 0.0 < cell_size < math.inf:
+        return -math.inf, math.inf
+    if 0.001 <= limit_deg <= 89.999:
+        cut = cell_size * math.tan(math.radians(limit_deg))
+        return cut * (1.0 - _CUT_MARGIN), cut * (1.0 + _CUT_MARGIN)
+    steepest = np.degrees(np.arctan2(np.array([np.finfo(np.float64).max]), cell_size))[0]
+    return (math.inf, math.inf) if steepest <= limit_deg else (-math.inf, math.inf)
+
+
 def _angle_within(grad: np.ndarray, cell_size: float, limit_deg: float) -> np.ndarray:
     """``degrees(arctan2(grad, cell_size)) <= limit_deg`` elementwise (False for NaN), with the angle rarely computed.
 
-    The angle grows with the gradient, so away from the gradient ``cut`` of
-    the limit a comparison with ``cut`` decides. Only gradients within a
-    relative :data:`_CUT_MARGIN` of it get the angle's own expression: that
-    band moves the angle by at least ``57.3 * sin(2 limit) / 2 * 1e-6``
-    degrees, some 1e-9 degrees for the limits allowed here, far more than the
-    rounding of ``arctan2`` and ``degrees`` (about 1e-14 degrees), so every
-    answer is the expression's. Limits within 0.001 degrees of 0 or 90, or an
-    unusual cell size, take the expression everywhere.
+    Gradients outside :func:`slope_limit_band`'s band are decided by
+    comparison; only those inside get the angle's own expression, so every
+    answer is the expression's.
     """
+    below, above = slope_limit_band(cell_size, limit_deg)
     with np.errstate(invalid="ignore"):
-        if not (0.001 <= limit_deg <= 89.999 and 0.0 < cell_size < math.inf):
-            return np.degrees(np.arctan2(grad, cell_size)) <= limit_deg
-        cut = cell_size * math.tan(math.radians(limit_deg))
-        ok, near = _split_at_cut(np.ravel(grad), cut * (1.0 - _CUT_MARGIN), cut * (1.0 + _CUT_MARGIN))
+        ok, near = _split_at_cut(np.ravel(grad), below, above)
         ok[near] = np.degrees(np.arctan2(grad.ravel()[near], cell_size)) <= limit_deg
     return ok.reshape(grad.shape)
 

@@ -14,8 +14,7 @@ The public names are loaded lazily, so importing the package stays cheap:
 
 from __future__ import annotations
 
-import importlib
-from typing import Any
+from pathzoo.lazy_names import lazy_getattr
 
 __all__ = [
     "Experiment",
@@ -44,8 +43,4 @@ _WHERE = {
 }
 
 
-def __getattr__(name: str) -> Any:
-    if name in _WHERE:
-        where = _WHERE[name]
-        return getattr(importlib.import_module(where if "." in where else f"pathzoo.harness.{where}"), name)
-    raise AttributeError(f"module 'pathzoo.harness' has no attribute {name!r}")
+__getattr__ = lazy_getattr(__name__, _WHERE)

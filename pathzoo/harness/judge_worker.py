@@ -1,8 +1,8 @@
 """The judge's own process: verdict and metrics of each run, where no planner code ever ran, under a time limit.
 
-:class:`JudgeWorker` starts one process (like the workers, without the
-parent's ``__main__``: :mod:`pathzoo.harness.launch`) that loads every
-scenario itself, from its reference (registry id, file, or the bytes of an
+:class:`JudgeWorker` starts one process (like the workers, a fork of the
+``forkserver`` without the parent's ``__main__``: :mod:`pathzoo.harness.launch`)
+that loads every scenario itself, from its reference (registry id, file, or the bytes of an
 object the parent pickled, sent once per judge process), builds its
 geometry, and keeps a small LRU of
 them. For each run the parent sends the task and the bounded outcome; the
@@ -21,24 +21,25 @@ executor, ``inline`` included (though inline the planner shares the
 harness's own process, see :class:`~pathzoo.harness.executors.InlineExecutor`).
 
 The judge process loads scenario and metric plugins only (:data:`JUDGE_KINDS`,
-:func:`pathzoo.plugins.manager.limit_kinds`): it is spawned afresh, never
-forked from the workers' server, imports no entry point of a planner group,
-and of the modules registered by hand only those that provide scenarios or
-metrics (:meth:`~pathzoo.plugins.manager.Registry.judge_modules`). A
-planner plugin's import-time code never runs where verdicts are made.
+:func:`pathzoo.plugins.manager.limit_kinds`): it is forked from the server
+before any plugin was imported there (the server imports none, see
+:mod:`pathzoo.harness.executors.warmup`), imports no entry point of a
+planner group, and of the modules registered by hand only those that
+provide scenarios or metrics
+(:meth:`~pathzoo.plugins.manager.Registry.judge_modules`). A planner
+plugin's import-time code never runs where verdicts are made.
 """
 
 from __future__ import annotations
 
 import signal
-import threading
 import time
 import warnings
 from dataclasses import replace
 from multiprocessing.connection import Connection, wait
 from typing import TYPE_CHECKING, Any
 
-from pathzoo.harness.launch import NoMainContext, die_with_harness, harness_alive
+from pathzoo.harness.launch import NoMainContext, default_start_method, die_with_harness, harness_alive, start_server
 from pathzoo.harness.specs import HeldScenarios
 from pathzoo.harness.worker import (SETUP_TIMEOUT_S, describe_exception, ensure_plugins, keep_payload, load_cached,
                                     quiet_registry)
@@ -51,7 +52,7 @@ if TYPE_CHECKING:
     from pathzoo.harness.specs import RunTask
     from pathzoo.harness.worker import RunOutcome
 
-__all__ = ["JudgeWorker", "JUDGE_TIMEOUT_S", "start_judge"]
+__all__ = ["JudgeWorker", "JUDGE_TIMEOUT_S"]
 
 JUDGE_TIMEOUT_S = 60.0
 """Default limit on judging one run (validation and every metric), scenario loading excluded."""
@@ -61,48 +62,23 @@ JUDGE_KINDS = ("scenarios", "metrics")
 
 _clock = time.perf_counter
 
-_early: "tuple[BaseProcess, Connection] | None" = None
-_early_lock = threading.Lock()
 
+def _launch_judge() -> "tuple[BaseProcess, Connection]":
+    """A new judge process (a fork of the ``forkserver``; spawned where there is none) and our end of its pipe.
 
-def start_judge() -> None:
-    """Start a judge process now, for the next :class:`JudgeWorker` to take over (no-op if one is waiting).
-
-    A judge process spends about a second importing numba and loading its
-    compiled validators before it can judge, so ``pathzoo run`` starts one
-    before it reads the experiment: the first verdict is then not delayed by
-    it. The process is the same as the one :class:`JudgeWorker` starts (spawned,
-    scenario and metric plugins only); one never taken over dies with the
-    harness. Call it from the thread that will use the judge, like
-    :func:`~pathzoo.harness.launch.start_server`.
+    With ``forkserver`` this returns once the server has forked it, so after
+    the server's imports (:func:`~pathzoo.harness.launch.start_server`
+    starts those early).
     """
-    global _early
-    with _early_lock:
-        if _early is None:
-            _early = _spawn_judge()
-
-
-def _spawn_judge() -> "tuple[BaseProcess, Connection]":
-    """A freshly spawned judge process and the harness's end of its pipe."""
-    ctx: Any = NoMainContext("spawn")
+    method = default_start_method()
+    start_server(method)  # from this thread: the server dies with the thread that started it
+    ctx: Any = NoMainContext(method)
     parent, child = ctx.Pipe(duplex=True)
-    # daemonic: one never taken over (the command failed on its experiment) must not hold the harness's exit
+    # daemonic: it must never hold the harness's exit
     process = ctx.Process(target=_judge_main, args=(child, harness_alive()), name="pathzoo-judge", daemon=True)
     process.start()
     child.close()
     return process, parent
-
-
-def _take_early() -> "tuple[BaseProcess, Connection] | None":
-    """The process of :func:`start_judge` if one is waiting and alive (it is then no longer waiting)."""
-    global _early
-    with _early_lock:
-        early, _early = _early, None
-    if early is not None and not early[0].is_alive():
-        early[0].join()
-        early[1].close()
-        return None
-    return early
 
 
 def _judge_main(conn: Connection, alive: Connection) -> None:
@@ -175,9 +151,10 @@ class JudgeWorker:
     judge_timeout_s : float
         Limit on judging one run once its scenario is loaded.
 
-    The process is always spawned, never forked from the workers'
-    ``forkserver``: that server has imported the planner plugins, and a
-    forked judge would inherit them.
+    The process is a fork of the ``forkserver`` the workers are forked
+    from, which imports no plugin and runs no planner code
+    (:mod:`pathzoo.harness.executors.warmup`), so the judge starts with
+    numba and the harness's validators loaded but no planner plugin.
     """
 
     def __init__(self, judge_timeout_s: float = JUDGE_TIMEOUT_S) -> None:
@@ -195,9 +172,9 @@ class JudgeWorker:
         self.close()
 
     def _launch(self) -> None:
-        """Start the judge process if there is none (or take over :func:`start_judge`'s), without waiting for it."""
+        """Start the judge process if there is none, without waiting for its "ready"."""
         if self._conn is None:
-            self._process, self._conn = _take_early() or _spawn_judge()
+            self._process, self._conn = _launch_judge()
             self._ready, self._held = False, HeldScenarios()
 
     def _start(self) -> Connection:
@@ -273,13 +250,19 @@ class JudgeWorker:
         """The stored record of one run: judged in the judge process, or ``invalid`` when it could not be."""
         from pathzoo.harness.judge import unjudged
 
-        conn = self._start()
-        try:
-            conn.send((self._for_judge(task), outcome, isolated))
-            self._held.sent(task)
-        except Exception as exc:  # noqa: BLE001 - e.g. a scenario object that does not pickle
-            return unjudged(task, outcome, f"the run could not be sent to the judge ({type(exc).__name__})",
-                            isolated=isolated)
+        for attempt in range(2):
+            conn = self._start()
+            try:
+                conn.send((self._for_judge(task), outcome, isolated))
+                self._held.sent(task)
+                break
+            except Exception as exc:  # noqa: BLE001 - e.g. a scenario object that does not pickle
+                died = isinstance(exc, (OSError, EOFError))
+                if died:  # since its last verdict (killed, or its server was): a fresh judge takes this run
+                    self._stop()
+                if attempt or not died:
+                    return unjudged(task, outcome, f"the run could not be sent to the judge ({type(exc).__name__})",
+                                    isolated=isolated)
         reply = self._receive(SETUP_TIMEOUT_S)
         limit = SETUP_TIMEOUT_S
         if reply == ("loaded",):

@@ -6,8 +6,11 @@ time in every child (and fails). Like loky and Dask's worker processes,
 :class:`NoMainContext` leaves the main module out of the data a child is
 prepared with; the child still gets the parent's ``sys.path`` and working
 directory. With ``forkserver`` (the default where available) the server
-imports pathzoo and every entry-point plugin once
-(:mod:`pathzoo.harness.executors.warmup`), so each new child costs a fork;
+imports numpy, numba, scipy and pathzoo's own harness, geometry and
+validation code once, and warms numba up, but imports no plugin
+(:mod:`pathzoo.harness.executors.warmup`); the workers and the judge are all
+forks of it, so each starts with that done instead of redoing it, and the
+judge still starts in a process where no planner code ever ran.
 :func:`start_server` starts it early, so it imports while the harness is
 still reading the experiment.
 
@@ -60,12 +63,13 @@ def default_start_method() -> str:
 def start_server(method: str | None = None) -> None:
     """Start the ``forkserver`` now if it is not running, without waiting for it (no-op for ``spawn``).
 
-    The server imports every plugin (:mod:`pathzoo.harness.executors.warmup`)
-    while the caller goes on, e.g. reading and checking the experiment on the
-    other core; the first worker then costs a fork instead of a cold start.
-    The server dies with the thread that started it (see
-    :func:`die_with_parent`), so call this from the main thread: the
-    executors and the judge do, from the thread that builds them.
+    The server imports what every harness process needs
+    (:mod:`pathzoo.harness.executors.warmup`) while the caller goes on, e.g.
+    reading and checking the experiment on the other core; the judge and
+    each worker then cost a fork instead of a cold start. The server dies
+    with the thread that started it (see :func:`die_with_parent`), so call
+    this from the main thread: the executors and the judge do, from the
+    thread that builds them.
     """
     if (method or default_start_method()) != "forkserver":
         return

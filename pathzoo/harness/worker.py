@@ -56,7 +56,6 @@ __all__ = [
     "load_cached",
     "keep_payload",
     "ensure_plugins",
-    "preload_planners",
     "HistoryRecorder",
     "SCENARIO_CACHE_SIZE",
     "SETUP_TIMEOUT_S",
@@ -218,18 +217,6 @@ def quiet_registry() -> Any:
 
     with contextlib.redirect_stderr(io.StringIO()):
         return get_registry()
-
-
-def preload_planners() -> None:
-    """Import the class of every available planner now, so processes forked later start with them.
-
-    Plugins declare planners lazily; a class that fails to import is skipped
-    here, and its runs report the error when they build the planner.
-    """
-    for entry in quiet_registry().planners.values():
-        if not entry.unavailable:
-            with contextlib.suppress(Exception):
-                entry.obj
 
 
 # ---------------------------------------------------------------- scenarios

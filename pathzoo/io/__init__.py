@@ -5,8 +5,7 @@ The names below are loaded on first use, so ``import pathzoo`` stays light.
 
 from __future__ import annotations
 
-import importlib
-from typing import Any
+from pathzoo.lazy_names import lazy_getattr
 
 _WHERE = {
     "DEM": "dem",
@@ -28,7 +27,4 @@ _WHERE = {
 __all__ = sorted(_WHERE)
 
 
-def __getattr__(name: str) -> Any:
-    if name in _WHERE:
-        return getattr(importlib.import_module(f"pathzoo.io.{_WHERE[name]}"), name)
-    raise AttributeError(f"module 'pathzoo.io' has no attribute {name!r}")
+__getattr__ = lazy_getattr(__name__, _WHERE)

@@ -91,9 +91,15 @@ def _add_gains(x, scale, lo, hi, indptr, indices, flat, offsets, ants, start, ga
     ``x[e] = clip(clip(scale x[e]) + gain[e]) / scale``. Walks are simple paths, so an edge gets one
     update per walk that left its node, and every update of an edge is the same function of its
     value: applying them edge by edge (``left[i]`` times for node ``i``) rather than walk by walk
-    gives the same numbers with one pass over the touched nodes. When ``scale`` is a power of two
-    (``ρ = 0.5``), dividing by it equals multiplying by its inverse, exactly. ``left`` (one int32 per
-    node, all zero) is scratch space and is left zero.
+    gives the same numbers with one pass over the touched nodes.
+
+    When ``scale`` is a power of two (``ρ = 0.5``), dividing by it equals multiplying by its inverse,
+    and reading a stored value back (``scale (t / scale)``) gives ``t`` itself, exactly, as long as
+    ``t / scale`` is a finite normal number: an edge's value then stays in a register for its
+    ``left[i]`` updates and is stored once. An edge resting on the floor ``lo`` that loses (``gain[e]
+    <= 0``) stays there and is not written (its stored value may lie below the floor: reads clamp,
+    so its true value is ``lo`` either way). ``left`` (one int32 per node, all zero) is scratch space
+    and is left zero.
     """
     for i in range(ants.size):
         a = ants[i]
@@ -101,17 +107,27 @@ def _add_gains(x, scale, lo, hi, indptr, indices, flat, offsets, ants, start, ga
         for p in range(offsets[a], offsets[a + 1]):
             left[node] += 1
             node = indices[flat[p]]
-    exact_inverse = math.frexp(scale)[0] == 0.5
     inverse = 1.0 / scale
+    exact_inverse = math.frexp(scale)[0] == 0.5
+    in_register = exact_inverse and lo * inverse >= 2.2250738585072014e-308  # every stored t / scale is normal
     for node in range(left.size):
         m = left[node]
         if m == 0:
             continue
         left[node] = 0
-        for _ in range(m):
-            for e in range(indptr[node], indptr[node + 1]):
-                t = min(max(min(max(scale * x[e], lo), hi) + gain[e], lo), hi)
-                x[e] = t * inverse if exact_inverse else t / scale
+        for e in range(indptr[node], indptr[node + 1]):
+            g = gain[e]
+            t = min(max(scale * x[e], lo), hi)
+            if g <= 0.0 and t <= lo:
+                continue
+            if in_register and (t + m * max(g, 0.0)) * inverse < 1e300:  # a bound on every value t takes
+                for _ in range(m):
+                    t = min(max(t + g, lo), hi)
+                x[e] = t * inverse
+            else:
+                for _ in range(m):
+                    t = min(max(min(max(scale * x[e], lo), hi) + g, lo), hi)
+                    x[e] = t * inverse if exact_inverse else t / scale
 
 
 class FGDACO(AntColonyPlanner):

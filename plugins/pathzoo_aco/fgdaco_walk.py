@@ -76,7 +76,7 @@ def _timed_walk(indptr, indices, offset_id, horizontal, turn, length,
                 start, goal, backtrack, max_steps, allowance, n_ants, walk_base,
                 stamp, stack_e, stack_prev, stack_t, stack_gap, cand_e, cand_w, cand_n, gap, near_ids, ahead,
                 flat, offsets, flags, steps_out,
-                width, cell, speed, t_head, tail,
+                node_xy, speed, t_head, tail,
                 ob_points, ob_cum, ob_count, ob_speed, ob_phase, ob_radius, route_gap,
                 target_in, angle_in, clear_in, sensing, fuzzy_memo,
                 vertices, rules, cons, area_w, moment_w):
@@ -127,8 +127,8 @@ def _timed_walk(indptr, indices, offset_id, horizontal, turn, length,
                     total_w += cand_w[base + c]
                     nc += 1
             else:
-                cx = (cur % width + 0.5) * cell
-                cy = (cur // width + 0.5) * cell
+                cx = node_xy[cur, 0]
+                cy = node_xy[cur, 1]
                 n_near = 0  # obstacles that may touch a move from here or come within sensing range of its end
                 for k in range(n_obs):
                     if gap[k] < reach[k]:  # the bound says nothing: measure, unless the whole route is out of reach
@@ -165,8 +165,8 @@ def _timed_walk(indptr, indices, offset_id, horizontal, turn, length,
                     jx = 0.0
                     jy = 0.0
                     if n_near > 0:
-                        jx = (j % width + 0.5) * cell
-                        jy = (j // width + 0.5) * cell
+                        jx = node_xy[j, 0]
+                        jy = node_xy[j, 1]
                     for q in range(n_near):
                         k = near_ids[q]
                         bound = gap[k] - length[e] - ob_speed[k] * dt  # least possible gap during the move
@@ -344,7 +344,7 @@ class TimedWalkEngine(WalkEngine):
         s = problem.scenario
         g = problem.graph
         self.buffers = _TimedBuffers.allocate(problem, len(s.moving_obstacles))
-        self.obstacles, self.route_gap, self.graph_arrays = problem.memo(
+        self.obstacles, self.route_gap, self.graph_arrays, self.node_xy = problem.memo(
             ("fgdaco_walk", "scenario_tables"), lambda: self._scenario_tables(problem))
         self.length = np.ascontiguousarray(g.length)
         self.target_in = np.ascontiguousarray(target_in, dtype=np.float64)
@@ -362,12 +362,19 @@ class TimedWalkEngine(WalkEngine):
 
     @staticmethod
     def _scenario_tables(problem: ColonyProblem) -> tuple:
-        """The packed obstacles, each node's :func:`route_clearance` and the int32 graph arrays (kept per scenario)."""
+        """The packed obstacles, each node's :func:`route_clearance`, the int32 graph arrays and the cell centres.
+
+        Kept per scenario. The centres are ``((node % width + 0.5) cell, (node // width + 0.5) cell)``, the
+        numbers the walks used to compute per candidate (an integer division each).
+        """
         s = problem.scenario
         g = problem.graph
         obstacles = pack_obstacles(s.moving_obstacles)
-        return (obstacles, route_clearance(obstacles, s.point_of(np.arange(g.n_nodes))),
-                (g.indptr, g.indices.astype(np.int32), g.offset_id.astype(np.int32), problem.horizontal_offsets))
+        node = np.arange(g.n_nodes)
+        node_xy = np.stack([(node % g.shape[1] + 0.5) * s.cell_size, (node // g.shape[1] + 0.5) * s.cell_size], axis=1)
+        return (obstacles, route_clearance(obstacles, s.point_of(node)),
+                (g.indptr, g.indices.astype(np.int32), g.offset_id.astype(np.int32), problem.horizontal_offsets),
+                node_xy)
 
     def walk(self, rules: WalkRules, trail: Pheromone, n_ants: int, seed: int,
              allowance: int = 2**62) -> Walks:
@@ -395,7 +402,7 @@ class TimedWalkEngine(WalkEngine):
             b.stamp, b.stack_e, b.stack_prev, b.stack_t, b.stack_gap, b.cand_e, b.cand_w, b.cand_n, b.gap, b.near_ids,
             b.ahead,
             b.flat, offsets, flags, steps,
-            g.shape[1], p.scenario.cell_size, p.scenario.vehicle.cruise_speed, self.t_head, self.tail,
+            self.node_xy, p.scenario.vehicle.cruise_speed, self.t_head, self.tail,
             ob.points, ob.cum, ob.count, ob.speed, ob.phase, ob.radius, self.route_gap,
             self.target_in, self.angle_in, self.clear_in, self.sensing_m, b.fuzzy_memo,
             cp.vertices, cp.rules, cp.consequents, cp.area_w, cp.moment_w,

@@ -19,6 +19,10 @@ See ``docs/planners/aco.ggaco.md`` for every interpretation.
 
 from __future__ import annotations
 
+import math
+from dataclasses import dataclass
+
+import numba
 import numpy as np
 
 from pathzoo.core.planner import Param
@@ -36,7 +40,18 @@ from pathzoo_aco.engine import (
 )
 from pathzoo_aco.gant import ENERGY_FLOOR, PHI, green_heuristic
 
-__all__ = ["GGACO"]
+__all__ = ["GGACO", "GgacoState"]
+
+
+@dataclass
+class GgacoState(ColonyState):
+    """Colony state plus the lengths, slopes and energies of the latest colony's walked edges.
+
+    The colony's costs (eq. 6) and deposits (eq. 18) both need them.
+    """
+
+    geometry_of: Walks | None = None
+    geometry: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
 
 
 class GGACO(AntColonyPlanner):
@@ -73,24 +88,15 @@ class GGACO(AntColonyPlanner):
 
         Distances to ``D`` are 3-D between cell centres; the neighbours are
         the node's graph neighbours (traversable ones). Returns the edges
-        leaving ``nodes`` (a range of node ids), in graph order.
+        leaving ``nodes`` (a range of node ids), in graph order. The
+        progress, the exponent and the signs are one compiled pass
+        (:func:`_gain_exponent`); the exponential is NumPy's.
         """
         g = problem.graph
         lo, hi, _ = nodes.indices(g.n_nodes)
-        first = g.indptr[lo]
-        degree = g.degree[lo:hi]
-        dist = problem.goal_distance
-        to = dist[g.indices[first : g.indptr[hi]]]
-        here = np.repeat(dist[lo:hi], degree)  # per edge, its source's distance (no per-edge source array kept)
-        # edges leaving the destination are never chosen (a walk ends there): any finite progress will do
-        progress = to / np.where(here > 0.0, here, 1.0)
-        gain = 1.0 / (1.0 + np.exp(-self.lam * progress))
-        nonempty = degree > 0
-        nearest = np.full(hi - lo, np.inf)
-        if to.size:
-            nearest[nonempty] = np.minimum.reduceat(to, g.indptr[lo:hi][nonempty] - first)
-        best = to <= np.repeat(nearest, degree) * (1.0 + 1e-12)
-        return np.where(best, gain, -gain)
+        exponent, nearest = _gain_exponent(g.indptr, g.indices, problem.goal_distance, lo, hi, -self.lam)
+        gain = 1.0 / (1.0 + np.exp(exponent))
+        return np.where(nearest, gain, -gain)
 
     def walk_rules(self, problem: ColonyProblem) -> WalkRules:
         """Eq. 15 with the pre-choice gain of eq. 13; ants race until the first reaches ``D`` (Algorithm 1).
@@ -121,7 +127,19 @@ class GGACO(AntColonyPlanner):
                    rng: np.random.Generator) -> ColonyState:
         """Floor the trail at ``tau_floor``."""
         trail.set_bounds(self.tau_floor)
-        return ColonyState(problem, rules, trail, rng)
+        return GgacoState(problem, rules, trail, rng)
+
+    @staticmethod
+    def walked_geometry(state: GgacoState, walks: Walks) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """3-D lengths, slopes and energies (eq. 6) of the walked edges, computed once per colony.
+
+        Lengths and slopes come from :meth:`ColonyProblem.walk_geometry`.
+        """
+        if state.geometry_of is not walks:
+            length, slope = state.problem.walk_geometry(walks.flat, walks.offsets)
+            energy = state.problem.scenario.vehicle.segment_energy(length, slope)
+            state.geometry_of, state.geometry = walks, (length, slope, energy)
+        return state.geometry
 
     @staticmethod
     def edge_energy(problem: ColonyProblem, edges: np.ndarray | slice) -> np.ndarray:
@@ -134,19 +152,20 @@ class GGACO(AntColonyPlanner):
         g = problem.graph
         return self.deposit_of(problem, g.length[edges], g.slope[edges])
 
-    def deposit_of(self, problem: ColonyProblem, length: np.ndarray, slope: np.ndarray) -> np.ndarray:
-        """Eq. 18 for edges of the given 3-D lengths and slopes (eq. 17's ``d``, eq. 6's ``E``)."""
-        energy = np.maximum(problem.scenario.vehicle.segment_energy(length, slope), self.energy_floor_j)
-        return 1.0 / (length * (1.0 + problem.tangent_from(slope))) + 1.0 / energy
+    def deposit_of(self, problem: ColonyProblem, length: np.ndarray, slope: np.ndarray,
+                   energy: np.ndarray | None = None) -> np.ndarray:
+        """Eq. 18 for edges of the given 3-D lengths and slopes (eq. 17's ``d``, eq. 6's ``E``, unless given)."""
+        if energy is None:
+            energy = problem.scenario.vehicle.segment_energy(length, slope)
+        return 1.0 / (length * (1.0 + problem.tangent_from(slope))) + 1.0 / np.maximum(energy, self.energy_floor_j)
 
-    def walk_costs(self, state: ColonyState, walks: Walks) -> np.ndarray:
+    def walk_costs(self, state: GgacoState, walks: Walks) -> np.ndarray:
         """Energy (J, eq. 6) or length (m, eq. 5) of each walk (computed for the walked edges only)."""
         if self.objective == "energy":
-            length, slope = state.problem.walk_geometry(walks.flat, walks.offsets)
-            return walks.sums(state.problem.scenario.vehicle.segment_energy(length, slope))
+            return walks.sums(self.walked_geometry(state, walks)[2])
         return walks.totals(state.problem.graph.length)
 
-    def update_trail(self, state: ColonyState, walks: Walks, costs: np.ndarray) -> None:
+    def update_trail(self, state: GgacoState, walks: Walks, costs: np.ndarray) -> None:
         """Eqs. 13 and 18: ``τ <- (1 - ρ) τ + Σ_k (1 / d_ij + 1 / E_ij)`` over the edges each successful ant crossed.
 
         The deposit is computed for the crossed edges only (no per-edge table
@@ -154,6 +173,33 @@ class GGACO(AntColonyPlanner):
         """
         state.trail.evaporate(self.rho)
         ok = np.flatnonzero(walks.reached)
-        deposit = self.deposit_of(state.problem, *state.problem.walk_geometry(walks.flat, walks.offsets))
+        deposit = self.deposit_of(state.problem, *self.walked_geometry(state, walks))
         deposit_walks(state.trail, state.problem.graph.indices, walks.flat, walks.offsets, ok, 0.0,
                       per_step=deposit)
+
+
+@numba.njit(cache=True)
+def _gain_exponent(indptr, indices, dist, lo, hi, minus_lam):
+    """Per edge leaving nodes ``lo:hi``: eq. 12's exponent ``-λ progress`` and whether it leads to a nearest neighbour.
+
+    ``progress = d(j, D) / d(i, D)`` (``d(i, D)`` taken as 1 at the
+    destination itself, whose edges no ant takes); a neighbour is nearest
+    when ``d(j, D)`` is within a relative 1e-12 of the node's least
+    (``np.minimum``'s, NaN included).
+    """
+    first = indptr[lo]
+    exponent = np.empty(indptr[hi] - first)
+    nearest = np.empty(indptr[hi] - first, dtype=np.bool_)
+    for i in range(lo, hi):
+        here = dist[i]
+        den = here if here > 0.0 else 1.0
+        least = np.inf
+        for e in range(indptr[i], indptr[i + 1]):
+            to = dist[indices[e]]
+            exponent[e - first] = minus_lam * (to / den)
+            if to < least or math.isnan(to) or e == indptr[i]:
+                least = to
+        bound = least * (1.0 + 1e-12)
+        for e in range(indptr[i], indptr[i + 1]):
+            nearest[e - first] = dist[indices[e]] <= bound
+    return exponent, nearest

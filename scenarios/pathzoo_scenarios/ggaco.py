@@ -37,8 +37,10 @@ factor, so the physical extent and the slopes are those of the real terrain.
 
 from __future__ import annotations
 
+import importlib.util
 import math
 from functools import lru_cache, partial
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -95,24 +97,25 @@ def horn_slope_deg(elevation: np.ndarray, cell_size: float) -> np.ndarray:
     """Slope magnitude in degrees by Horn's method (1981); NaN cells stay NaN.
 
     Border cells repeat their edge, and a NaN neighbour takes the centre's
-    height, so cells next to missing data keep a slope.
+    height, so cells next to missing data keep a slope. The gradients are
+    compiled (:func:`pathzoo_scenarios.horn.horn_gradients`, imported here:
+    listing the packs does not load numba) and the angle is NumPy's, both a
+    block of rows at a time, so no temporary is as large as the map.
     """
-    z = np.pad(np.asarray(elevation, dtype=np.float64), 1, mode="edge")
-    centre = z[1:-1, 1:-1]
-    h, w = centre.shape
+    from pathzoo_scenarios.horn import horn_gradients
 
-    def nb(dr: int, dc: int) -> np.ndarray:
-        v = z[1 + dr : 1 + dr + h, 1 + dc : 1 + dc + w]
-        return np.where(np.isfinite(v), v, centre)
-
-    a, b, c = nb(-1, -1), nb(-1, 0), nb(-1, 1)
-    d, f = nb(0, -1), nb(0, 1)
-    g, hh, i = nb(1, -1), nb(1, 0), nb(1, 1)
-    dzdx = ((c + 2 * f + i) - (a + 2 * d + g)) / (8.0 * cell_size)
-    dzdy = ((g + 2 * hh + i) - (a + 2 * b + c)) / (8.0 * cell_size)
-    slope = np.degrees(np.arctan(np.hypot(dzdx, dzdy)))
-    slope[~np.isfinite(centre)] = np.nan
+    z = np.ascontiguousarray(elevation, dtype=np.float64)
+    slope = np.empty(z.shape)
+    rows = max(1, _HORN_BLOCK // max(1, z.shape[1]))
+    for lo in range(0, z.shape[0], rows):
+        dzdx, dzdy = horn_gradients(z, 8.0 * cell_size, lo, min(lo + rows, z.shape[0]))
+        slope[lo : lo + rows] = np.degrees(np.arctan(np.hypot(dzdx, dzdy)))
+    slope[~np.isfinite(z)] = np.nan
     return slope
+
+
+_HORN_BLOCK = 1 << 18
+"""Cells per block of :func:`horn_slope_deg`."""
 
 
 def traversable(slope_deg: np.ndarray, slope_min_deg: float, slope_max_deg: float) -> np.ndarray:
@@ -128,15 +131,25 @@ def source_dem(source: str) -> tuple[np.ndarray, float, dict[str, Any]]:
 
     check_choice(source, SOURCES, "source")
     if source == "jacksboro":
-        from matplotlib.cbook import get_sample_data
-
-        path = get_sample_data("jacksboro_fault_dem.npz", asfileobj=False)
+        path = _matplotlib_sample("jacksboro_fault_dem.npz")
     elif source == "frontrange":
         path = DATA_DIR / "dem" / "SRTMGL3_40.09_-105.55_40.21_-105.35.asc"
     else:
         path = DATA_DIR / "dem" / "hugo_site.asc"
     dem = read_elevation(path)
     return dem.elevation, float(dem.cell_size), dict(dem.metadata)
+
+
+def _matplotlib_sample(name: str) -> str:
+    """Path of a file of matplotlib's sample data, as ``matplotlib.cbook.get_sample_data`` gives it.
+
+    Found from the package's location without importing matplotlib (about
+    a quarter of a second of the scenario's load time).
+    """
+    spec = importlib.util.find_spec("matplotlib")
+    if spec is None or spec.origin is None:
+        raise ModuleNotFoundError("the jacksboro DEM is matplotlib's sample data: matplotlib is not installed")
+    return str(Path(spec.origin).with_name("mpl-data") / "sample_data" / name)
 
 
 def resample_to(elevation: np.ndarray, cell_size: float, shape: tuple[int, int]) -> tuple[np.ndarray, float, dict]:
@@ -246,6 +259,7 @@ def load_case(
     rows, cols, source = CASES[case]
     elevation, cell, record = source_dem(source)
     resampled, new_cell, how = resample_to(elevation, cell, (rows, cols))
+    resampled.setflags(write=False)  # the scenario keeps this array rather than a copy
     meta = pack_metadata(
         "ggaco",
         PACK_VERSION,

@@ -225,6 +225,33 @@ def test_update_evaporates_deposits_eq15_and_applies_the_gains():
     np.testing.assert_allclose(state.trail.values(), expected)
 
 
+
+@pytest.mark.parametrize("scale", [0.5**7, 0.3**4])  # a power of two (values kept in registers) and not
+def test_gains_node_by_node_equal_the_walk_by_walk_updates(scale):
+    from pathzoo_aco.fgdaco import _add_gains
+
+    planner = pathzoo.make_planner("aco.fgdaco")
+    state, walks, _ = _state(planner, walled_grid(), n_ants=12)
+    ok = np.flatnonzero(walks.reached)
+    assert ok.size > 1
+    g = state.problem.graph
+    rng = np.random.default_rng(3)
+    lo, hi = 0.01, 40.0
+    x = rng.uniform(0.0, 0.2, g.n_edges) / scale  # many values on or below the floor
+    gain = rng.uniform(-0.8, 0.8, g.n_edges)
+    expected = x.copy()
+    for a in ok:  # the clamped read-modify-write of deposit_walks, walk by walk
+        edges = walks.edges(a)
+        for node in np.concatenate([[state.problem.start], g.indices[edges[:-1]]]):
+            for e in range(g.indptr[node], g.indptr[node + 1]):
+                expected[e] = min(max(min(max(scale * expected[e], lo), hi) + gain[e], lo), hi) / scale
+    left = np.zeros(g.n_nodes, dtype=np.int32)
+    _add_gains(x, scale, lo, hi, g.indptr, g.indices, walks.flat, walks.offsets, ok, state.problem.start, gain, left)
+    true = lambda v: np.minimum(np.maximum(scale * v, lo), hi)  # noqa: E731  (stored values below the floor read lo)
+    assert np.array_equal(true(x), true(expected))
+    assert not left.any()
+
+
 # ------------------------------------------------------------------ timed walks
 def test_every_timed_walk_is_valid_among_moving_obstacles():
     scenario = check_scenario("dynamic")  # a disc patrols the gap the walks must use

@@ -94,3 +94,15 @@ def test_a_fresh_build_is_returned_memory_mapped_and_pages_can_be_released(cache
     for name in ARRAYS:  # still readable, same values
         assert np.array_equal(getattr(built, name), getattr(fresh, name))
     release_pages(fresh)  # in-memory graph: nothing to do
+
+
+def test_a_graph_is_built_straight_into_its_entry_and_an_edgeless_one_too(cache):
+    cached_graph(_terrain())
+    entries = sorted(p.name for p in cache_dir().iterdir())
+    assert entries == [graph_digest(_terrain())]  # no temporary directory left behind
+    assert sorted(p.name for p in (cache_dir() / entries[0]).iterdir()) == sorted(f"{n}.npy" for n in ARRAYS)
+    walled = Scenario(id="walled", kind="grid2d", occupancy=np.array([[False, True, False]]), cell_size=1.0,
+                      start=(0.5, 0.5), goal=(2.5, 0.5))
+    for graph in (cached_graph(walled), cached_graph(walled)):  # stored, then loaded
+        assert graph.n_edges == 0 and graph.indices.dtype == np.int64 and graph.offset_id.dtype == np.int16
+        assert np.array_equal(graph.indptr, build_graph(walled).indptr)

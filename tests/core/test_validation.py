@@ -223,3 +223,34 @@ def test_slope_limit_test_is_the_angle_expression_at_the_cut(limit, cell_size):
     got = slope_exceeds(lo, hi, cell_size, vehicle)
     np.testing.assert_array_equal(got, want)
     assert want.any() and not want.all()
+
+
+def test_neighbour_moves_take_a_shortcut_with_the_general_result_bit_for_bit():
+    """segment_slope_range's shortcut for moves between neighbouring centres equals the general path exactly."""
+    from pathzoo.grid.terrain import _segment_slope_range, neighbour_slope_range, segment_slope_range
+
+    rng = np.random.default_rng(11)
+    grids = [rng.normal(0.0, 3.0, (9, 11)), rng.normal(0.0, 1.0, (1, 6)), rng.normal(0.0, 1.0, (6, 1)),
+             rng.normal(0.0, 1.0, (2, 2)), np.zeros((4, 5)), -np.zeros((3, 3))]
+    holed = rng.normal(0.0, 2.0, (12, 10))
+    holed[rng.random(holed.shape) < 0.15] = np.nan
+    grids.append(holed)
+    grids.append(np.round(rng.normal(0.0, 2.0, (7, 8))))  # ties and exact zeros
+    checked = 0
+    for z in grids:
+        h, w = z.shape
+        for r in range(h):
+            for c in range(w):
+                for dr in (-1, 0, 1):
+                    for dc in (-1, 0, 1):
+                        if (dr, dc) == (0, 0) or not (0 <= r + dr < h and 0 <= c + dc < w):
+                            continue
+                        x0, y0 = c + 0.5, r + 0.5
+                        got = np.array(segment_slope_range(z, x0, y0, x0 + float(dc), y0 + float(dr)))
+                        want = np.array(_segment_slope_range(z, x0, y0, x0 + float(dc), y0 + float(dr)))
+                        direct = np.array(neighbour_slope_range(z, r, c, dr, dc))
+                        for value in (got, direct):
+                            assert value.view(np.int64).tolist() == want.view(np.int64).tolist() or (
+                                np.isnan(value).all() and np.isnan(want).all()), (z.shape, r, c, dr, dc, value, want)
+                        checked += 1
+    assert checked > 1000

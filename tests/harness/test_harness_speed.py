@@ -1,14 +1,15 @@
-"""The harness's speed-ups keep their guarantees: quick tamper check, warm-up shares, queue ahead, early judge."""
+"""The harness's speed-ups keep their guarantees: quick tamper check, warm-up shares, queue ahead, forked judge."""
 
 from __future__ import annotations
 
 import sys
 import types
 
+import psutil
 import pytest
 
 import pathzoo
-from pathzoo.harness import judge_worker, tamper
+from pathzoo.harness import tamper
 from pathzoo.harness import Experiment
 from pathzoo.harness.executors import InlineExecutor, ProcessExecutor
 from pathzoo.harness.judge_worker import JudgeWorker
@@ -128,29 +129,30 @@ def _solved_run() -> tuple:
     return task, execute_task(task)
 
 
-def test_an_early_judge_is_taken_over_and_judges():
+def test_the_judge_is_a_fork_of_the_workers_server_and_judges():
+    from multiprocessing import forkserver
+
+    from pathzoo.harness.launch import default_start_method
+
     task, outcome = _solved_run()
-    judge_worker.start_judge()
-    early = judge_worker._early
-    assert early is not None
-    judge_worker.start_judge()  # one waiting is enough
-    assert judge_worker._early is early
     with JudgeWorker() as judge:
-        assert judge._process is early[0] and judge_worker._early is None
         record = judge.judge(task, outcome)
+        assert judge._process is not None
+        if default_start_method() == "forkserver":  # the server's imports are not paid again
+            assert psutil.Process(judge._process.pid).ppid() == forkserver._forkserver._forkserver_pid
     assert record.status.value == "solved" and record.valid and record.metrics
 
 
-def test_a_dead_early_judge_is_replaced():
+def test_a_judge_that_died_between_runs_is_replaced():
     task, outcome = _solved_run()
-    judge_worker.start_judge()
-    assert judge_worker._early is not None
-    dead = judge_worker._early[0]
-    dead.kill()
-    dead.join()
     with JudgeWorker() as judge:
-        assert judge._process is not dead
         assert judge.judge(task, outcome).status.value == "solved"
+        dead = judge._process
+        assert dead is not None
+        dead.kill()
+        dead.join()
+        assert judge.judge(task, outcome).status.value == "solved"  # by a new judge process
+        assert judge._process is not dead
 
 
 def test_the_cpu_time_of_a_worker_is_read_from_outside_and_agrees_with_psutil():

@@ -33,7 +33,10 @@ them re-import ``__main__`` is left out (:class:`~pathzoo.harness.launch.NoMainC
 script without an ``if __name__ == "__main__":`` guard (or ``python - <
 script.py``) works; planner classes defined in ``__main__`` travel by value
 (:attr:`~pathzoo.harness.specs.RunTask.planner_class`). Replacing a worker
-costs a fork of the server, which has every entry-point plugin imported.
+costs a fork of the server, which has numba and pathzoo's shared code loaded
+(:mod:`~pathzoo.harness.executors.warmup`); each worker discovers the plugins
+and imports the planner classes it runs itself, since the judge is forked
+from the same server and must never inherit planner code.
 Workers ignore ``SIGINT``; Ctrl-C reaches the harness, which kills them on shutdown,
 and they die with the harness however it ends (:func:`~pathzoo.harness.launch.die_with_harness`).
 
@@ -44,7 +47,11 @@ is sent to each worker once; later tasks on it refer to it by digest
 All workers start when the executor is built; with two or more, each first
 warms up its share of the experiment's planners (:meth:`ProcessExecutor.prepare`),
 and the runner keeps one run per worker queued here (:attr:`lookahead`), so a
-worker goes from one run to the next without waiting for the harness.
+worker goes from one run to the next without waiting for the harness. The
+very first run goes alone, though: the other workers get nothing (neither a
+run nor a warm-up share) until it starts planning or ends, so that its setup
+(plugins, planner class, scenario, warm-up) shares the cores with the judge's
+start only, and the first result comes sooner.
 """
 
 from __future__ import annotations
@@ -214,6 +221,7 @@ class ProcessExecutor(RunExecutor):
         self._pending: deque[tuple[RunTask, Future[RunOutcome]]] = deque()
         self._workers: list[_Worker] = []
         self._warm_shares: deque[list[RunTask]] = deque()
+        self._first_alone = self.capacity > 1  # see _dispatch
         self._closing = False
         self._wake_r, self._wake_w = self._ctx.Pipe(duplex=False)
         self.lookahead = self.capacity
@@ -297,6 +305,8 @@ class ProcessExecutor(RunExecutor):
         self._workers.remove(worker)
 
     def _dispatch(self) -> None:
+        if self._first_alone and any(w.task is not None for w in self._workers):
+            return  # the first run's setup shares the cores with the judge's only, until it plans or ends
         while True:  # warm-up shares first, to ready workers that have had none, while another one serves the queue
             with self._lock:
                 if not self._warm_shares or not any(w.task is not None for w in self._workers):
@@ -341,9 +351,13 @@ class ProcessExecutor(RunExecutor):
                 with self._lock:
                     self._pending.appendleft((task, future))
             except Exception as exc:  # the task did not pickle
-                worker.finish(RunOutcome(task.run_key, crash=True, message=f"task could not be sent: {exc!r}",
-                                         started_at=worker.started_at))
+                self._finish(worker, RunOutcome(task.run_key, crash=True, message=f"task could not be sent: {exc!r}",
+                                                started_at=worker.started_at))
                 worker.idle = True
+
+    def _finish(self, worker: _Worker, outcome: RunOutcome) -> None:
+        self._first_alone = False
+        worker.finish(outcome)
 
     def _timed(self, worker: _Worker, outcome: RunOutcome) -> RunOutcome:
         """The outcome with the harness's own wall and CPU times of ``plan()`` (NaN when it never started)."""
@@ -353,8 +367,8 @@ class ProcessExecutor(RunExecutor):
 
     def _violation(self, worker: _Worker, what: str) -> None:
         if worker.task is not None:
-            worker.finish(RunOutcome(worker.task.run_key, crash=True, started_at=worker.started_at,
-                                     message=f"the worker broke the protocol ({what}) and was killed"))
+            self._finish(worker, RunOutcome(worker.task.run_key, crash=True, started_at=worker.started_at,
+                                            message=f"the worker broke the protocol ({what}) and was killed"))
         self._retire(worker)
 
     def _receive(self, worker: _Worker) -> None:
@@ -379,8 +393,9 @@ class ProcessExecutor(RunExecutor):
                 worker.deadline = worker.sent_at + worker.task.timeout_s
             elif tag == b"P" and worker.task is not None and worker.started_once and math.isnan(worker.plan_t0):
                 worker.plan_t0, worker.plan_c0 = _clock(), process_cpu_time(worker.process.pid)
+                self._first_alone = False
             elif tag == b"D" and worker.task is not None:
-                worker.finish(self._timed(worker, decode_outcome(body, worker.task.run_key)))
+                self._finish(worker, self._timed(worker, decode_outcome(body, worker.task.run_key)))
             elif tag in (b"S", b"P") and worker.task is not None:
                 continue  # repeated announcements change nothing
             else:
@@ -395,7 +410,7 @@ class ProcessExecutor(RunExecutor):
             )
         if worker.task is not None:
             elapsed = _clock() - worker.sent_at
-            worker.finish(RunOutcome(
+            self._finish(worker, RunOutcome(
                 worker.task.run_key, crash=True, wall_time_s=elapsed, started_at=worker.started_at,
                 message=f"worker process died ({describe_exit(worker.process.exitcode)}) after {elapsed:.3g} s",
             ))
@@ -411,7 +426,7 @@ class ProcessExecutor(RunExecutor):
         else:
             outcome = RunOutcome(worker.task.run_key, timed_out=True, wall_time_s=elapsed,
                                  started_at=worker.started_at, message=f"worker killed after {elapsed:.3g} s")
-        worker.finish(outcome)
+        self._finish(worker, outcome)
         self._retire(worker)
 
     def _monitor(self) -> None:
