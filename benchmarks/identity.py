@@ -67,6 +67,10 @@ EXTRA = (  # planner, scenario id, parameters: non-default settings that take ot
     ("aco.as", "gant.fig7", {"alpha": 0.5}),  # precomputed colony weights with a power of the trail
     ("aco.mmas", "random60", {"alpha": 1.5}),  # precomputed weights: power, floor and ceiling of the trail
     ("aco.iaca", "iaca.offroad", {"decr": 0.0}),  # precomputed weights of a node trail (no local update)
+    ("aco.as", "gant.fig7", {"max_steps": 20}),  # the sequential weighted kernel (walk_weighted.py): step caps,
+    ("aco.gant", "gant.fig7", {"dead_end": "die"}),  # ants dropped at dead ends,
+    ("aco.as", "dsaco.complex", {"dead_end": "die"}),  # the same under a turn limit,
+    ("aco.mmas", "enclosed60", {}),  # a walled-off goal: the first ant exhausts the component, no other starts
 )
 LONG = (  # planner, scenario id, parameters, iterations: whole runs (schedules, evaporation, p decay)
     ("aco.dsaco", "dsaco.complex", {}, 500),
@@ -88,12 +92,16 @@ LONG = (  # planner, scenario id, parameters, iterations: whole runs (schedules,
 
 
 def scenario(sid: str) -> Scenario:
-    """A registered scenario, or the generated 60 x 60 random grid ``random60``."""
-    if sid == "random60":
-        occ = random_obstacles((60, 60), seed=3, density=0.25)
-        occ[0, 0] = occ[-1, -1] = False
-        return Scenario(id="random60", kind="grid2d", occupancy=occ, cell_size=1.0, start=(0.5, 0.5),
-                        goal=(59.5, 59.5))
+    """A registered scenario, the generated 60 x 60 random grid ``random60`` (its start is walled in), or
+    ``enclosed60``: an open 60 x 60 grid whose goal corner is walled off."""
+    if sid in ("random60", "enclosed60"):
+        if sid == "random60":
+            occ = random_obstacles((60, 60), seed=3, density=0.25)
+            occ[0, 0] = occ[-1, -1] = False
+        else:
+            occ = np.zeros((60, 60), dtype=bool)
+            occ[-3, -3:] = occ[-3:, -3] = True
+        return Scenario(id=sid, kind="grid2d", occupancy=occ, cell_size=1.0, start=(0.5, 0.5), goal=(59.5, 59.5))
     return pathzoo.load_scenario(sid)
 
 

@@ -23,6 +23,8 @@ import math
 import numba
 import numpy as np
 
+from pathzoo_aco.engine.prefetch import AHEAD, prefetch
+
 __all__ = ["Pheromone", "deposit_walks"]
 
 _RENORMALISE_BELOW = 1e-150
@@ -77,7 +79,13 @@ def _deposit(x, scale, lo, hi, on_nodes, indices, flat, offsets, ants, keep, per
     use_step = per_step.size > 0
     for i in range(ants.size):
         a = ants[i]
-        for p in range(offsets[a], offsets[a + 1]):
+        end = offsets[a + 1]
+        for p in range(offsets[a], end):
+            ahead = flat[min(p + AHEAD, end - 1)]  # the walk's entries follow no stride: hint a few ahead
+            if on_nodes:
+                prefetch(indices, ahead)
+            else:
+                prefetch(x, ahead)
             e = flat[p]
             k = indices[e] if on_nodes else e
             t = min(max(scale * x[k], lo), hi)

@@ -110,6 +110,12 @@ class ColonyProblem:
         return out
 
     @_kept
+    def indptr32(self) -> np.ndarray:
+        """``graph.indptr`` as int32 (half the cache lines per node in the walks); int64 for 2**31 edges or more."""
+        indptr = self.graph.indptr
+        return indptr.astype(np.int32) if self.graph.n_edges < 2**31 else indptr
+
+    @_kept
     def offset_id_small(self) -> np.ndarray:
         """``graph.offset_id`` as int8 (int32 for neighbourhoods of more than 127 moves)."""
         g = self.graph

@@ -22,27 +22,23 @@ from dataclasses import dataclass
 import numba
 import numpy as np
 
+from pathzoo_aco.engine.outcomes import ABORTED, EXHAUSTED, OUTRUN, REACHED, STEP_CAP, STUCK
+from pathzoo_aco.engine.outcomes import DONE as _DONE
+from pathzoo_aco.engine.outcomes import FRESH as _FRESH
+from pathzoo_aco.engine.outcomes import NEED_SPACE as _NEED_SPACE
+from pathzoo_aco.engine.outcomes import RUNNING as _RUNNING
 from pathzoo_aco.engine.pheromone import Pheromone
+from pathzoo_aco.engine.prefetch import AHEAD, prefetch
 from pathzoo_aco.engine.problem import ColonyProblem
 from pathzoo_aco.engine.rules import WalkRules
+from pathzoo_aco.engine.walk_weighted import unsigned_lists, weighted_colony
 
 __all__ = ["Walks", "WalkEngine", "REACHED", "STUCK", "STEP_CAP", "EXHAUSTED", "ABORTED", "OUTRUN"]
-
-REACHED, STUCK, STEP_CAP, EXHAUSTED, ABORTED = 0, 1, 2, 3, 4
-"""Walk outcomes: reached the goal; dead end without backtracking; step cap;
-backtracked to an empty walk (component exhausted); stopped by the time
-budget or never started."""
-
-_DONE, _NEED_SPACE = 0, 1
 
 
 @numba.njit(cache=True)
 def _seed(seed):
     np.random.seed(seed)
-
-
-_FRESH, _RUNNING, OUTRUN = -2, -1, 5
-"""Walk states before an outcome: not started, walking; and the race outcome "another ant reached the goal first"."""
 
 
 @numba.njit(cache=True, inline="always")
@@ -387,12 +383,15 @@ def _walk_sums(values, flat, offsets, by_edge):
     acc = 0.0
     p = 0
     start = 0.0
+    last = offsets[n] - 1
     for a in range(n):
         while p < offsets[a]:
             acc += values[flat[p]] if by_edge else values[p]
             p += 1
         start = acc
         while p < offsets[a + 1]:
+            if by_edge:  # the walk's edges follow no stride: ask for the value a few edges ahead
+                prefetch(values, flat[min(p + AHEAD, last)])
             acc += values[flat[p]] if by_edge else values[p]
             p += 1
         out[a] = acc - start
@@ -542,15 +541,23 @@ class WalkEngine:
         weights = self.colony_weights(rules, trail)
         _seed(seed)
         while True:
-            status = _colony(
-                self.indices, self.offset_id, *adjacency, weights, p.horizontal_offsets, rules.turn,
-                trail.x, trail.scale, trail.lo, trail.hi, trail.on_nodes,
-                rules.tau_exp, rules.q0, rules.local_keep, rules.local_add,
-                rules.pre_add, p.start, p.goal, rules.backtrack, rules.max_steps, allowance, rules.race,
-                self.race_colony if rules.race else self.walk_base, self.race_stamps if rules.race else self.stamps,
-                stacks, prevs, self.cand_e, self.cand_w,
-                cur, depth, prev, steps, flags, counters, self.flat, offsets,
-            )
+            if weights is not None and not rules.race:  # the common case, compiled on its own (walk_weighted.py)
+                status = weighted_colony(
+                    *unsigned_lists(p, self.indices, adjacency), weights, p.horizontal_offsets, rules.turn,
+                    rules.q0, p.start, p.goal, rules.backtrack, rules.max_steps, allowance, self.walk_base,
+                    self.stamps[0], stacks[0], prevs[0], self.cand_w, depth, steps, flags, counters,
+                    self.flat, offsets,
+                )
+            else:
+                status = _colony(
+                    self.indices, self.offset_id, *adjacency, weights, p.horizontal_offsets, rules.turn,
+                    trail.x, trail.scale, trail.lo, trail.hi, trail.on_nodes,
+                    rules.tau_exp, rules.q0, rules.local_keep, rules.local_add,
+                    rules.pre_add, p.start, p.goal, rules.backtrack, rules.max_steps, allowance, rules.race,
+                    self.race_colony if rules.race else self.walk_base, self.race_stamps if rules.race else self.stamps,
+                    stacks, prevs, self.cand_e, self.cand_w,
+                    cur, depth, prev, steps, flags, counters, self.flat, offsets,
+                )
             if status == _DONE:
                 break
             if counters[3]:  # a finished walk needs room in ``flat``
