@@ -150,7 +150,10 @@ def test_race_grows_its_stacks_and_honours_the_allowance():
     g = problem.graph
     blind = WalkRules.product(1.0, np.ones(g.n_edges), 1.0, max_steps=10**9, race=True)
     walks = WalkEngine(problem).walk(blind, Pheromone(g.n_edges, 1.0), 3, seed=1)
-    assert walks.reached.sum() == 1 and len(walks.edges(int(np.argmax(walks.reached)))) > 256
+    w = int(np.argmax(walks.reached))
+    assert walks.reached.sum() == 1 and len(walks.edges(w)) > 256
+    # still lock step across the regrowths: one step per ant per round, whatever the stacks' size
+    assert np.all(walks.steps[:w] == walks.steps[w]) and np.all(walks.steps[w + 1 :] == walks.steps[w] - 1)
     cut = WalkEngine(problem).walk(blind, Pheromone(g.n_edges, 1.0), 3, seed=1, allowance=30)
     assert np.all(cut.flags == ABORTED) and cut.steps.sum() == 30
 

@@ -137,6 +137,7 @@ def _colony(indices, offset_id, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, 
         pv = prev[a]
         n = steps[a]
         flag = _RUNNING
+        full = False  # stopped before a step for want of room on the stack (not after a race step that filled it)
         while True:
             if c == goal:
                 flag = REACHED
@@ -148,6 +149,7 @@ def _colony(indices, offset_id, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, 
                 flag = ABORTED
                 break
             if d >= stack_e.size:
+                full = True
                 break  # no room on the stack: the caller grows it
             # ---------------------------------------------------------- one step
             e0 = adj_ptr[c]
@@ -262,7 +264,7 @@ def _colony(indices, offset_id, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, 
         prev[a] = pv
         steps[a] = n
         counters[2] = total
-        if flag == _RUNNING and d >= stack_e.size:
+        if full:  # resume with this ant, which has not stepped yet (a racing ant's step waits until then)
             counters[0] = a
             return _NEED_SPACE
         if flag == _RUNNING:  # a race ant that took its step
