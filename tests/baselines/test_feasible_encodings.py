@@ -177,15 +177,19 @@ def test_issue_15_pso_paths_keep_clear_of_walls_exactly(encoding, iterations, mi
 @pytest.mark.slow
 @pytest.mark.parametrize("pid", ["swarm.pso", "evo.ga"])
 def test_a_tight_time_limit_is_kept_on_a_512_map(pid):
-    """The costly encodings look at the clock while drawing and evaluating, not only between generations."""
+    """The costly encodings look at the clock while drawing and evaluating, not only between generations.
+
+    The overrun is counted in this process's CPU seconds: the planner stops on the wall clock, so on a
+    loaded machine its wall time stretches with the load while the work it did past 0.3 s does not.
+    """
     import time
 
     sc = pathzoo.load_scenario("movingai.8room_000.b194.1939")
     planner = make_planner(pid)
     sc.graph  # the scenario's shared graph is built once, outside any run
-    started = time.perf_counter()
+    started = time.process_time()
     result = planner.plan(sc, budget=Budget(time_s=0.3), rng=np.random.default_rng(0))
-    assert time.perf_counter() - started < 0.3 + 1.5
+    assert time.process_time() - started < 0.3 + 1.5
     assert result.iterations <= 1
 
 
