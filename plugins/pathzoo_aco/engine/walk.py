@@ -22,16 +22,13 @@ from dataclasses import dataclass
 import numba
 import numpy as np
 
-from pathzoo_aco.engine.outcomes import ABORTED, EXHAUSTED, OUTRUN, REACHED, STEP_CAP, STUCK
-from pathzoo_aco.engine.outcomes import DONE as _DONE
-from pathzoo_aco.engine.outcomes import FRESH as _FRESH
-from pathzoo_aco.engine.outcomes import NEED_SPACE as _NEED_SPACE
-from pathzoo_aco.engine.outcomes import RUNNING as _RUNNING
+from pathzoo_aco.engine.outcomes import (ABORTED, DONE, EXHAUSTED, FRESH, NEED_SPACE, OUTRUN, REACHED, RUNNING,
+                                         STEP_CAP, STUCK)
 from pathzoo_aco.engine.pheromone import Pheromone
 from pathzoo_aco.engine.prefetch import AHEAD, prefetch
 from pathzoo_aco.engine.problem import ColonyProblem
 from pathzoo_aco.engine.rules import WalkRules
-from pathzoo_aco.engine.walk_weighted import unsigned_lists, weighted_colony
+from pathzoo_aco.engine.walk_weighted import choose, unsigned_lists, weighted_colony
 
 __all__ = ["Walks", "WalkEngine", "REACHED", "STUCK", "STEP_CAP", "EXHAUSTED", "ABORTED", "OUTRUN"]
 
@@ -68,7 +65,7 @@ def _colony(indices, offset_id, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, 
             start, goal, backtrack, max_steps, allowance, race, walk_base,
             stamps, stacks, prevs, cand_e, cand_w,
             cur, depth, prev, steps, flags, counters, flat, offsets):
-    """Move the colony's ants; return ``_DONE`` or ``_NEED_SPACE`` (grow ``stacks`` or ``flat``, call again).
+    """Move the colony's ants; return ``DONE`` or ``NEED_SPACE`` (grow ``stacks`` or ``flat``, call again).
 
     One after another (``race`` False: an ant walks until it stops, then the
     next starts; one stamp row and one stack row serve them all), or in lock
@@ -113,7 +110,7 @@ def _colony(indices, offset_id, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, 
             a = 0
             running = False
             for b in range(n_ants):
-                running = running or flags[b] == _RUNNING
+                running = running or flags[b] == RUNNING
             if not running:
                 break
         if flags[a] >= 0:  # a race walk that has stopped
@@ -124,8 +121,8 @@ def _colony(indices, offset_id, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, 
         stack_e = stacks[row]
         stack_prev = prevs[row]
         wid = walk_base if race else walk_base + a  # racing ants have a stamp row each
-        if flags[a] == _FRESH:
-            flags[a] = _RUNNING
+        if flags[a] == FRESH:
+            flags[a] = RUNNING
             counters[1] += 1
             cur[a] = start
             depth[a] = 0
@@ -136,7 +133,7 @@ def _colony(indices, offset_id, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, 
         d = depth[a]
         pv = prev[a]
         n = steps[a]
-        flag = _RUNNING
+        flag = RUNNING
         full = False  # stopped before a step for want of room on the stack (not after a race step that filled it)
         while True:
             if c == goal:
@@ -225,21 +222,7 @@ def _colony(indices, offset_id, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, 
                 if use_turn:
                     pv = stack_prev[d - 1] if d > 0 else no_prev
             else:
-                sel = cand_e[nc - 1]
-                if q0 > 0.0 and np.random.random() < q0:
-                    best = -1.0
-                    for i in range(nc):
-                        if cand_w[i] > best:
-                            best = cand_w[i]
-                            sel = cand_e[i]
-                else:
-                    r = np.random.random() * total_w
-                    acc = 0.0
-                    for i in range(nc):
-                        acc += cand_w[i]
-                        if r < acc:
-                            sel = cand_e[i]
-                            break
+                sel = cand_e[choose(cand_w, nc, total_w, q0)]
                 c = indices[sel]
                 stamp[c] = wid
                 stack_e[d] = sel
@@ -266,8 +249,8 @@ def _colony(indices, offset_id, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, 
         counters[2] = total
         if full:  # resume with this ant, which has not stepped yet (a racing ant's step waits until then)
             counters[0] = a
-            return _NEED_SPACE
-        if flag == _RUNNING:  # a race ant that took its step
+            return NEED_SPACE
+        if flag == RUNNING:  # a race ant that took its step
             a += 1
             continue
         flags[a] = flag
@@ -277,22 +260,22 @@ def _colony(indices, offset_id, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, 
                 if offsets[a] + d > flat.size:
                     counters[0] = a
                     counters[3] = 1
-                    return _NEED_SPACE
+                    return NEED_SPACE
                 for p in range(d):
                     flat[offsets[a] + p] = stack_e[p]
             offsets[a + 1] = offsets[a] + (d if flag == REACHED else 0)
         if stop:
             for b in range(n_ants):  # the others: never started, stopped, or outrun in a race
-                if flags[b] == _FRESH or (flags[b] == _RUNNING and flag != REACHED):
+                if flags[b] == FRESH or (flags[b] == RUNNING and flag != REACHED):
                     flags[b] = ABORTED
-                elif flags[b] == _RUNNING:
+                elif flags[b] == RUNNING:
                     flags[b] = OUTRUN
                 if not race and b > a:
                     offsets[b + 1] = offsets[a + 1]
             break
         a += 1
     counters[0] = a
-    return _DONE
+    return DONE
 
 
 @numba.njit(cache=True)
@@ -536,16 +519,18 @@ class WalkEngine:
         depth = np.zeros(n_ants, dtype=np.int64)
         prev = np.zeros(n_ants, dtype=np.int64)
         steps = np.zeros(n_ants, dtype=np.int64)
-        flags = np.full(n_ants, _FRESH, dtype=np.int8)
+        flags = np.full(n_ants, FRESH, dtype=np.int8)
         counters = np.zeros(4, dtype=np.int64)
         offsets = np.zeros(n_ants + 1, dtype=np.int64)
         adjacency = self.adjacency(rules)
         weights = self.colony_weights(rules, trail)
+        weighted = weights is not None and not rules.race  # the common case, compiled on its own (walk_weighted.py)
+        lists = unsigned_lists(p, self.indices, adjacency) if weighted else ()
         _seed(seed)
         while True:
-            if weights is not None and not rules.race:  # the common case, compiled on its own (walk_weighted.py)
+            if weighted:
                 status = weighted_colony(
-                    *unsigned_lists(p, self.indices, adjacency), weights, p.horizontal_offsets, rules.turn,
+                    *lists, weights, p.horizontal_offsets, rules.turn,
                     rules.q0, p.start, p.goal, rules.backtrack, rules.max_steps, allowance, self.walk_base,
                     self.stamps[0], stacks[0], prevs[0], self.cand_w, depth, steps, flags, counters,
                     self.flat, offsets,
@@ -560,7 +545,7 @@ class WalkEngine:
                     stacks, prevs, self.cand_e, self.cand_w,
                     cur, depth, prev, steps, flags, counters, self.flat, offsets,
                 )
-            if status == _DONE:
+            if status == DONE:
                 break
             if counters[3]:  # a finished walk needs room in ``flat``
                 need = int(offsets[counters[0]] + depth[counters[0]])

@@ -24,7 +24,33 @@ from pathzoo_aco.engine.outcomes import ABORTED, DONE, EXHAUSTED, NEED_SPACE, RE
 from pathzoo_aco.engine.prefetch import prefetch
 from pathzoo_aco.engine.problem import ColonyProblem
 
-__all__ = ["weighted_colony", "unsigned_lists"]
+__all__ = ["weighted_colony", "unsigned_lists", "choose"]
+
+
+@numba.njit(cache=True, inline="always")
+def choose(cand_w, nc, total_w, q0):
+    """Index of the candidate an ant takes among ``cand_w[:nc]`` (weights summing to ``total_w``), eq. 14's rule.
+
+    With probability ``q0`` the first of the heaviest; otherwise a roulette
+    draw, falling back to the last candidate should rounding leave the draw
+    past every running sum. One or two draws from numba's generator, in the
+    same order in every kernel that calls this.
+    """
+    if q0 > 0.0 and np.random.random() < q0:
+        best = -1.0
+        pick = nc - 1
+        for i in range(nc):
+            if cand_w[i] > best:
+                best = cand_w[i]
+                pick = i
+        return pick
+    r = np.random.random() * total_w
+    acc = 0.0
+    for i in range(nc):
+        acc += cand_w[i]
+        if r < acc:
+            return i
+    return nc - 1
 
 
 def unsigned_lists(problem: ColonyProblem, indices: np.ndarray,
@@ -140,21 +166,7 @@ def weighted_colony(indices, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, w_a
                     prefetch(weights, ahead)
                     prefetch(weights, ahead + 7)  # its first eight weights span one or two lines
                     prefetch(adj_node, ahead)
-                pick = cand_q[nc - 1]
-                if q0 > 0.0 and np.random.random() < q0:  # the first of the heaviest candidates
-                    best = -1.0
-                    for i in range(nc):
-                        if cand_w[i] > best:
-                            best = cand_w[i]
-                            pick = cand_q[i]
-                else:
-                    r = np.random.random() * total_w
-                    acc = 0.0
-                    for i in range(nc):
-                        acc += cand_w[i]
-                        if r < acc:
-                            pick = cand_q[i]
-                            break
+                pick = cand_q[choose(cand_w, nc, total_w, q0)]
                 c = adj_node[pick]
                 stamp[c] = wid
                 stack_e[d] = pick if adj_edge is None else adj_edge[pick]
