@@ -7,6 +7,20 @@ Run from the repository root (``../shared`` must sit beside it)::
     python benchmarks/aco.py --all-ggaco   # also the four other GGACO terrain sizes
     python benchmarks/aco.py --seeds 10    # also DSACO/IACA/FGDACO quality over 10 seeds per paper setting
     python benchmarks/aco.py --later-only --seeds 10   # only the DSACO/IACA/FGDACO sections
+    python benchmarks/aco.py --floor-only  # only each colony's ns per ant-step against the floor kernel
+
+Floor: every colony's CPU nanoseconds per ant-step on 8room_000 (512 x 512),
+as a multiple of a floor kernel timed in the same process on the same graph:
+a compiled random walk that makes one random draw and reads one neighbour row
+per step, the least any ant walk must do. A colony's ns per step is
+the CPU time spent in the compiled walks (timed around them by this script)
+over the ant-steps they made, so set-up (tables, trails, the path) does not
+count. IACA and DSACO's step rule run on their papers' maps (on 8room_000 the
+first fails and the second stops after one colony), with the floor timed on
+that map's graph. Each figure is the minimum of ``--repeats`` runs of
+``--floor-colonies`` colonies, printed beside its target (issue 26): at most 3x the floor for AS, MMAS, G-Ant and DSACO under
+the graph rule, at most 5x for ACS, IACA, DSACO under the paper's step rule
+and FGDACO's timed walks (GGACO is shown for information).
 
 Throughput: each variant runs a few colonies with its default parameters on a
 100 x 100 random grid and on MovingAI's 8room_000 (512 x 512, its longest
@@ -26,12 +40,15 @@ when a pack is not installed a stand-in of the same size is used and marked.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import math
 import os
 import time
 from pathlib import Path
+from typing import Callable, Iterator
 
 import numpy as np
+from numba import njit
 from scipy.sparse.csgraph import dijkstra
 
 import pathzoo
@@ -92,6 +109,119 @@ def terrain_standin(rows: int, cols: int) -> Scenario:
     return Scenario(id=f"ggaco-standin-{rows}x{cols}", kind="terrain", occupancy=blocked, cell_size=1.0,
                     start=(0.5, 0.5), goal=(cols - 0.5, rows - 0.5), elevation=elev,
                     vehicle=VehicleModel(max_climb_deg=25.0, max_descent_deg=25.0))
+
+
+FLOOR_ROWS = (  # label, planner, scenario (None: 8room_000), parameters, target multiple of the floor or None
+    ("aco.as", "aco.as", None, {}, 3.0),
+    ("aco.mmas", "aco.mmas", None, {}, 3.0),
+    ("aco.gant", "aco.gant", None, {}, 3.0),
+    ("aco.dsaco, graph rule", "aco.dsaco", None, {}, 3.0),
+    ("aco.acs", "aco.acs", None, {}, 5.0),
+    ("aco.iaca", "aco.iaca", "iaca.offroad", {}, 5.0),
+    ("aco.dsaco, paper's step rule", "aco.dsaco", "dsaco.complex", {"step_rule": "longitude"}, 5.0),
+    ("aco.fgdaco, timed walks", "aco.fgdaco", None, {}, 5.0),
+    ("aco.ggaco", "aco.ggaco", None, {}, None),
+)
+
+
+@njit(cache=True)
+def floor_walk(indptr: np.ndarray, indices: np.ndarray, start: int, n_steps: int, seed: int) -> int:
+    """The least an ant walk does: per step one uniform draw and one read of the node's neighbour row.
+
+    Returns the final node so the compiler keeps the walk; a node without
+    neighbours restarts the walk at ``start``.
+    """
+    np.random.seed(seed)
+    node = start
+    for _ in range(n_steps):
+        lo = indptr[node]
+        degree = indptr[node + 1] - lo
+        if degree == 0:
+            node = start
+            continue
+        node = indices[lo + int(np.random.random() * degree)]
+    return node
+
+
+def floor_ns(scenario: Scenario, n_steps: int, repeats: int) -> float:
+    """CPU nanoseconds per step of :func:`floor_walk` on the scenario's graph (minimum of ``repeats``)."""
+    g = scenario.graph
+    floor_walk(g.indptr, g.indices, scenario.start_node, 10, 0)
+    best = math.inf
+    for r in range(repeats):
+        started = time.process_time()
+        floor_walk(g.indptr, g.indices, scenario.start_node, n_steps, r)
+        best = min(best, time.process_time() - started)
+    return 1e9 * best / n_steps
+
+
+@contextlib.contextmanager
+def walk_cpu() -> Iterator[list[float]]:
+    """Accumulate the CPU seconds spent in the compiled walks while the block runs.
+
+    The walks are the engine's ``walk`` (every colony but DSACO's, FGDACO's
+    timed walks included) and DSACO's ``run_colony`` (walks, fitness and
+    updates of a colony in one compiled call); the planners' own timers are
+    not used, so this does not depend on how a planner measures itself.
+    """
+    from pathzoo_aco import dsaco
+    from pathzoo_aco.engine.walk import WalkEngine
+    from pathzoo_aco.fgdaco_walk import TimedWalkEngine
+
+    spent = [0.0]
+
+    def timed(fn: Callable) -> Callable:
+        def wrapper(*args, **kwargs):
+            started = time.process_time()
+            try:
+                return fn(*args, **kwargs)
+            finally:
+                spent[0] += time.process_time() - started
+        return wrapper
+
+    patched = [(WalkEngine, "walk"), (TimedWalkEngine, "walk"), (dsaco, "run_colony")]
+    originals = [getattr(owner, name) for owner, name in patched]
+    for (owner, name), fn in zip(patched, originals):
+        setattr(owner, name, timed(fn))
+    try:
+        yield spent
+    finally:
+        for (owner, name), fn in zip(patched, originals):
+            setattr(owner, name, fn)
+
+
+def walk_ns(planner_id: str, scenario: Scenario, colonies: int, repeats: int, **params) -> float:
+    """CPU ns per ant-step of the compiled walks over ``colonies`` colonies (minimum of ``repeats`` runs)."""
+    run(planner_id, scenario, 1, n_ants=1, **params)  # compile or load the kernels
+    best = math.inf
+    for _ in range(repeats):
+        with walk_cpu() as spent:
+            result, _, _ = run(planner_id, scenario, colonies, **params)
+        if result.extras["ant_steps"]:
+            best = min(best, 1e9 * spent[0] / result.extras["ant_steps"])
+    return best
+
+
+def floor_table(colonies: int, repeats: int) -> None:
+    """Each colony's ns per ant-step beside the floor's, measured in this process on the same graph."""
+    print("## ns per ant-step against the floor\n")
+    print("| colony | scenario | ns per ant-step | floor (ns) | x floor | target | met |\n|---|---|---|---|---|---|---|")
+    floors: dict[str, tuple[Scenario, float]] = {}
+    for label, pid, sid, params, target in FLOOR_ROWS:
+        if sid not in floors:
+            scenario = room512() if sid is None else registered(sid)
+            if scenario is None:
+                print(f"| {label} | {sid} not installed | | | | | |")
+                continue
+            scenario.graph
+            floors[sid] = scenario, floor_ns(scenario, 20_000_000, repeats)
+        scenario, floor = floors[sid]
+        ns = walk_ns(pid, scenario, colonies, repeats, **params)
+        ratio = ns / floor
+        verdict = "-" if target is None else ("yes" if ratio <= target else "no")
+        shown = "information" if target is None else f"<= {target:g}x"
+        print(f"| {label} | {scenario.id} | {ns:.1f} | {floor:.1f} | {ratio:.2f}x | {shown} | {verdict} |", flush=True)
+    print()
 
 
 def optimum(scenario: Scenario) -> float:
@@ -249,10 +379,17 @@ def main() -> None:
     parser.add_argument("--all-ggaco", action="store_true", help="all five GGACO terrain sizes")
     parser.add_argument("--iterations", type=int, default=5, help="colonies per throughput run")
     parser.add_argument("--later-only", action="store_true", help="only the DSACO/IACA/FGDACO sections")
+    parser.add_argument("--floor-only", action="store_true", help="only the ns-per-step table against the floor")
+    parser.add_argument("--floor-colonies", type=int, default=3,
+                        help="colonies per run in the floor table")
+    parser.add_argument("--repeats", type=int, default=3, help="measurements per floor-table figure (minimum kept)")
     parser.add_argument("--seeds", type=int, default=0,
                         help="also run the DSACO/IACA/FGDACO paper settings over this many seeds")
     args = parser.parse_args()
     print(f"load average: {os.getloadavg()[0]:.1f} on {os.cpu_count()} CPUs\n")
+    floor_table(args.floor_colonies, args.repeats)
+    if args.floor_only:
+        return
     if not args.later_only:
         throughput(args.iterations)
     if args.quick:

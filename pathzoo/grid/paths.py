@@ -19,8 +19,9 @@ CENTRE_TOLERANCE_CELLS = 1e-9
 
 def on_centre(scenario: "Scenario", point: np.ndarray, centre: np.ndarray) -> bool:
     """Whether ``point`` coincides with the cell centre ``centre`` (to :data:`CENTRE_TOLERANCE_CELLS`)."""
-    tol = CENTRE_TOLERANCE_CELLS * float(np.min(scenario.cell_sizes))
-    return bool(np.max(np.abs(np.asarray(point, dtype=np.float64) - centre)) <= tol)
+    tol = CENTRE_TOLERANCE_CELLS * min(scenario.cell_sizes.tolist())
+    offsets = np.asarray(point, dtype=np.float64).tolist(), np.asarray(centre, dtype=np.float64).tolist()
+    return all(abs(p - c) <= tol for p, c in zip(*offsets))  # Python floats: this runs a few times per plan()
 
 
 def centre_path(scenario: "Scenario", nodes: np.ndarray) -> np.ndarray:

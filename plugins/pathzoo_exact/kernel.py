@@ -228,7 +228,9 @@ def heuristic(node: int, goal: np.ndarray, mode: int, dims: np.ndarray, steps: n
 
 def goal_cell(target: int, dims: np.ndarray) -> np.ndarray:
     """``(x, y, z)`` = (column, row, layer) of flat node ``target`` in a grid of shape ``dims = (L, H, W)``."""
-    layer, row, col = np.unravel_index(target, tuple(int(d) for d in dims))
+    _, h, w = (int(d) for d in dims)
+    layer, rest = divmod(int(target), h * w)
+    row, col = divmod(rest, w)
     return np.array([col, row, layer], dtype=np.int64)
 
 
