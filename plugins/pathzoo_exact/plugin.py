@@ -1,4 +1,4 @@
-"""The ``exact`` plugin: declares Dijkstra, A*, Theta* and the any-angle optimum (imported when first built)."""
+"""The ``exact`` plugin: declares Dijkstra, A*, Theta*, the any-angle optimum and SIPP (imported when first built)."""
 
 from __future__ import annotations
 
@@ -21,11 +21,14 @@ PLANNERS: tuple[LazyPlanner, ...] = (
     LazyPlanner("exact.anyangle",
                 "exact any-angle optimum (visibility graph over corners), pushed 1e-6 cells off obstacles",
                 "pathzoo_exact.anyangle:AnyAnglePlanner", kinds=frozenset({"grid2d"})),
+    LazyPlanner("exact.sipp", "SIPP (Phillips & Likhachev 2011): earliest arrival on the 8-connected graph "
+                "among the moving obstacles, waiting allowed",
+                "pathzoo_exact.sipp:SippPlanner", kinds=frozenset({"dynamic"})),
 )
 """The exact reference planners, declared without importing them."""
 
 
 @hookimpl
 def pathzoo_register_planners() -> Sequence[LazyPlanner]:
-    """``exact.dijkstra``, ``exact.astar``, ``exact.thetastar`` and ``exact.anyangle`` (:data:`PLANNERS`)."""
+    """``exact.dijkstra``, ``exact.astar``, ``exact.thetastar``, ``exact.anyangle`` and ``exact.sipp`` (:data:`PLANNERS`)."""
     return PLANNERS
