@@ -7,6 +7,8 @@ closer to a moving disc than its radius plus a margin?
 - :func:`stationary_unsafe_times` solves it in closed form for a vehicle
   waiting at one point: the obstacle moves linearly on each piece of its
   route, so the squared distance is a quadratic in time on each piece.
+- :func:`safe_intervals` is the complement over all obstacles: the maximal
+  times a vehicle may wait at a point;
 - :func:`earliest_free_departure` finds the earliest departure time, within a
   window, at which driving a straight edge in a given time keeps clear of
   every obstacle. It asks the judge's own distance function
@@ -29,7 +31,8 @@ import numpy as np
 from pathzoo.core.moving import EXACT_MAX_PIECES
 from pathzoo.core.moving_distance import _point_segment_distance, _route_distance, min_distances
 
-__all__ = ["ObstacleArrays", "obstacle_arrays", "stationary_unsafe_times", "route_distance", "earliest_free_departure"]
+__all__ = ["ObstacleArrays", "obstacle_arrays", "stationary_unsafe_times", "safe_intervals", "route_distance",
+           "earliest_free_departure"]
 
 
 class ObstacleArrays:
@@ -174,3 +177,28 @@ def earliest_free_departure(cycles: np.ndarray, cums: np.ndarray, bounds: np.nda
             return t
         t += max(jump, min_step)
     return -1.0
+
+
+def safe_intervals(obs: ObstacleArrays, point: np.ndarray, slack: float, horizon: float) -> np.ndarray:
+    """Maximal intervals of ``[0, horizon]`` when a vehicle waiting at ``point`` is clear of every obstacle.
+
+    Returns ``(m, 2)`` closed intervals ``[start, end]`` in increasing order,
+    computed with every radius increased by ``slack`` metres.
+    """
+    unsafe = [stationary_unsafe_times(obs.cycles[obs.bounds[k]:obs.bounds[k + 1]], obs.cums[obs.bounds[k]:obs.bounds[k + 1]],
+                                      float(obs.speeds[k]), float(obs.phases[k]), float(point[0]), float(point[1]),
+                                      float(obs.radii[k]) + slack, horizon)
+              for k in range(len(obs.speeds))]
+    bad = np.concatenate(unsafe) if unsafe else np.zeros((0, 2))
+    if len(bad) == 0:
+        return np.array([[0.0, horizon]])
+    bad = bad[np.argsort(bad[:, 0], kind="stable")]
+    out: list[tuple[float, float]] = []
+    free_from = 0.0
+    for lo, hi in bad:
+        if lo > free_from:
+            out.append((free_from, float(np.nextafter(lo, -math.inf))))
+        free_from = max(free_from, float(np.nextafter(hi, math.inf)))
+    if free_from <= horizon:
+        out.append((free_from, horizon))
+    return np.array(out, dtype=np.float64).reshape(-1, 2)
