@@ -18,6 +18,8 @@ METRICS: tuple[LazyMetric, ...] = (
                "pathzoo.metrics.optimality:LengthRatio", unit="1", direction="min"),
     LazyMetric("length_ratio_anyangle", "length / exact any-angle optimum (grid2d up to 256x256; never below 1)",
                "pathzoo.metrics.optimality:LengthRatioAnyAngle", unit="1", direction="min"),
+    LazyMetric("arrival_ratio", "arrival time / earliest arrival of SIPP (dynamic; grid paths never below 1)",
+               "pathzoo.metrics.optimality:ArrivalRatio", unit="1", direction="min"),
     LazyMetric("planning_time", "wall time of plan() (successful runs)", "pathzoo.metrics.outcome:PlanningTime",
                unit="s", direction="min"),
     LazyMetric("cpu_time", "CPU time of plan() (successful runs)", "pathzoo.metrics.outcome:CpuTime",

@@ -1,6 +1,6 @@
-"""The exact reference optima of a scenario (graph optimum and any-angle optimum), cached per scenario.
+"""The exact reference optima of a scenario (graph optimum, any-angle optimum, earliest arrival), cached per scenario.
 
-Two references, for two path models (``docs/metrics.md``):
+Three references, for three path models (``docs/metrics.md``):
 
 - the *graph optimum* (:func:`reference_path`, :func:`reference_length`):
   Dijkstra on the scenario's neighbourhood graph, the optimum of planners
@@ -8,7 +8,10 @@ Two references, for two path models (``docs/metrics.md``):
 - the *any-angle optimum* (:func:`anyangle_reference`,
   :func:`anyangle_length`): the infimum of the lengths of all valid paths,
   whatever their vertices (:mod:`pathzoo.grid.anyangle`), the optimum of
-  planners whose segments may take any direction.
+  planners whose segments may take any direction;
+- the *earliest arrival* (:func:`earliest_arrival_s`) on ``dynamic``
+  scenarios: SIPP on the 8-connected graph among the moving obstacles
+  (:mod:`pathzoo.grid.sipp`), the optimum of timed grid paths.
 
 The harness uses it twice: as the denominator of the ``length_ratio`` metric,
 and as a witness when a planner claims that no path exists (the claim is
@@ -45,6 +48,7 @@ __all__ = [
     "ANYANGLE_KINDS",
     "anyangle_reference",
     "anyangle_length",
+    "earliest_arrival_s",
 ]
 
 GRAPH_REFERENCE_KINDS: frozenset[str] = frozenset({"grid2d", "terrain", "air3d"})
@@ -78,6 +82,7 @@ ANYANGLE_KINDS: frozenset[str] = frozenset({"grid2d"})
 """Kinds with an any-angle optimum: static 2-D grids measured by plane length."""
 
 _references: "ObjectMemo[Scenario, ReferencePath | None]" = ObjectMemo()
+_arrivals: "ObjectMemo[Scenario, float]" = ObjectMemo()
 _anyangle_references: "ObjectMemo[Scenario, AnyAnglePath | None | AnyAngleError]" = ObjectMemo()
 
 
@@ -161,3 +166,25 @@ def anyangle_length(scenario: "Scenario") -> float:
     except AnyAngleError:
         return math.nan
     return math.nan if ref is None else ref.length
+
+
+def _compute_arrival(scenario: "Scenario") -> float:
+    from pathzoo.grid.sipp import OutsideModel, earliest_arrival
+
+    if scenario.kind != "dynamic":
+        return math.nan
+    try:
+        found = earliest_arrival(scenario)
+    except OutsideModel:
+        return math.nan
+    return math.nan if found is None else found.arrival_s
+
+
+def earliest_arrival_s(scenario: "Scenario") -> float:
+    """SIPP's earliest arrival at the goal in seconds (:func:`pathzoo.grid.sipp.earliest_arrival`), cached per scenario.
+
+    NaN for kinds other than ``dynamic``, for vehicles with a turn limit
+    (outside SIPP's model) and when no timed path arrives within the default
+    horizon.
+    """
+    return _arrivals.value(scenario, lambda: _compute_arrival(scenario))

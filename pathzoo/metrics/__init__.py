@@ -4,12 +4,13 @@ from __future__ import annotations
 
 from pathzoo.core.metric import Metric
 from pathzoo.metrics.clearance import ClearanceMean, ClearanceMin
-from pathzoo.metrics.optimality import LengthRatio, LengthRatioAnyAngle
+from pathzoo.metrics.optimality import ArrivalRatio, LengthRatio, LengthRatioAnyAngle
 from pathzoo.metrics.outcome import CpuTime, Evaluations, Iterations, PlanningTime, Success
 from pathzoo.metrics.path_shape import Length, Smoothness, TurningAngle, Turns
 from pathzoo.metrics.travel import Energy, TravelTime
 
 __all__ = [
+    "ArrivalRatio",
     "BUILTIN_METRICS",
     "ClearanceMean",
     "ClearanceMin",
@@ -33,6 +34,7 @@ BUILTIN_METRICS: list[type[Metric]] = [
     Length,
     LengthRatio,
     LengthRatioAnyAngle,
+    ArrivalRatio,
     PlanningTime,
     CpuTime,
     TravelTime,

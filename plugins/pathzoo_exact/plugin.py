@@ -17,13 +17,13 @@ PLANNERS: tuple[LazyPlanner, ...] = (
     LazyPlanner("exact.astar", "A* on the 8-connected (air: max_step) cell graph; optimal length or energy",
                 "pathzoo_exact.astar:AStarPlanner", kinds=_GRID_TERRAIN_AIR),
     LazyPlanner("exact.thetastar", "Theta* any-angle search (Nash et al. 2007); never longer than the grid optimum",
-                "pathzoo_exact.thetastar:ThetaStarPlanner", kinds=frozenset({"grid2d"})),
+                "pathzoo_exact.thetastar:ThetaStarPlanner", kinds=frozenset({"grid2d"}), path_model="anyangle"),
     LazyPlanner("exact.anyangle",
                 "exact any-angle optimum (visibility graph over corners), pushed 1e-6 cells off obstacles",
-                "pathzoo_exact.anyangle:AnyAnglePlanner", kinds=frozenset({"grid2d"})),
+                "pathzoo_exact.anyangle:AnyAnglePlanner", kinds=frozenset({"grid2d"}), path_model="anyangle"),
     LazyPlanner("exact.sipp", "SIPP (Phillips & Likhachev 2011): earliest arrival on the 8-connected graph "
                 "among the moving obstacles, waiting allowed",
-                "pathzoo_exact.sipp:SippPlanner", kinds=frozenset({"dynamic"})),
+                "pathzoo_exact.sipp:SippPlanner", kinds=frozenset({"dynamic"}), path_model="timed"),
 )
 """The exact reference planners, declared without importing them."""
 

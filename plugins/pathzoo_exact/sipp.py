@@ -42,7 +42,6 @@ class SippPlanner(Planner):
     summary: ClassVar[str] = ("SIPP (Phillips & Likhachev 2011): earliest arrival on the 8-connected graph "
                               "among the moving obstacles, waiting allowed")
     kinds: ClassVar[frozenset[str]] = frozenset({"dynamic"})
-    path_model: ClassVar[str] = "timed"
     params = {
         "horizon_s": Param(DEFAULT_HORIZON_S, "latest time considered (s); later arrivals are reported as failures",
                            low=0.0, low_open=True),
