@@ -5,7 +5,9 @@ A planner declares its path model (:data:`pathzoo.plugins.entries.PATH_MODELS`):
 - ``grid``: moves between neighbouring cells; reference: the graph optimum
   (``length_ratio``);
 - ``anyangle``: straight segments in any direction; reference: the exact
-  any-angle optimum (``length_ratio_anyangle``, ``grid2d`` only);
+  any-angle optimum (``length_ratio_anyangle``, ``grid2d``), or in air
+  volumes the Lazy Theta* length, an upper bound on that optimum
+  (``length_ratio_anyangle_bound``, named as a bound);
 - ``timed``: timed moves with waits among moving obstacles.
 
 On ``dynamic`` scenarios every path is timed, so every planner is measured by
@@ -74,6 +76,11 @@ def with_model_ratio(runs: pd.DataFrame) -> pd.DataFrame:
             ratio[rows] = out.loc[rows, column].astype(float)
         name[rows] = label
         name[(model == m) & timed] = _DYNAMIC_NAMES[m]
+    bound = out["length_ratio_anyangle_bound"].astype(float) if "length_ratio_anyangle_bound" in out else None
+    if bound is not None:
+        use = (model == "anyangle") & ~timed & ratio.isna() & bound.notna()
+        ratio[use] = bound[use]
+        name[use] = "any-angle bound (Lazy Theta*, upper)"
     ratio[timed] = arrival[timed]
     solved = pd.Series([str(getattr(st, "value", st)) == "solved" for st in out["status"]], index=out.index)
     missing = ratio.isna() & solved & out["valid"].fillna(False).astype(bool)

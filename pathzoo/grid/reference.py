@@ -1,6 +1,6 @@
 """The exact reference optima of a scenario (graph optimum, any-angle optimum, earliest arrival), cached per scenario.
 
-Three references, for three path models (``docs/metrics.md``):
+The references, for three path models (``docs/metrics.md``):
 
 - the *graph optimum* (:func:`reference_path`, :func:`reference_length`):
   Dijkstra on the scenario's neighbourhood graph, the optimum of planners
@@ -9,6 +9,10 @@ Three references, for three path models (``docs/metrics.md``):
   :func:`anyangle_length`): the infimum of the lengths of all valid paths,
   whatever their vertices (:mod:`pathzoo.grid.anyangle`), the optimum of
   planners whose segments may take any direction;
+- in air volumes, an *any-angle bound* (:func:`anyangle_bound_3d`): the
+  length of the Lazy Theta* path (:mod:`pathzoo.grid.lazy_theta3d`) once the
+  judge has accepted it, an upper bound on the any-angle optimum (which is
+  at least the straight-line distance);
 - the *earliest arrival* (:func:`earliest_arrival_s`) on ``dynamic``
   scenarios: SIPP on the 8-connected graph among the moving obstacles
   (:mod:`pathzoo.grid.sipp`), the optimum of timed grid paths.
@@ -49,6 +53,7 @@ __all__ = [
     "anyangle_reference",
     "anyangle_length",
     "earliest_arrival_s",
+    "anyangle_bound_3d",
 ]
 
 GRAPH_REFERENCE_KINDS: frozenset[str] = frozenset({"grid2d", "terrain", "air3d"})
@@ -83,6 +88,7 @@ ANYANGLE_KINDS: frozenset[str] = frozenset({"grid2d"})
 
 _references: "ObjectMemo[Scenario, ReferencePath | None]" = ObjectMemo()
 _arrivals: "ObjectMemo[Scenario, float]" = ObjectMemo()
+_anyangle_bounds: "ObjectMemo[Scenario, float]" = ObjectMemo()
 _anyangle_references: "ObjectMemo[Scenario, AnyAnglePath | None | AnyAngleError]" = ObjectMemo()
 
 
@@ -188,3 +194,25 @@ def earliest_arrival_s(scenario: "Scenario") -> float:
     horizon.
     """
     return _arrivals.value(scenario, lambda: _compute_arrival(scenario))
+
+
+def _compute_anyangle_bound(scenario: "Scenario") -> float:
+    from pathzoo.grid.lazy_theta3d import lazy_theta_path
+    from pathzoo.rules import validate_path
+
+    if scenario.kind != "air3d":
+        return math.nan
+    path = lazy_theta_path(scenario)
+    if path is None or not validate_path(scenario, path):
+        return math.nan
+    return float(np.linalg.norm(np.diff(path, axis=0), axis=1).sum())
+
+
+def anyangle_bound_3d(scenario: "Scenario") -> float:
+    """Length in metres of the judge-accepted Lazy Theta* path of an ``air3d`` scenario, cached per scenario.
+
+    An upper bound on the any-angle optimum, not the optimum. NaN for other
+    kinds, for an unreachable goal, and when the judge refuses the path (it
+    ignores the turn limit).
+    """
+    return _anyangle_bounds.value(scenario, lambda: _compute_anyangle_bound(scenario))

@@ -7,7 +7,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from pathzoo.grid.reference import anyangle_length, earliest_arrival_s, reference_length
+from pathzoo.grid.reference import anyangle_bound_3d, anyangle_length, earliest_arrival_s, reference_length
 from pathzoo.metrics.base import PathMetric
 from pathzoo.grid.paths import path_pieces
 from pathzoo.rules.timing import path_times
@@ -16,7 +16,7 @@ if TYPE_CHECKING:
     from pathzoo.core.results import RunRecord
     from pathzoo.core.scenario import Scenario
 
-__all__ = ["LengthRatio", "LengthRatioAnyAngle", "ArrivalRatio"]
+__all__ = ["LengthRatio", "LengthRatioAnyAngle", "LengthRatioAnyAngleBound", "ArrivalRatio"]
 
 
 class LengthRatio(PathMetric):
@@ -57,6 +57,24 @@ class LengthRatioAnyAngle(PathMetric):
     def measure(self, scenario: "Scenario", path: np.ndarray, record: "RunRecord") -> float:
         """``length / any-angle optimum``; 1 when both are 0, NaN without one."""
         return _ratio(float(path_pieces(scenario, path)[0].sum()), anyangle_length(scenario))
+
+
+class LengthRatioAnyAngleBound(PathMetric):
+    """Path length divided by the Lazy Theta* length in air volumes (an upper bound on the any-angle optimum).
+
+    The reference is :func:`pathzoo.grid.reference.anyangle_bound_3d`. It is
+    not the optimum, so a valid path may score below 1, by at most the gap
+    between the bound and the straight-line distance. NaN on other kinds.
+    """
+
+    id = "length_ratio_anyangle_bound"
+    unit = "1"
+    direction = "min"
+    summary = "length / Lazy Theta* length (air3d; an upper bound on the any-angle optimum, may be < 1)"
+
+    def measure(self, scenario: "Scenario", path: np.ndarray, record: "RunRecord") -> float:
+        """``length / bound``; NaN without one."""
+        return _ratio(float(path_pieces(scenario, path)[0].sum()), anyangle_bound_3d(scenario))
 
 
 class ArrivalRatio(PathMetric):

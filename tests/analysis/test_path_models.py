@@ -64,3 +64,13 @@ def test_leaderboard_ranks_by_model_ratio_and_names_the_optimum():
     assert static.loc["exact.astar", "median"] == 1.0 and static.loc["exact.thetastar", "median"] == 1.01
     text = format_leaderboard(table)
     assert "optimum" in text and "any-angle optimum" in text
+
+
+def test_air_volumes_use_the_lazy_theta_bound_named_as_a_bound():
+    runs = _runs()
+    rows = runs["planner"] == "exact.thetastar"
+    runs.loc[rows, "length_ratio_anyangle"] = math.nan  # no exact any-angle optimum in the air
+    runs["length_ratio_anyangle_bound"] = math.nan
+    runs.loc[rows, "length_ratio_anyangle_bound"] = 0.999
+    row = with_model_ratio(runs)[rows].iloc[0]
+    assert row[MODEL_RATIO] == 0.999 and row[REFERENCE_COLUMN] == "any-angle bound (Lazy Theta*, upper)"
