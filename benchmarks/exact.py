@@ -103,7 +103,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--scen", type=Path, default=SCEN, help="the .scen file (default: shared 8room_000)")
     parser.add_argument("--dynamic", action="store_true", help="check exact.sipp's target instead (see above)")
     parser.add_argument("--seeds", type=int, default=3, help="--dynamic: seeds per planner and scenario")
-    parser.add_argument("--time-s", type=float, default=5.0, help="--dynamic: CPU budget per run, seconds")
+    parser.add_argument("--time-s", type=float, default=20.0, help="--dynamic: wall budget per run, seconds")
     parser.add_argument("--db", type=Path, default=Path("sipp-target.sqlite"), help="--dynamic: results file")
     args = parser.parse_args(argv)
     if args.dynamic:
