@@ -198,6 +198,7 @@ def earliest_arrival_s(scenario: "Scenario") -> float:
 
 def _compute_anyangle_bound(scenario: "Scenario") -> float:
     from pathzoo.grid.lazy_theta3d import lazy_theta_path
+    from pathzoo.grid.paths import path_pieces
     from pathzoo.rules import validate_path
 
     if scenario.kind != "air3d":
@@ -205,7 +206,7 @@ def _compute_anyangle_bound(scenario: "Scenario") -> float:
     path = lazy_theta_path(scenario)
     if path is None or not validate_path(scenario, path):
         return math.nan
-    return float(np.linalg.norm(np.diff(path, axis=0), axis=1).sum())
+    return float(path_pieces(scenario, path)[0].sum())
 
 
 def anyangle_bound_3d(scenario: "Scenario") -> float:

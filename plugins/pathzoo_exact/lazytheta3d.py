@@ -14,6 +14,7 @@ import numpy as np
 
 from pathzoo.core import Budget, Planner, PlanResult, ProgressCallback, Scenario, Status
 from pathzoo.grid.lazy_theta3d import lazy_theta_path
+from pathzoo.grid.paths import path_pieces
 from pathzoo.rules import validate_path
 
 __all__ = ["LazyTheta3dPlanner"]
@@ -45,7 +46,7 @@ class LazyTheta3dPlanner(Planner):
         check = validate_path(scenario, path)
         if not check:
             return PlanResult(Status.FAILED, iterations=1, message=f"the Lazy Theta* path breaks a rule: {check.reason}")
-        length = float(np.linalg.norm(np.diff(path, axis=0), axis=1).sum())
+        length = float(path_pieces(scenario, path)[0].sum())
         if progress is not None:
             progress(1, 1, length)
         return PlanResult(Status.SOLVED, path=path, iterations=1, evaluations=1,
