@@ -54,7 +54,11 @@ __all__ = [
     "anyangle_length",
     "earliest_arrival_s",
     "anyangle_bound_3d",
+    "ARRIVAL_MAX_CELLS",
 ]
+
+ARRIVAL_MAX_CELLS = 256 * 256
+"""Largest map (cells) whose earliest arrival the metrics compute; SIPP's search runs in Python (about 1 s at 100 x 100)."""
 
 GRAPH_REFERENCE_KINDS: frozenset[str] = frozenset({"grid2d", "terrain", "air3d"})
 """Kinds whose graph optimum is the right reference for path length.
@@ -177,7 +181,7 @@ def anyangle_length(scenario: "Scenario") -> float:
 def _compute_arrival(scenario: "Scenario") -> float:
     from pathzoo.grid.sipp import OutsideModel, earliest_arrival
 
-    if scenario.kind != "dynamic":
+    if scenario.kind != "dynamic" or scenario.occupancy.size > ARRIVAL_MAX_CELLS:
         return math.nan
     try:
         found = earliest_arrival(scenario)
@@ -189,9 +193,9 @@ def _compute_arrival(scenario: "Scenario") -> float:
 def earliest_arrival_s(scenario: "Scenario") -> float:
     """SIPP's earliest arrival at the goal in seconds (:func:`pathzoo.grid.sipp.earliest_arrival`), cached per scenario.
 
-    NaN for kinds other than ``dynamic``, for vehicles with a turn limit
-    (outside SIPP's model) and when no timed path arrives within the default
-    horizon.
+    NaN for kinds other than ``dynamic``, for maps larger than
+    :data:`ARRIVAL_MAX_CELLS`, for vehicles with a turn limit (outside SIPP's
+    model) and when no timed path arrives within the default horizon.
     """
     return _arrivals.value(scenario, lambda: _compute_arrival(scenario))
 
