@@ -163,3 +163,13 @@ def test_safe_intervals_are_the_complement_of_the_unsafe_times():
     for lo, hi in safe:
         covered |= (ts >= lo) & (ts <= hi)
     assert np.array_equal(clear, covered)
+
+
+def test_the_harness_judges_sipp_valid_and_scores_arrival_ratio_one(tmp_path):
+    occ, mover = _gate()
+    sc = _scenario(occ, (3.5, 0.5), (3.5, 6.5), [mover])
+    runs = pathzoo.run(["exact.sipp"], [sc], seeds=1, db=tmp_path / "r.sqlite", budget=Budget(time_s=30.0),
+                       executor="inline", progress=False, experiment="sipp")
+    row = runs.iloc[0]
+    assert str(getattr(row["status"], "value", row["status"])) == "solved" and bool(row["valid"]), row["invalid_reason"]
+    assert row["arrival_ratio"] == pytest.approx(1.0, abs=1e-12)
