@@ -148,7 +148,8 @@ def earliest_free_departure(cycles: np.ndarray, cums: np.ndarray, bounds: np.nda
     any_relevant = False
     for k in range(n_obs):
         cyc = cycles[bounds[k]:bounds[k + 1]]
-        if route_distance(cyc, p0x, p0y, p1x, p1y) < radii[k]:
+        # a relative 1e-9 more than the radius: the two distance computations round differently
+        if route_distance(cyc, p0x, p0y, p1x, p1y) < radii[k] * (1.0 + 1e-9) + 1e-12:
             relevant[k] = True
             any_relevant = True
     if not any_relevant:
