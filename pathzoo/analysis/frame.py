@@ -37,6 +37,7 @@ from pathzoo.core.errors import InvalidParameterError, UnknownPluginError
 __all__ = [
     "MetricInfo",
     "RUN_COLUMNS",
+    "DERIVED_COLUMNS",
     "metric_info",
     "require_columns",
     "success_mask",
@@ -87,6 +88,11 @@ RUN_COLUMNS: dict[str, MetricInfo] = {
 }
 """Numeric harness columns that may be ranked like metrics (all minimised)."""
 
+DERIVED_COLUMNS: dict[str, MetricInfo] = {
+    "model_ratio": MetricInfo("model_ratio", "1", "min"),
+}
+"""Columns analysis adds to the runs frame and ranks like metrics (:mod:`pathzoo.analysis.path_models`)."""
+
 _REQUIRED = ("planner", "params_hash", "scenario", "seed_index", "status", "valid")
 
 
@@ -111,7 +117,7 @@ def metric_info(metric: str, direction: Direction | None = None, unit: str | Non
     """
     if direction is not None and direction not in ("min", "max"):
         raise InvalidParameterError(f"direction must be 'min' or 'max', got {direction!r}")
-    known = RUN_COLUMNS.get(metric)
+    known = RUN_COLUMNS.get(metric) or DERIVED_COLUMNS.get(metric)
     if known is None and (direction is None or unit is None):
         from pathzoo.plugins.manager import get_registry
 

@@ -27,15 +27,22 @@ import numpy as np
 import pandas as pd
 
 from pathzoo.analysis.formatting import format_number, format_percent, render_table
-from pathzoo.analysis.frame import Direction
+from pathzoo.analysis.frame import Direction, with_config
+from pathzoo.analysis.path_models import MODEL_RATIO, REFERENCE_COLUMN, with_model_ratio
 from pathzoo.analysis.summary import summarize
 
-__all__ = ["leaderboard", "format_leaderboard", "power_note", "RANKING_RULE"]
+__all__ = ["leaderboard", "format_leaderboard", "power_note", "RANKING_RULE", "MODEL_RATIO_NOTE"]
 
 RANKING_RULE = (
     "Rank within each scenario: penalized median (failed runs count as worst), "
     "then success rate, then median of successful runs. "
     "Median, IQR and SD use successful runs only."
+)
+
+MODEL_RATIO_NOTE = (
+    "model_ratio: length (on dynamic maps: arrival time) over the optimum of the planner's own path model; "
+    "'optimum' names it: graph optimum (moves between neighbouring cells), any-angle optimum (straight segments "
+    "in any direction), earliest arrival of SIPP (dynamic maps)."
 )
 
 _VERDICT_NOTE = (
@@ -99,7 +106,10 @@ def leaderboard(
     runs : DataFrame
         One row per run (``pathzoo.harness.store.read_runs``).
     metric : str
-        Metric id to rank by (see ``pathzoo list metrics``).
+        Metric id to rank by (see ``pathzoo list metrics``), or ``"model_ratio"``:
+        the ratio to the optimum of each planner's own path model
+        (:func:`pathzoo.analysis.path_models.with_model_ratio`), with an
+        ``optimum`` column naming that reference.
     direction : {"min", "max"}, optional
         Override the metric's registered direction.
     reference : str, optional
@@ -126,6 +136,8 @@ def leaderboard(
         and ``attrs["alpha"]`` are set too. See the module docstring for the
         ranking rule.
     """
+    if metric == MODEL_RATIO and MODEL_RATIO not in runs.columns:
+        runs = with_model_ratio(runs)
     summary = summarize(runs, metric, direction=direction)
     info = summary.attrs["metric"]
     summary["rank"] = _rank_within(summary, info.direction)
@@ -144,9 +156,19 @@ def leaderboard(
         table = table.merge(other.drop(columns=["winner", "testable"]), on=["scenario", "config"], how="left")
         table["runs_needed"] = table["runs_needed"].astype("Int64")  # no float 8.0 in CSV/JSON
         table.loc[table["config"] == reference, "vs_reference"] = "reference"
+    if REFERENCE_COLUMN in runs.columns:
+        table = table.merge(_references_used(runs), on=["scenario", "config"], how="left")
     table = table.sort_values(["scenario", "rank", "config"], kind="stable").reset_index(drop=True)
     table.attrs.update(metric=info, reference=reference, alpha=alpha)
     return table
+
+
+def _references_used(runs: pd.DataFrame) -> pd.DataFrame:
+    """``scenario, config, optimum``: the reference(s) each configuration's ratio divides by, joined by "; "."""
+    df = with_config(runs)
+    names = df[REFERENCE_COLUMN].fillna("").astype(str)
+    grouped = names.groupby([df["scenario"], df["config"]]).agg(lambda s: "; ".join(sorted({v for v in s if v})))
+    return grouped.rename("optimum").reset_index()
 
 
 def format_leaderboard(table: pd.DataFrame, fmt: str = "text") -> str:
@@ -179,6 +201,9 @@ def format_leaderboard(table: pd.DataFrame, fmt: str = "text") -> str:
         }
     )
     notes = [RANKING_RULE]
+    if "optimum" in table.columns:
+        display["optimum"] = table["optimum"].fillna("").astype(str)
+        notes.append(MODEL_RATIO_NOTE)
     if "vs_reference" in table.columns:
         display["vs ref"] = table["vs_reference"].fillna("–")
         display["p (Holm)"] = table["p_holm"].map(lambda x: format_number(x, 2))

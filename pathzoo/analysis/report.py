@@ -30,6 +30,7 @@ import pandas as pd
 from pathzoo.analysis.formatting import format_number, render_table
 from pathzoo.analysis.frame import metric_info, with_config
 from pathzoo.analysis.leaderboard import format_leaderboard, leaderboard
+from pathzoo.analysis.path_models import MODEL_RATIO, with_model_ratio
 from pathzoo.core.errors import InvalidParameterError, PathzooError
 from pathzoo.core.scenario import Scenario
 from pathzoo.core.status import RunStatus
@@ -267,6 +268,10 @@ def render_report(
     page.heading(2, "Leaderboard", "leaderboard")
     lb = leaderboard(runs, metric, reference=reference, alpha=alpha)
     page.table(format_leaderboard(lb, "html"))
+    own = with_model_ratio(runs)
+    if metric != MODEL_RATIO and own[MODEL_RATIO].notna().any():
+        page.heading(3, "Against each planner's own optimum", "optimum")
+        page.table(format_leaderboard(leaderboard(own, MODEL_RATIO), "html"))
 
     if reference:
         page.heading(2, f"Comparison with {reference}", "comparison")

@@ -59,7 +59,8 @@ def isolation_note(runs: "pd.DataFrame") -> str:
 def add_table_options(parser: argparse.ArgumentParser) -> None:
     """The options that shape a printed leaderboard (shared with ``pathzoo run``)."""
     parser.add_argument(
-        "--metric", default="length", help="metric to rank by (default: length; see 'pathzoo list metrics')"
+        "--metric", default="length", help="metric to rank by (default: length; see 'pathzoo list metrics'), "
+        "or model_ratio: each planner against the optimum of its own path model, named in an 'optimum' column"
     )
     parser.add_argument(
         "--reference",

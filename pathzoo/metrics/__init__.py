@@ -4,12 +4,13 @@ from __future__ import annotations
 
 from pathzoo.core.metric import Metric
 from pathzoo.metrics.clearance import ClearanceMean, ClearanceMin
-from pathzoo.metrics.optimality import LengthRatio, LengthRatioAnyAngle
+from pathzoo.metrics.optimality import ArrivalRatio, LengthRatio, LengthRatioAnyAngle, LengthRatioAnyAngleBound
 from pathzoo.metrics.outcome import CpuTime, Evaluations, Iterations, PlanningTime, Success
 from pathzoo.metrics.path_shape import Length, Smoothness, TurningAngle, Turns
 from pathzoo.metrics.travel import Energy, TravelTime
 
 __all__ = [
+    "ArrivalRatio",
     "BUILTIN_METRICS",
     "ClearanceMean",
     "ClearanceMin",
@@ -20,6 +21,7 @@ __all__ = [
     "Length",
     "LengthRatio",
     "LengthRatioAnyAngle",
+    "LengthRatioAnyAngleBound",
     "PlanningTime",
     "Smoothness",
     "Success",
@@ -33,6 +35,8 @@ BUILTIN_METRICS: list[type[Metric]] = [
     Length,
     LengthRatio,
     LengthRatioAnyAngle,
+    LengthRatioAnyAngleBound,
+    ArrivalRatio,
     PlanningTime,
     CpuTime,
     TravelTime,

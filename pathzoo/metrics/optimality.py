@@ -1,4 +1,4 @@
-"""The optimality metrics: path length relative to the graph optimum and to the any-angle optimum."""
+"""The optimality metrics: path length relative to the graph and any-angle optima, arrival relative to the earliest."""
 
 from __future__ import annotations
 
@@ -7,15 +7,16 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from pathzoo.grid.reference import anyangle_length, reference_length
+from pathzoo.grid.reference import anyangle_bound_3d, anyangle_length, earliest_arrival_s, reference_length
 from pathzoo.metrics.base import PathMetric
 from pathzoo.grid.paths import path_pieces
+from pathzoo.rules.timing import path_times
 
 if TYPE_CHECKING:
     from pathzoo.core.results import RunRecord
     from pathzoo.core.scenario import Scenario
 
-__all__ = ["LengthRatio", "LengthRatioAnyAngle"]
+__all__ = ["LengthRatio", "LengthRatioAnyAngle", "LengthRatioAnyAngleBound", "ArrivalRatio"]
 
 
 class LengthRatio(PathMetric):
@@ -56,6 +57,49 @@ class LengthRatioAnyAngle(PathMetric):
     def measure(self, scenario: "Scenario", path: np.ndarray, record: "RunRecord") -> float:
         """``length / any-angle optimum``; 1 when both are 0, NaN without one."""
         return _ratio(float(path_pieces(scenario, path)[0].sum()), anyangle_length(scenario))
+
+
+class LengthRatioAnyAngleBound(PathMetric):
+    """Path length divided by the Lazy Theta* length in air volumes (an upper bound on the any-angle optimum).
+
+    The reference is :func:`pathzoo.grid.reference.anyangle_bound_3d`. It is
+    not the optimum, so a valid path may score below 1, by at most the gap
+    between the bound and the straight-line distance. NaN on other kinds.
+    """
+
+    id = "length_ratio_anyangle_bound"
+    unit = "1"
+    direction = "min"
+    summary = "length / Lazy Theta* length (air3d; an upper bound on the any-angle optimum, may be < 1)"
+
+    def measure(self, scenario: "Scenario", path: np.ndarray, record: "RunRecord") -> float:
+        """``length / bound``; NaN without one."""
+        return _ratio(float(path_pieces(scenario, path)[0].sum()), anyangle_bound_3d(scenario))
+
+
+class ArrivalRatio(PathMetric):
+    """Arrival time divided by the earliest arrival of SIPP (1 = as early as any timed grid path can be).
+
+    The arrival is the last of the path's ``times`` or, without times, its
+    length over the cruise speed (how the judge times it). The reference is
+    :func:`pathzoo.grid.reference.earliest_arrival_s`: the earliest arrival
+    among the moving obstacles of a vehicle that moves between 8-neighbouring
+    cell centres at cruise speed and may wait. A grid planner's valid path
+    never scores below 1; a path with segments in other directions can.
+    NaN on kinds other than ``dynamic``.
+    """
+
+    id = "arrival_ratio"
+    unit = "1"
+    direction = "min"
+    summary = "arrival time / earliest arrival of SIPP (dynamic; grid paths never below 1)"
+
+    def measure(self, scenario: "Scenario", path: np.ndarray, record: "RunRecord") -> float:
+        """``arrival / earliest arrival``; NaN without a reference."""
+        if scenario.kind != "dynamic":
+            return math.nan
+        arrival = float(record.times[-1]) if record.times is not None else float(path_times(scenario, path)[-1])
+        return _ratio(arrival, earliest_arrival_s(scenario))
 
 
 def _ratio(length: float, ref: float) -> float:

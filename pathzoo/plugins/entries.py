@@ -13,7 +13,11 @@ if TYPE_CHECKING:
     from pathzoo.core.scenario import Scenario
 
 __all__ = ["ScenarioEntry", "LazyClass", "LazyPlanner", "LazyMetric", "PluginEntry", "PluginFailure",
-           "PluginDeclarationError"]
+           "PluginDeclarationError", "PATH_MODELS"]
+
+PATH_MODELS: tuple[str, ...] = ("grid", "anyangle", "timed")
+"""What a planner's paths may be: moves between neighbouring cells, straight segments in any direction, or
+timed moves with waits among moving obstacles. Each has its own reference optimum (``docs/metrics.md``)."""
 
 
 class PluginDeclarationError(PathzooError):
@@ -126,10 +130,21 @@ class LazyPlanner(LazyClass):
         The class's ``requires`` (optional import name to the extra that
         installs it); what ``pathzoo list`` checks to mark the planner
         unavailable, without importing it.
+    path_model : {"grid", "anyangle", "timed"}
+        The path model of the planner's default configuration (:data:`PATH_MODELS`),
+        which picks the reference its length is compared with. A class
+        registered without a declaration gives it as a ``path_model`` class
+        attribute; ``"grid"`` when it has none.
     """
 
     kinds: frozenset[str] = frozenset()
     requires: Mapping[str, str] = field(default_factory=dict)
+    path_model: str = "grid"
+
+    def __post_init__(self) -> None:
+        if self.path_model not in PATH_MODELS:
+            raise PluginDeclarationError(
+                f"'{self.id}' declares path_model={self.path_model!r}; allowed: {', '.join(PATH_MODELS)}")
     declared: ClassVar[tuple[str, ...]] = ("id", "summary", "kinds", "requires")
     absent: ClassVar[Mapping[str, Any]] = {"requires": {}}
 

@@ -100,6 +100,7 @@ def test_write_report_from_database(small_db, tmp_path):
     assert any("paths" in f for f in linked)  # the map with both planners' paths
     assert "pathzoo report: tiny" in doc and str(db.resolve()) in doc
     assert "Every run succeeded." in doc
+    assert "Against each planner&#39;s own optimum" in doc and "graph optimum" in doc
     # without the Scenario object the map is missing, and the page says why
     runs = read_runs(db, "tiny")
     doc = render_report(runs, path_of=lambda key: read_path(db, "tiny", key)[0]).html("t")

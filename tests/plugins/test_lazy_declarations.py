@@ -93,3 +93,10 @@ def test_unavailable_planners_are_reported_from_the_declaration():
 def test_make_planner_imports_a_lazily_declared_class():
     planner = pathzoo.make_planner("exact.astar")
     assert type(planner) is get_registry().get("planners", "exact.astar").obj
+
+
+def test_path_model_is_declared_and_checked():
+    assert get_registry().planners["exact.sipp"].declared("path_model") == "timed"
+    assert get_registry().planners["exact.astar"].declared("path_model") == "grid"
+    with pytest.raises(PluginDeclarationError, match="path_model='curvy'"):
+        LazyPlanner("x.y", "s", "mod:Cls", path_model="curvy")

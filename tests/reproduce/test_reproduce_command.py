@@ -14,7 +14,7 @@ from pathzoo.analysis.reproduction import (
     paper_file,
     run_paper,
 )
-from pathzoo.cli.cmd_reproduce import reductions
+from pathzoo.cli.cmd_reproduce import reductions, scope_sentence
 from pathzoo.cli.main import main
 
 TINY = ["--seeds", "1", "--iterations", "3", "--executor", "inline", "--no-progress"]
@@ -27,6 +27,9 @@ def test_reproduce_iaca_prints_the_table_beside_the_paper(tmp_path, capsys):
     args = ["reproduce", "iaca", *TINY, "--db", str(db), "--markdown", str(md)]
     assert main(args) == 0
     out = capsys.readouterr().out
+    # the terminal says the rerun was reduced, as the page's header does
+    assert ("Reduced rerun: 1 run(s) per planner and scenario instead of the paper's 10; "
+            "every planner's iterations capped at 3 (the paper's budget: 100).") in out.splitlines()[0]
     assert "Table 5, Path distance (eq. 21)" in out and "Table 5, Time cost (s)" in out
     assert "Dijkstra (exact.dijkstra)" in out and "IACA (aco.iaca)" in out
     assert "33.500" in out  # the paper's number
@@ -146,3 +149,10 @@ def test_reductions_name_every_departure_from_the_paper():
                    "every planner's iterations capped at 5 (the paper's budget: 1000)",
                    "only ggaco.case3, ggaco.case5 of the paper's 5 scenarios (not run: ggaco.case1, ggaco.case2, ggaco.case4)"]
     assert reductions(paper, 20, None, "ggaco.case*") == []
+
+
+def test_scope_sentence_says_whether_the_rerun_was_reduced():
+    paper = load_paper("ggaco")
+    assert scope_sentence(paper, paper.runs, None, None) == "At the paper's run count, budget and scenarios."
+    reduced = scope_sentence(paper, 2, None, None, marker="**")
+    assert reduced.startswith("**Reduced rerun:** 2 run(s)") and reduced.endswith("reduced setting only.")
