@@ -4,6 +4,7 @@ Run from the repository root, with ``shared/`` beside the repository::
 
     python benchmarks/exact.py               # 10 hardest and 10 middle buckets (200 problems)
     python benchmarks/exact.py --buckets 3   # fewer problems
+    python benchmarks/exact.py --write-docs  # also rewrite the table in docs/planners/exact.dijkstra.md
 
 For every problem of the hardest buckets of ``8room_000.map.scen``, and of as
 many buckets around the middle one, it times
@@ -39,6 +40,9 @@ import pathzoo
 from pathzoo.core import Budget, Scenario
 from pathzoo.io import load_scenario_files
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from doc_table import add_write_docs_option, docs_table  # noqa: E402  (a sibling script)
+
 ANY_ANGLE = "exact.thetastar"
 """Not an optimum of the graph: its cost is only compared with the others."""
 
@@ -56,6 +60,7 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--buckets", type=int, default=10, help="number of hardest buckets (default 10)")
     parser.add_argument("--scen", type=Path, default=SCEN, help="the .scen file (default: shared 8room_000)")
+    add_write_docs_option(parser, "planners/exact.dijkstra.md")
     args = parser.parse_args(argv)
 
     problems = load_scenario_files(args.scen.resolve())
@@ -90,14 +95,15 @@ def main(argv: list[str] | None = None) -> int:
     methods["scipy dijkstra (limit)"] = scipy_limit
 
     load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
-    print(f"map {args.scen.name}: {graph.shape[0]}x{graph.shape[1]}, {graph.n_edges} edges; "
-          f"{os.cpu_count()} CPUs, load average {load:.1f} at the start")
-    for label, (lo, hi) in groups.items():
-        chosen = [p for p in problems if lo <= p.metadata["bucket"] <= hi]
-        if not measure(label, chosen, methods):
-            return 1
-    print()
-    print("nodes: expanded nodes for the planners, nodes reached (finite distance) for SciPy")
+    print(f"{os.cpu_count()} CPUs, load average {load:.1f} at the start", file=sys.stderr)
+    with docs_table(args.write_docs, "planners/exact.dijkstra.md", "exact.py"):
+        print(f"map {args.scen.name}: {graph.shape[0]}x{graph.shape[1]}, {graph.n_edges} edges")
+        for label, (lo, hi) in groups.items():
+            chosen = [p for p in problems if lo <= p.metadata["bucket"] <= hi]
+            if not measure(label, chosen, methods):
+                return 1
+        print()
+        print("nodes: expanded nodes for the planners, nodes reached (finite distance) for SciPy")
     return 0
 
 

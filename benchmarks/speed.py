@@ -6,6 +6,7 @@ Run from the repository root (``../shared`` must sit beside it)::
     python benchmarks/speed.py --quick    # without ggaco.case1 and gant.simple.1
     python benchmarks/speed.py --only ggaco,dsaco   # some sections only (see --help)
     python benchmarks/speed.py --only planners --rows fgdaco   # the planner rows whose label contains "fgdaco"
+    python benchmarks/speed.py --write-docs   # also rewrite the table in docs/aco-engine.md (use after a full run)
 
 Times are CPU seconds (``time.process_time``) of one ``plan()`` call, the
 median of ``--repeats`` calls, so other processes on a shared machine
@@ -41,6 +42,7 @@ from pathzoo.cli.cmd_run import positive_int
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from aco import room512  # noqa: E402  (the benchmark scripts share their scenario builders)
+from doc_table import add_write_docs_option, docs_table  # noqa: E402
 
 ROWS = (  # label, planner, scenario, iterations, ants, extra parameters, paper seconds, target seconds
     ("fgdaco.scenario1", "aco.fgdaco", "fgdaco.scenario1", 100, 20, {}, 28.97, 0.29),
@@ -212,7 +214,7 @@ def ggaco_case1() -> None:
         for label in ("graph built (empty cache)", "graph memory-mapped from the cache"):
             m = _child_result(subprocess.Popen(run + ["1000"], env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                                                text=True))
-            print(f"| ggaco.case1, 1000 x 20, {label}: DEM load {m['load_s']:.1f} s + graph {m['graph_s']:.1f} s + "
+            print(f"| ggaco.case1, 1000 x 20, {label}: DEM {m['load_s']:.1f} s + graph {m['graph_s']:.1f} s + "
                   f"plan() {m['plan_s']:.1f} s "
                   f"| {m['total_s']:.1f} s | 29.5 s | {'yes' if m['total_s'] <= 29.5 else 'no'} |")
             print(f"| ggaco.case1 peak RSS, {label} | {m['peak_gb']:.2f} GB | 1.5 GB | "
@@ -301,22 +303,25 @@ def main() -> None:
                         help=f"comma-separated parts to run, of: {', '.join(SECTIONS)} (default: all)")
     parser.add_argument("--rows", metavar="TEXT", default="",
                         help="in the planners section, only the rows whose label contains TEXT (e.g. fgdaco)")
+    add_write_docs_option(parser, "aco-engine.md")
     args = parser.parse_args()
-    print(f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} CPUs; CPU seconds of one plan()\n")
-    if "planners" in args.only:
-        rows = ROWS + (() if args.quick else BIG_ROWS)
-        planner_rows(tuple(row for row in rows if args.rows in row[0]), args.repeats)
-    print("\n| figure | measured | target | met |\n|---|---|---|---|")
-    if "as" in args.only:
-        as_throughput(args.repeats)
-    if "astar" in args.only:
-        astar_against_pathfinding(args.astar_problems)
-    if "list" in args.only:
-        list_planners_time()
-    if "dsaco" in args.only:
-        dsaco_all_in()
-    if "ggaco" in args.only and not args.quick:
-        ggaco_case1()
+    print(f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} CPUs; CPU seconds of one plan()",
+          file=sys.stderr)
+    with docs_table(args.write_docs, "aco-engine.md", "speed.py"):
+        if "planners" in args.only:
+            rows = ROWS + (() if args.quick else BIG_ROWS)
+            planner_rows(tuple(row for row in rows if args.rows in row[0]), args.repeats)
+        print("\n| figure | measured | target | met |\n|---|---|---|---|")
+        if "as" in args.only:
+            as_throughput(args.repeats)
+        if "astar" in args.only:
+            astar_against_pathfinding(args.astar_problems)
+        if "list" in args.only:
+            list_planners_time()
+        if "dsaco" in args.only:
+            dsaco_all_in()
+        if "ggaco" in args.only and not args.quick:
+            ggaco_case1()
 
 
 def _sections(text: str) -> tuple[str, ...]:
