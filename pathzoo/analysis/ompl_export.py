@@ -219,7 +219,7 @@ def write_ompl_logs(
     limit = float(df["wall_time_s"].max()) if time_limit_s is None else float(time_limit_s)
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
-    from pathzoo import __version__
+    from pathzoo.version import installed_version
 
     written = []
     for scenario, sdf in df.groupby("scenario", sort=True):
@@ -227,7 +227,7 @@ def write_ompl_logs(
         name = _token(f"{experiment}.{scenario}")
         now = _dt.datetime.now().strftime("%Y-%m-%d %H:%M:%S")
         lines = [
-            f"pathzoo version {__version__}",
+            f"pathzoo version {installed_version()}",
             f"Experiment {name}",
             "3 experiment properties",
             f"pathzoo_experiment VARCHAR(256) = {_value(experiment)}",

@@ -4,7 +4,7 @@ Every check is a function ``check_*(planner, **options)`` that returns nothing
 and raises :class:`ConformanceError` (an ``AssertionError``) naming the
 planner, the scenario and what went wrong. Checks that plan take the scenario
 ``kind`` to use and the planning ``budget``; they run on the tiny scenarios of
-:mod:`pathzoo.testing.scenarios`.
+:mod:`pathzoo.core.tiny_scenarios`.
 """
 
 from __future__ import annotations
@@ -26,8 +26,8 @@ from pathzoo.core.results import PlanResult
 from pathzoo.core.scenario import SCENARIO_KINDS, Scenario
 from pathzoo.core.status import Status
 from pathzoo.rules import validate_path
-from pathzoo.testing.scenarios import check_scenario
-from pathzoo.testing.warmup import warm_up
+from pathzoo.core.tiny_scenarios import check_scenario
+from pathzoo.core.warmup import warm_up
 
 __all__ = [
     "ConformanceError",

@@ -56,7 +56,7 @@ def as_planner(obj: PlannerLike) -> Planner:
     if isinstance(obj, type) and issubclass(obj, Planner):
         return obj()
     if isinstance(obj, str):
-        from pathzoo import make_planner
+        from pathzoo.plugins.lookup import make_planner
 
         return make_planner(obj)
     raise InvalidParameterError(f"planners: expected a planner id, Planner subclass or instance, got {obj!r}")

@@ -13,7 +13,7 @@ from skfuzzy import control as ctrl
 import pathzoo
 from pathzoo import Budget, MovingObstacle, Scenario
 from pathzoo.rules import validate_path
-from pathzoo.testing.scenarios import check_scenario
+from pathzoo.core.tiny_scenarios import check_scenario
 from pathzoo_aco.engine import EXHAUSTED, ColonyProblem, Pheromone
 from pathzoo_aco.fgdaco_fuzzy import (
     INPUT_SUPPORTS,
