@@ -291,7 +291,8 @@ def export_ompl(db: str | Path, out_dir: str | Path, experiment: str | None = No
     exp = load_experiment(db, experiment)
     limit = exp.budget.get("time_s")
     versions = read_versions(db, exp.name)
-    runs = exp.runs.assign(versions=[versions.get(k, {}) for k in exp.runs["run_key"]])
+    runs = exp.runs.assign(versions=pd.Series([versions.get(k, {}) for k in exp.runs["run_key"]], index=exp.runs.index,
+                                              dtype=object))
     return write_ompl_logs(
         runs, out_dir, history=exp.history, seed=exp.seed, time_limit_s=float(limit) if limit is not None else None,
         setup={"budget": exp.budget_text, "timeout_s": str(exp.timeout_s)},

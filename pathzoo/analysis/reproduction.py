@@ -460,8 +460,8 @@ def compare_paper(paper: PaperData, runs: pd.DataFrame, *, alpha: float = 0.05) 
             if sid not in ran:
                 continue
             pv = paper.values[(paper.values["scenario"] == skey) & (paper.values["metric"] == m.id)]
-            ref_val = pv.loc[pv["planner"] == paper.reference, "value"]
-            ref_val = float(ref_val.iloc[0]) if len(ref_val) else math.nan
+            ref_values = pv.loc[pv["planner"] == paper.reference, "value"]
+            ref_val = float(ref_values.iloc[0]) if len(ref_values) else math.nan
             for p in paper.planners:
                 status = planner_status(p)
                 row = pv[pv["planner"] == p.key]
@@ -470,7 +470,8 @@ def compare_paper(paper: PaperData, runs: pd.DataFrame, *, alpha: float = 0.05) 
                 is_ref = p.key == paper.reference
                 paper_mark = "" if is_ref else _paper_direction(ref_val, paper_value,
                                                                 str(row["mark"].iloc[0]) if len(row) else "")
-                rec = dict(metric=m.id, scenario=by_id[sid], scenario_id=sid, planner=p.key, label=p.label,
+                rec: dict[str, Any] = dict(
+                           metric=m.id, scenario=by_id[sid], scenario_id=sid, planner=p.key, label=p.label,
                            planner_id=p.id, status=status, paper_value=paper_value, paper_sd=paper_sd,
                            paper_mark=paper_mark, median=math.nan, sd=math.nan, mean=math.nan,
                            success_rate=math.nan, n_runs=0, mark="")

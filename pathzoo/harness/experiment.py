@@ -231,7 +231,7 @@ class Experiment:
         planners: Sequence[
             "str | Planner | tuple[str, Mapping[str, Any]] | tuple[str, Mapping[str, Any], str] | PlannerSpec"
         ],
-        scenarios: Sequence["str | Path | Scenario"],
+        scenarios: Sequence["str | Path | Scenario | ScenarioSpec"],
         seeds: int | Iterable[int] = 5,
         budget: Budget | None = None,
         timeout_s: float | None = None,

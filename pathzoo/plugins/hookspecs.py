@@ -1,3 +1,5 @@
+# mypy: disable-error-code="empty-body"
+# (a hook specification is a signature and a docstring; the plugins implement the bodies)
 """All pluggy hook specifications of pathzoo, in one place.
 
 A plugin is a module (or object) exposed under the ``pathzoo`` entry-point

@@ -232,7 +232,11 @@ def _check_count_limit(planner: Planner, counter: str, limit: int, time_s: float
     """Plan with ``Budget(<counter>=limit)`` and require neither the result nor progress to exceed it."""
     scenario = check_scenario(_first_kind(planner))
     progress = _Progress()
-    result = _plan(planner, scenario, Budget(**{counter: limit, "time_s": time_s}), progress)
+    if counter == "iterations":
+        budget = Budget(iterations=limit, time_s=time_s)
+    else:
+        budget = Budget(evaluations=limit, time_s=time_s)
+    result = _plan(planner, scenario, budget, progress)
     position = 0 if counter == "iterations" else 1  # place of the count in progress(iteration, evaluations, cost)
     used = max([int(c[position]) for c in progress.calls] + [getattr(result, counter)])
     if used > limit:

@@ -71,6 +71,7 @@ def planner_checks(planner: Planner, *, budget: Budget | None = None) -> Iterato
     than five iterations to solve a 10x10 map.
     """
     options: dict[str, Any] = {} if budget is None else {"budget": budget}
+    check: Callable[..., None]
     yield from _PER_PLANNER
     kinds = [k for k in SCENARIO_KINDS if k in planner.kinds]
     if not kinds:
