@@ -4,7 +4,10 @@ import subprocess
 import sys
 import textwrap
 
+import pytest
 
+
+@pytest.mark.slow
 def test_pso_leaves_logging_and_the_working_directory_alone(tmp_path):
     script = textwrap.dedent(
         """
