@@ -9,7 +9,7 @@ __all__ = ["installed_version"]
 
 @functools.cache
 def installed_version() -> str:
-    """pathzoo's version (``pathzoo.__version__``); ``0.0.0+unknown`` when run from a source tree that is not installed."""
+    """pathzoo's version (``pathzoo.__version__``); ``0.0.0+unknown`` in a source tree that is not installed."""
     from importlib.metadata import PackageNotFoundError, version
 
     try:

@@ -62,7 +62,7 @@ class MovingObstacle:
 
     @cached_property
     def cycle(self) -> tuple[np.ndarray, np.ndarray]:
-        """The closed route driven once per period: points ``(K', 2)`` and their cumulative distance ``(K',)`` in metres.
+        """The closed route driven once per period: points ``(K', 2)`` and their cumulative distances ``(K',)`` (m).
 
         Read-only arrays, kept on the instance (not a dataclass field, so
         neither the scenario's digest nor its file format sees them).

@@ -235,7 +235,8 @@ def _free_point(top: Table, kind: str, occupancy: np.ndarray, elevation: np.ndar
                 cell_sizes: np.ndarray) -> np.ndarray:
     """Centre of the first cell that :attr:`Scenario.blocked` leaves free, evaluated before the Scenario exists."""
     probe = SimpleNamespace(kind=kind, occupancy=occupancy, elevation=elevation, rules=rules)
-    blocked = Scenario.blocked.func(probe)  # type: ignore[attr-defined]  # the Scenario's own rule, so the two cannot drift apart
+    # the Scenario's own rule, so the two cannot drift apart (``func`` of the cached_property)
+    blocked = Scenario.blocked.func(probe)  # type: ignore[attr-defined]
     free = np.argwhere(~blocked)
     if len(free) == 0:
         raise top.error("map", "every cell is blocked; there is no room for a start and a goal")

@@ -1,4 +1,4 @@
-"""The ``scenarios`` plugin: registers every bundled scenario pack (see ``docs/scenarios.md``) and the papers' tables."""
+"""The ``scenarios`` plugin: every bundled scenario pack (see ``docs/scenarios.md``) and the papers' tables."""
 
 from __future__ import annotations
 

@@ -81,7 +81,7 @@ RANK = {unit: rank for rank, layer in enumerate(LAYERS) for unit in layer}
 
 
 def imports(path: Path, text: str) -> list[tuple[int, str]]:
-    """``(line, imported module)`` for every import statement in ``text`` (the source of ``path``), relative ones resolved."""
+    """``(line, imported module)`` of every import in ``text``, the source of ``path``; relative ones resolved."""
     module = module_name(path)
     package = module if path.name == "__init__.py" else module.rpartition(".")[0]
     found = []
@@ -112,7 +112,7 @@ def layer_violations(sources: dict[Path, str]) -> list[str]:
     for path, text in sources.items():
         module = module_name(path)
         source = unit_of(module)
-        assert source is not None, f"{path}: in no unit of LAYERS; add it to tests/docs/test_layers.py and docs/layers.md"
+        assert source is not None, f"{path}: in no unit of LAYERS (add it here and to docs/layers.md)"
         for line, target in imports(path, text):
             unit = unit_of(target)
             if unit is None or unit == source or (module, unit) in ALLOWED:
