@@ -34,7 +34,7 @@ class Encoding(Protocol):
     integer: bool
 
     def initial(self, rng: np.random.Generator, n: int) -> Any:
-        """``n`` random candidates drawn from ``rng``: shape (n, n_genes), or a list of arrays when ``variable_length``."""
+        """``n`` random candidates from ``rng``: shape (n, n_genes), or a list of arrays when ``variable_length``."""
 
     def evaluate(self, genes: Any) -> tuple[np.ndarray, np.ndarray]:
         """Penalised cost and violation (0 when feasible) of candidates of shape (n, n_genes) (or a list of arrays)."""
