@@ -4,6 +4,7 @@ Run from the repository root, with ``shared/`` beside the repository::
 
     python benchmarks/exact.py               # 10 hardest and 10 middle buckets (200 problems)
     python benchmarks/exact.py --buckets 3   # fewer problems
+    python benchmarks/exact.py --write-docs  # also rewrite the table in docs/planners/exact.dijkstra.md
 
 For every problem of the hardest buckets of ``8room_000.map.scen``, and of as
 many buckets around the middle one, it times
@@ -46,6 +47,9 @@ from scipy.sparse.csgraph import dijkstra
 import pathzoo
 from pathzoo.core import Budget, Scenario
 from pathzoo.io import load_scenario_files
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from doc_table import add_write_docs_option, docs_table  # noqa: E402  (a sibling script)
 
 ANY_ANGLE = "exact.thetastar"
 """Not an optimum of the graph: its cost is only compared with the others."""
@@ -105,6 +109,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--seeds", type=int, default=3, help="--dynamic: seeds per planner and scenario")
     parser.add_argument("--time-s", type=float, default=20.0, help="--dynamic: wall budget per run, seconds")
     parser.add_argument("--db", type=Path, default=Path("sipp-target.sqlite"), help="--dynamic: results file")
+    add_write_docs_option(parser, "planners/exact.dijkstra.md")
     args = parser.parse_args(argv)
     if args.dynamic:
         return dynamic_target(args.seeds, args.time_s, args.db)
@@ -141,14 +146,15 @@ def main(argv: list[str] | None = None) -> int:
     methods["scipy dijkstra (limit)"] = scipy_limit
 
     load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
-    print(f"map {args.scen.name}: {graph.shape[0]}x{graph.shape[1]}, {graph.n_edges} edges; "
-          f"{os.cpu_count()} CPUs, load average {load:.1f} at the start")
-    for label, (lo, hi) in groups.items():
-        chosen = [p for p in problems if lo <= p.metadata["bucket"] <= hi]
-        if not measure(label, chosen, methods):
-            return 1
-    print()
-    print("nodes: expanded nodes for the planners, nodes reached (finite distance) for SciPy")
+    print(f"{os.cpu_count()} CPUs, load average {load:.1f} at the start", file=sys.stderr)
+    with docs_table(args.write_docs, "planners/exact.dijkstra.md", "exact.py"):
+        print(f"map {args.scen.name}: {graph.shape[0]}x{graph.shape[1]}, {graph.n_edges} edges")
+        for label, (lo, hi) in groups.items():
+            chosen = [p for p in problems if lo <= p.metadata["bucket"] <= hi]
+            if not measure(label, chosen, methods):
+                return 1
+        print()
+        print("nodes: expanded nodes for the planners, nodes reached (finite distance) for SciPy")
     return 0
 
 

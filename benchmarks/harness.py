@@ -4,6 +4,7 @@ Run from the repository root::
 
     python benchmarks/harness.py             # everything (the cold default experiment takes a minute or more)
     python benchmarks/harness.py --quick     # without the cold default experiment
+    python benchmarks/harness.py --write-docs   # also rewrite the table in docs/harness.md (after a full run)
 
 Every measurement runs in a child process (``pathzoo run`` or a short Python
 script) and is reported as wall seconds *and* CPU seconds of the whole
@@ -58,6 +59,9 @@ from typing import Callable
 import psutil
 
 from pathzoo.cli.cmd_run import positive_int
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from doc_table import add_write_docs_option, docs_table  # noqa: E402  (a sibling script)
 
 FIRST_RESULT_TARGET_S = 1.0
 DEFAULT_COLD_TARGET_S = 60.0
@@ -214,16 +218,16 @@ def tiny(tmp: Path, jobs: int, n: int, planner: str = "exact.astar", iterations:
 
 
 def verdict(ok: bool) -> str:
-    return "met" if ok else "NOT met"
+    return "met" if ok else "not met"
 
 
-def throughput_line(label: str, n: int, one: TreeUsage, two: TreeUsage) -> str:
-    """Throughput at jobs 1 and 2: steady state (judged against the target) and over the whole call."""
+def throughput_row(label: str, n: int, one: TreeUsage, two: TreeUsage) -> str:
+    """Throughput at jobs 1 and 2 as a table row: steady state (judged against the target) and over the whole call."""
     steady = two.steady_rate / one.steady_rate
-    return (f"{label}: steady state (runs stored after the first quarter) jobs=1 {one.steady_rate:.1f} runs/s, "
-            f"jobs=2 {two.steady_rate:.1f} runs/s, ratio {steady:.2f}   target >= {JOBS_RATIO_TARGET:g} on an idle "
-            f"machine: {verdict(steady >= JOBS_RATIO_TARGET)}\n  over the whole call, start-up included: jobs=1 "
-            f"{n / one.wall_s:.1f} runs/s, jobs=2 {n / two.wall_s:.1f} runs/s, ratio {one.wall_s / two.wall_s:.2f}")
+    return (f"| jobs=2 / jobs=1, {label} | {steady:.2f} in steady state (runs stored after the first quarter: "
+            f"{one.steady_rate:.1f} and {two.steady_rate:.1f} runs/s); {one.wall_s / two.wall_s:.2f} over the whole "
+            f"call, start-up included ({n / one.wall_s:.1f} and {n / two.wall_s:.1f} runs/s) "
+            f"| >= {JOBS_RATIO_TARGET:g} | {verdict(steady >= JOBS_RATIO_TARGET)} |")
 
 
 def main() -> None:
@@ -231,41 +235,42 @@ def main() -> None:
     parser.add_argument("--quick", action="store_true", help="skip the cold default experiment")
     parser.add_argument("--tiny", type=positive_int, default=140, help="tiny runs per jobs setting (default 140)")
     parser.add_argument("--short", type=positive_int, default=40, help="short aco.as runs per jobs setting (default 40)")
+    add_write_docs_option(parser, "harness.md")
     args = parser.parse_args()
     print(f"load average {os.getloadavg()[0]:.2f} {os.getloadavg()[1]:.2f} on {os.cpu_count()} cores; "
-          "wall times are inflated by other load, CPU times (whole process tree) much less")
-    with tempfile.TemporaryDirectory(prefix="pathzoo-harness-bench-") as name:
+          "wall times are inflated by other load, CPU times (whole process tree) much less", file=sys.stderr)
+    with tempfile.TemporaryDirectory(prefix="pathzoo-harness-bench-") as name, \
+            docs_table(args.write_docs, "harness.md", "harness.py"):
         tmp = Path(name)
+        print("| figure | measured | target | verdict |\n|---|---|---|---|")
         cli_cold, api_cold, cpu_cold = first_result(tmp, "cold")
         cli_first, api_first, cpu_first = first_result(tmp, "warm")
-        print(f"first result of `pathzoo run`, numba cache warm: {cli_first:.2f} s from the command's start, "
-              f"{api_first:.2f} s from run_experiment()   target <= {FIRST_RESULT_TARGET_S:g} s: "
-              f"{verdict(cli_first <= FIRST_RESULT_TARGET_S)}")
-        print(f"  the command's process tree had used {cpu_first:.2f} CPU s by then (which takes at least "
-              f"{cpu_first / (os.cpu_count() or 1):.2f} s on {os.cpu_count()} cores)")
-        print(f"  (with an empty numba cache: {cli_cold:.2f} s and {api_cold:.2f} s, {cpu_cold:.2f} CPU s)")
+        print(f"| first result of `pathzoo run`, numba cache warm | {cli_first:.2f} s from the command's start "
+              f"({api_first:.2f} s from `run_experiment()`); the process tree had used {cpu_first:.2f} CPU s by then; "
+              f"with an empty numba cache {cli_cold:.2f} s ({api_cold:.2f} s), {cpu_cold:.2f} CPU s "
+              f"| <= {FIRST_RESULT_TARGET_S:g} s | {verdict(cli_first <= FIRST_RESULT_TARGET_S)} |")
         if not args.quick:
             cold = default_cold(tmp)
-            print(f"default experiment, cold (empty NUMBA_CACHE_DIR, 240 runs): {cold.wall_s:.1f} s wall, "
-                  f"{cold.cpu_s:.1f} CPU s   target <= {DEFAULT_COLD_TARGET_S:g} s wall on 2 cores: "
-                  f"{verdict(cold.wall_s <= DEFAULT_COLD_TARGET_S)}")
+            print(f"| default experiment, cold (empty `NUMBA_CACHE_DIR`, 240 runs) | {cold.wall_s:.1f} s wall, "
+                  f"{cold.cpu_s:.1f} CPU s | <= {DEFAULT_COLD_TARGET_S:g} s wall on 2 cores "
+                  f"| {verdict(cold.wall_s <= DEFAULT_COLD_TARGET_S)} |")
         one, wall1, cpu1 = tiny(tmp, 1, args.tiny)
         two, _, _ = tiny(tmp, 2, args.tiny)
-        print(throughput_line(f"tiny runs ({args.tiny} x exact.astar, 1 iteration, {TINY_SCENARIO})", args.tiny,
-                              one, two))
-        print(f"  CPU of the whole tree per run: jobs=1 {one.cpu_s / args.tiny * 1e3:.1f} ms, "
-              f"jobs=2 {two.cpu_s / args.tiny * 1e3:.1f} ms (imports and start-up included)")
+        print(throughput_row(f"{args.tiny} tiny runs (`exact.astar`, 1 iteration, {TINY_SCENARIO})", args.tiny,
+                             one, two))
         few = max(1, args.tiny // 4)
         base, wall0, cpu0 = tiny(tmp, 1, few, iterations=1, planner="exact.astar", name="few")
         extra = args.tiny - few
-        print(f"per-run harness overhead at jobs=1 (the cost of {extra} more runs, start-up excluded): "
+        print(f"| per-run harness overhead at jobs=1 (the cost of {extra} more tiny runs, start-up excluded) | "
               f"{(one.wall_s - base.wall_s - (wall1 - wall0)) / extra * 1e3:.1f} ms wall, "
               f"{(one.cpu_s - base.cpu_s - (cpu1 - cpu0)) / extra * 1e3:.1f} ms CPU of the whole tree "
-              f"(plan() itself {(cpu1 - cpu0) / extra * 1e3:.1f} CPU ms)")
+              f"(`plan()` itself {(cpu1 - cpu0) / extra * 1e3:.1f} CPU ms; whole tree with start-up: "
+              f"{one.cpu_s / args.tiny * 1e3:.1f} ms at jobs=1, {two.cpu_s / args.tiny * 1e3:.1f} ms at jobs=2) "
+              f"| - | - |")
         s1, _, scpu = tiny(tmp, 1, args.short, "aco.as", SHORT_ITERATIONS)
         s2, _, _ = tiny(tmp, 2, args.short, "aco.as", SHORT_ITERATIONS)
-        print(throughput_line(f"short runs ({args.short} x aco.as, {SHORT_ITERATIONS} iterations, plan() "
-                              f"{scpu / args.short * 1e3:.0f} CPU ms each)", args.short, s1, s2))
+        print(throughput_row(f"{args.short} short runs (`aco.as`, {SHORT_ITERATIONS} iterations, `plan()` "
+                             f"{scpu / args.short * 1e3:.0f} CPU ms each)", args.short, s1, s2))
 
 
 if __name__ == "__main__":

@@ -6,6 +6,7 @@ Run from the repository root (``../shared`` may sit beside it for more maps)::
     python benchmarks/speed.py --quick    # without ggaco.case1 and gant.simple.1
     python benchmarks/speed.py --only astar          # some sections only (see --help)
     python benchmarks/speed.py --only planners --rows fgdaco   # the planner rows whose label contains "fgdaco"
+    python benchmarks/speed.py --write-docs   # also rewrite the table in docs/aco-engine.md (use after a full run)
 
 Targets are ratios, so the state of the host does not decide them:
 
@@ -49,6 +50,7 @@ from pathzoo.cli.cmd_run import positive_int
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from aco import room512  # noqa: E402  (the benchmark scripts share their scenario builders)
+from doc_table import add_write_docs_option, docs_table  # noqa: E402
 
 ROWS = (  # label, planner, scenario, iterations, ants, extra parameters, paper seconds
     ("fgdaco.scenario1", "aco.fgdaco", "fgdaco.scenario1", 100, 20, {}, 28.97),
@@ -210,7 +212,7 @@ def ggaco_case1() -> None:
         for label in ("graph built (empty cache)", "graph memory-mapped from the cache"):
             m = _child_result(subprocess.Popen(run + ["1000"], env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                                                text=True))
-            print(f"| ggaco.case1, 1000 x 20, {label}: DEM load {m['load_s']:.1f} s + graph {m['graph_s']:.1f} s + "
+            print(f"| ggaco.case1, 1000 x 20, {label}: DEM {m['load_s']:.1f} s + graph {m['graph_s']:.1f} s + "
                   f"plan() {m['plan_s']:.1f} s "
                   f"| {m['total_s']:.1f} s |")
             print(f"| ggaco.case1 peak RSS, {label} | {m['peak_gb']:.2f} GB |", flush=True)
@@ -294,22 +296,30 @@ def main() -> None:
                         help=f"comma-separated parts to run, of: {', '.join(SECTIONS)} (default: all)")
     parser.add_argument("--rows", metavar="TEXT", default="",
                         help="in the planners section, only the rows whose label contains TEXT (e.g. fgdaco)")
+    add_write_docs_option(parser, "aco-engine.md")
     args = parser.parse_args()
-    print(f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} CPUs; CPU seconds\n")
-    if "astar" in args.only:
-        print("## exact.astar against pathfinding's A* and SciPy's Dijkstra (targets)\n")
-        astar_rows(args.astar_problems, args.repeats)
-    if "planners" in args.only:
-        print("## The papers' settings (information)\n")
-        rows = ROWS + (() if args.quick else BIG_ROWS)
-        planner_rows(tuple(row for row in rows if args.rows in row[0]), args.repeats)
-    print("\n## Absolute figures (information)\n\n| figure | measured |\n|---|---|")
-    if "list" in args.only:
-        list_planners_time()
-    if "dsaco" in args.only:
-        dsaco_all_in()
-    if "ggaco" in args.only and not args.quick:
-        ggaco_case1()
+    print(f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} CPUs; CPU seconds", file=sys.stderr)
+    with docs_table(args.write_docs, "aco-engine.md", "speed.py"):
+        if "astar" in args.only:
+            print("### exact.astar against pathfinding's A* and SciPy's Dijkstra (targets)
+")
+            astar_rows(args.astar_problems, args.repeats)
+        if "planners" in args.only:
+            print("### The papers' settings (information)
+")
+            rows = ROWS + (() if args.quick else BIG_ROWS)
+            planner_rows(tuple(row for row in rows if args.rows in row[0]), args.repeats)
+        print("
+### Absolute figures (information)
+
+| figure | measured |
+|---|---|")
+        if "list" in args.only:
+            list_planners_time()
+        if "dsaco" in args.only:
+            dsaco_all_in()
+        if "ggaco" in args.only and not args.quick:
+            ggaco_case1()
 
 
 def _sections(text: str) -> tuple[str, ...]:

@@ -10,11 +10,11 @@ The public API is small:
 
 from __future__ import annotations
 
-import functools
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Iterable, Sequence
 
 from pathzoo.lazy_names import lazy_getattr
+from pathzoo.version import installed_version
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -41,6 +41,7 @@ if TYPE_CHECKING:
     )
     from pathzoo.plugins.entries import LazyMetric, LazyPlanner, PluginEntry, ScenarioEntry
     from pathzoo.plugins.hookspecs import hookimpl
+    from pathzoo.plugins.lookup import list_plugins, load_scenario, load_scenarios, make_planner
 
 __all__ = [
     "Budget",
@@ -82,17 +83,8 @@ _WHERE = {
                                          "VehicleModel")},
     **{name: "pathzoo.plugins.entries" for name in ("LazyMetric", "LazyPlanner", "PluginEntry", "ScenarioEntry")},
     "hookimpl": "pathzoo.plugins.hookspecs",
+    **{name: "pathzoo.plugins.lookup" for name in ("list_plugins", "load_scenario", "load_scenarios", "make_planner")},
 }
-
-
-@functools.cache
-def _installed_version() -> str:
-    from importlib.metadata import PackageNotFoundError, version
-
-    try:
-        return version("pathzoo")
-    except PackageNotFoundError:  # running from a source tree
-        return "0.0.0+unknown"
 
 
 _public = lazy_getattr(__name__, _WHERE)
@@ -105,84 +97,7 @@ def __getattr__(name: str) -> Any:
     :mod:`importlib.metadata`, so ``pathzoo run`` can start its fork server
     at once (:func:`pathzoo.harness.launch.start_server`).
     """
-    return _installed_version() if name == "__version__" else _public(name)
-
-
-def load_scenario(id_or_path: str | Path) -> Scenario:
-    """Load one scenario by registered id or from a file.
-
-    Parameters
-    ----------
-    id_or_path : str or path
-        A registered id such as ``"gant.fig7"`` (see ``pathzoo list
-        scenarios``), or a scenario TOML file.
-
-    Raises
-    ------
-    UnknownPluginError
-        No scenario is registered under that id.
-    InvalidScenarioError
-        The file is malformed; the message names the file and field.
-    """
-    from pathzoo.core.errors import UnknownPluginError
-    from pathzoo.io.paths import looks_like_path
-
-    text = str(id_or_path)
-    if isinstance(id_or_path, Path) or looks_like_path(text):
-        from pathzoo.io import load_scenario_file
-
-        return load_scenario_file(Path(text))
-    from pathzoo.plugins.manager import get_registry
-
-    try:
-        entry = get_registry().get("scenarios", text)
-    except UnknownPluginError as exc:
-        raise UnknownPluginError(f"{exc} (and no file named '{text}' exists)") from None
-    return entry.obj.load()
-
-
-def load_scenarios(path: str | Path) -> list[Scenario]:
-    """Load every scenario a file describes.
-
-    A ``.scen`` file gives one scenario per problem line (with its optimal
-    length as ``reference_length``); a scenario TOML gives one; a glob pattern
-    of registered ids (``"movingai.arena.*"``) gives every match.
-    """
-    from pathzoo.io.paths import looks_like_path
-
-    text = str(path)
-    if isinstance(path, Path) or looks_like_path(text):
-        from pathzoo.io import load_scenario_files
-
-        return load_scenario_files(Path(text))
-    from pathzoo.plugins.manager import get_registry
-
-    reg = get_registry()
-    return [reg.get("scenarios", sid).obj.load() for sid in reg.match("scenarios", text)]
-
-
-def make_planner(planner_id: str, **params: Any) -> Planner:
-    """Build a registered planner; parameters are validated now.
-
-    Raises
-    ------
-    UnknownPluginError
-        No planner is registered under ``planner_id``.
-    InvalidParameterError
-        A parameter is unknown or out of range.
-    """
-    from pathzoo.plugins.manager import get_registry
-
-    cls = get_registry().get("planners", planner_id).obj
-    return cls(**params)
-
-
-def list_plugins(kind: str = "planners") -> list[PluginEntry]:
-    """Entries of one kind (``planners``, ``scenarios`` or ``metrics``), sorted by id."""
-    from pathzoo.plugins.manager import get_registry
-
-    table = get_registry().table(kind)  # type: ignore[arg-type]
-    return [table[k] for k in sorted(table)]
+    return installed_version() if name == "__version__" else _public(name)
 
 
 def run(

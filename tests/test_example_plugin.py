@@ -95,6 +95,7 @@ def greedy_copy(tmp_path_factory):
     return copy
 
 
+@pytest.mark.slow
 def test_list_shows_the_plugin_with_its_distribution_and_version(greedy_copy):
     version = tomllib.loads((greedy_copy / "pyproject.toml").read_text())["project"]["version"]
     proc = subprocess.run([str(PATHZOO), "list", "planners"], capture_output=True, text=True, env=_clean_env())
@@ -105,6 +106,7 @@ def test_list_shows_the_plugin_with_its_distribution_and_version(greedy_copy):
     assert "skipped: greedy" not in proc.stderr
 
 
+@pytest.mark.slow
 def test_the_plugin_runs_in_an_experiment(greedy_copy, tmp_path):
     (tmp_path / "rooms.toml").write_text(SCENARIO)
     (tmp_path / "exp.toml").write_text(EXPERIMENT)
@@ -121,6 +123,7 @@ def test_the_plugin_runs_in_an_experiment(greedy_copy, tmp_path):
     assert (greedy["length"] >= optimal["length"].min() - 1e-9).all()  # greedy is never shorter than optimal
 
 
+@pytest.mark.slow
 def test_the_plugins_own_suite_passes_with_the_conformance_kit(greedy_copy):
     cmd = [sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", str(greedy_copy / "tests")]
     proc = subprocess.run(cmd, capture_output=True, text=True, cwd=greedy_copy, env=_clean_env())

@@ -27,7 +27,7 @@ throughout, whatever they reported: the harness did not accept their answer.
 
 from __future__ import annotations
 
-from typing import Literal, Mapping
+from typing import Any, Literal, Mapping
 
 import numpy as np
 import pandas as pd
@@ -195,6 +195,7 @@ def time_to_target(
     opt = best_known(runs, metric) if optimum is None else pd.Series(optimum, dtype=float)
     curves = {k: g for k, g in hist.groupby("run_key")}
     rows = []
+    r: Any  # a DataFrame row: its fields are whatever the columns hold
     for r in df.itertuples(index=False):
         target = float(opt.get(r.scenario, np.nan)) * (1.0 + eps)
         g = curves.get(r.run_key)

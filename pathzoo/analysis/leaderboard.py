@@ -86,7 +86,7 @@ def _rank_within(summary: pd.DataFrame, direction: Direction) -> pd.Series:
         r = [1]
         for i in range(1, len(tuples)):
             r.append(r[-1] if tuples[i] == tuples[i - 1] else i + 1)
-        ranks.loc[k.index] = r
+        ranks.loc[k.index] = np.asarray(r)
     return ranks
 
 

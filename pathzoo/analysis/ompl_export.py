@@ -219,7 +219,7 @@ def write_ompl_logs(
     limit = float(df["wall_time_s"].max()) if time_limit_s is None else float(time_limit_s)
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
-    from pathzoo import __version__
+    from pathzoo.version import installed_version
 
     written = []
     for scenario, sdf in df.groupby("scenario", sort=True):
@@ -227,7 +227,7 @@ def write_ompl_logs(
         name = _token(f"{experiment}.{scenario}")
         now = _dt.datetime.now().strftime("%Y-%m-%d %H:%M:%S")
         lines = [
-            f"pathzoo version {__version__}",
+            f"pathzoo version {installed_version()}",
             f"Experiment {name}",
             "3 experiment properties",
             f"pathzoo_experiment VARCHAR(256) = {_value(experiment)}",
@@ -291,7 +291,8 @@ def export_ompl(db: str | Path, out_dir: str | Path, experiment: str | None = No
     exp = load_experiment(db, experiment)
     limit = exp.budget.get("time_s")
     versions = read_versions(db, exp.name)
-    runs = exp.runs.assign(versions=[versions.get(k, {}) for k in exp.runs["run_key"]])
+    runs = exp.runs.assign(versions=pd.Series([versions.get(k, {}) for k in exp.runs["run_key"]], index=exp.runs.index,
+                                              dtype=object))
     return write_ompl_logs(
         runs, out_dir, history=exp.history, seed=exp.seed, time_limit_s=float(limit) if limit is not None else None,
         setup={"budget": exp.budget_text, "timeout_s": str(exp.timeout_s)},

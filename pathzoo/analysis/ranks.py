@@ -96,7 +96,7 @@ class FriedmanResult:
         """
         names = list(self.mean_ranks.index)
         r = self.mean_ranks.to_numpy()
-        groups = []
+        groups: list[tuple[int, int]] = []
         for i in range(len(r)):
             j = i
             while j + 1 < len(r) and r[j + 1] - r[i] < self.cd:

@@ -1,7 +1,9 @@
 """A paper's comparison table rerun: the paper's numbers as data, our runs beside them, a verdict per claim.
 
-Each of the five papers ships a data file
-``pathzoo_scenarios/papers/<paper>.toml`` naming the table its numbers
+Each paper's data file (a TOML file that a plugin provides through the
+:func:`~pathzoo.plugins.hookspecs.pathzoo_paper_tables` hook; the bundled
+scenario plugin ships ``pathzoo_scenarios/papers/<paper>.toml`` for the five
+papers of :data:`PAPERS`) names the table its numbers
 come from, the statistic they are (median, mean or a single value), the run
 count, the planners (pathzoo ids and parameters), the metrics (with the
 factor from our SI unit to the paper's unit) and, per scenario and planner,
@@ -34,7 +36,6 @@ import importlib
 import math
 import tomllib
 from dataclasses import dataclass, field
-from importlib import resources
 from pathlib import Path
 from typing import Any, Callable, Mapping
 
@@ -55,6 +56,7 @@ __all__ = [
     "PaperData",
     "Reproduction",
     "paper_file",
+    "paper_tables",
     "load_paper",
     "planner_status",
     "selected_scenarios",
@@ -136,17 +138,34 @@ class PaperData:
         return next(p for p in self.planners if p.key == key)
 
 
+def paper_tables() -> dict[str, Path]:
+    """Every paper table the installed plugins provide (hook ``pathzoo_paper_tables``): name to data file.
+
+    The first plugin registered that names a paper provides it, as with
+    planner ids (pluggy calls the last registered first).
+    """
+    from pathzoo.plugins.manager import get_registry
+
+    tables: dict[str, Path] = {}
+    for provided in reversed(get_registry().pm.hook.pathzoo_paper_tables()):
+        for name, file in dict(provided).items():
+            tables.setdefault(str(name), Path(file))
+    return tables
+
+
 def paper_file(name: str) -> Path:
-    """The data file of paper ``name`` (one of :data:`PAPERS`).
+    """The data file of paper ``name``, as a plugin provides it (:func:`paper_tables`).
 
     Raises
     ------
     InvalidParameterError
-        ``name`` is not a known paper.
+        No installed plugin provides a table for ``name``.
     """
-    if name not in PAPERS:
-        raise InvalidParameterError(f"unknown paper '{name}'; choose one of {', '.join(PAPERS)}")
-    return Path(str(resources.files("pathzoo_scenarios") / "papers" / f"{name}.toml"))
+    tables = paper_tables()
+    if name not in tables:
+        known = ", ".join(tables) or "none (is the pathzoo scenarios plugin installed?)"
+        raise InvalidParameterError(f"unknown paper '{name}'; choose one of {known}")
+    return tables[name]
 
 
 def _field(data: Mapping[str, Any], key: str, kind: type | tuple[type, ...], where: str) -> Any:
@@ -330,7 +349,7 @@ def _label_runs(paper: PaperData, runs: pd.DataFrame, experiment: Any) -> pd.Dat
 
 def _add_derived(paper: PaperData, runs: pd.DataFrame, db: str | Path, experiment: str) -> pd.DataFrame:
     """Columns for the paper's derived metrics, computed from each stored path."""
-    from pathzoo import load_scenario
+    from pathzoo.plugins.lookup import load_scenario
     from pathzoo.harness.store import read_path
 
     derived = [m for m in paper.metrics if m.derived]
@@ -441,8 +460,8 @@ def compare_paper(paper: PaperData, runs: pd.DataFrame, *, alpha: float = 0.05) 
             if sid not in ran:
                 continue
             pv = paper.values[(paper.values["scenario"] == skey) & (paper.values["metric"] == m.id)]
-            ref_val = pv.loc[pv["planner"] == paper.reference, "value"]
-            ref_val = float(ref_val.iloc[0]) if len(ref_val) else math.nan
+            ref_values = pv.loc[pv["planner"] == paper.reference, "value"]
+            ref_val = float(ref_values.iloc[0]) if len(ref_values) else math.nan
             for p in paper.planners:
                 status = planner_status(p)
                 row = pv[pv["planner"] == p.key]
@@ -451,7 +470,8 @@ def compare_paper(paper: PaperData, runs: pd.DataFrame, *, alpha: float = 0.05) 
                 is_ref = p.key == paper.reference
                 paper_mark = "" if is_ref else _paper_direction(ref_val, paper_value,
                                                                 str(row["mark"].iloc[0]) if len(row) else "")
-                rec = dict(metric=m.id, scenario=by_id[sid], scenario_id=sid, planner=p.key, label=p.label,
+                rec: dict[str, Any] = dict(
+                           metric=m.id, scenario=by_id[sid], scenario_id=sid, planner=p.key, label=p.label,
                            planner_id=p.id, status=status, paper_value=paper_value, paper_sd=paper_sd,
                            paper_mark=paper_mark, median=math.nan, sd=math.nan, mean=math.nan,
                            success_rate=math.nan, n_runs=0, mark="")

@@ -202,9 +202,9 @@ def compare_losses(loss_a: np.ndarray, loss_b: np.ndarray, *, paired: bool) -> t
             return "mannwhitneyu", float("nan"), float("nan"), 0
         if np.all(pooled == pooled[0]):
             return "mannwhitneyu", len(ta) * len(tb) / 2.0, 1.0, 0
-        res = stats.mannwhitneyu(ta, tb, alternative="two-sided")
+        mwu = stats.mannwhitneyu(ta, tb, alternative="two-sided")
         sign = int(np.sign(0.5 - a12(a, b)))  # b beats a more often -> +1
-        return "mannwhitneyu", float(res.statistic), float(res.pvalue), sign
+        return "mannwhitneyu", float(mwu.statistic), float(mwu.pvalue), sign
 
 
 def pair_by_seed(

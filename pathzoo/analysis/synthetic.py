@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import hashlib
 import json
-from typing import Mapping, Sequence
+from typing import Any, Mapping, Sequence
 
 import numpy as np
 import pandas as pd
@@ -127,6 +127,7 @@ def random_history(runs: pd.DataFrame, *, n_points: int = 30, seed: int = 0) -> 
     """
     rng = np.random.default_rng(seed)
     parts = []
+    row: Any  # a DataFrame row: its fields are whatever the columns hold
     for row in runs.itertuples(index=False):
         if not row.success:
             continue

@@ -3,9 +3,11 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 from typing import Literal
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from pathzoo.core.errors import InvalidScenarioError
 
@@ -41,7 +43,7 @@ class MovingObstacle:
     """
 
     radius: float
-    waypoints: np.ndarray
+    waypoints: ArrayLike
     speed: float
     mode: Literal["pingpong", "loop"] = "pingpong"
     phase_s: float = 0.0
@@ -56,6 +58,16 @@ class MovingObstacle:
             raise InvalidScenarioError(f"must be >= 0, got {self.speed!r}", field="moving_obstacles.speed")
         if self.mode not in ("pingpong", "loop"):
             raise InvalidScenarioError(f"must be 'pingpong' or 'loop', got {self.mode!r}", field="moving_obstacles.mode")
+        self.cycle  # built now, from the waypoints as given
+
+    @cached_property
+    def cycle(self) -> tuple[np.ndarray, np.ndarray]:
+        """The closed route driven once per period: points ``(K', 2)`` and their cumulative distances ``(K',)`` (m).
+
+        Read-only arrays, kept on the instance (not a dataclass field, so
+        neither the scenario's digest nor its file format sees them).
+        """
+        wp = np.array(self.waypoints, dtype=np.float64)
         if self.mode == "loop" and len(wp) > 1:
             wp = np.vstack([wp, wp[:1]])
         elif self.mode == "pingpong" and len(wp) > 1:
@@ -64,18 +76,12 @@ class MovingObstacle:
         seg = np.linalg.norm(np.diff(wp, axis=0), axis=1)
         cum = np.concatenate([[0.0], np.cumsum(seg)])
         cum.setflags(write=False)
-        object.__setattr__(self, "_cycle", wp)
-        object.__setattr__(self, "_cum", cum)
-
-    @property
-    def cycle(self) -> tuple[np.ndarray, np.ndarray]:
-        """The closed route driven once per period: points ``(K', 2)`` and their cumulative distance ``(K',)`` in metres."""
-        return self._cycle, self._cum
+        return wp, cum
 
     @property
     def period_s(self) -> float:
         """Time for one full cycle (``inf`` for a parked obstacle)."""
-        total = float(self._cum[-1])
+        total = float(self.cycle[1][-1])
         if total == 0.0 or self.speed == 0.0:
             return float("inf")
         return total / self.speed
@@ -83,12 +89,12 @@ class MovingObstacle:
     def position(self, t: np.ndarray | float) -> np.ndarray:
         """Centre position(s) at time(s) ``t``; shape ``t.shape + (2,)``."""
         t = np.asarray(t, dtype=np.float64)
-        period = self.period_s
-        if not np.isfinite(period):
-            return np.broadcast_to(self._cycle[0], t.shape + (2,)).copy()
-        s = np.mod((t + self.phase_s) * self.speed, self._cum[-1])
-        x = np.interp(s, self._cum, self._cycle[:, 0])
-        y = np.interp(s, self._cum, self._cycle[:, 1])
+        points, cum = self.cycle
+        if not np.isfinite(self.period_s):
+            return np.broadcast_to(points[0], t.shape + (2,)).copy()
+        s = np.mod((t + self.phase_s) * self.speed, cum[-1])
+        x = np.interp(s, cum, points[:, 0])
+        y = np.interp(s, cum, points[:, 1])
         return np.stack([x, y], axis=-1)
 
     def min_distance(self, p0: np.ndarray, p1: np.ndarray, t0: float, t1: float) -> float:
@@ -115,8 +121,9 @@ class MovingObstacle:
         """
         from pathzoo.core.moving_distance import min_distances  # numba, loaded on first use
 
+        points, cum = self.cycle
         return min_distances(
-            self._cycle, self._cum, float(self.speed), float(self.phase_s),
+            points, cum, float(self.speed), float(self.phase_s),
             np.ascontiguousarray(p0, dtype=np.float64), np.ascontiguousarray(p1, dtype=np.float64),
             np.ascontiguousarray(t0, dtype=np.float64), np.ascontiguousarray(t1, dtype=np.float64), EXACT_MAX_PIECES,
         )

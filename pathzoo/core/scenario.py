@@ -36,7 +36,7 @@ def _frozen_array(values: Any, dtype: type) -> np.ndarray:
     """A read-only array of ``dtype``; an array that is already one (and owns its data) is shared, not copied."""
     if isinstance(values, np.ndarray) and values.dtype == dtype and values.flags.owndata and not values.flags.writeable:
         return values
-    arr = np.array(values, dtype=dtype)
+    arr: np.ndarray = np.array(values, dtype=dtype)
     arr.setflags(write=False)
     return arr
 

@@ -61,9 +61,9 @@ def pick_endpoints(
     nodes = np.flatnonzero(free & (labels == largest))
     start = int(rng.choice(nodes))
     points = scenario.point_of(nodes)
-    dist = np.linalg.norm(points - scenario.point_of([start]), axis=1)
+    dist = np.linalg.norm(points - scenario.point_of(np.array([start])), axis=1)
     goal = int(rng.choice(nodes[dist >= min_separation * dist.max()]))
-    return scenario.point_of([start])[0], scenario.point_of([goal])[0]
+    return scenario.point_of(np.array([start]))[0], scenario.point_of(np.array([goal]))[0]
 
 
 def with_random_endpoints(scenario: "Scenario", seed: int, *, min_separation: float = 0.5) -> "Scenario":

@@ -92,7 +92,8 @@ def gaussian_peaks(
     ndarray of float64
         Elevation in metres at cell centres; 0 far from every hill.
     """
-    shape = check_shape(shape)
+    rows, cols = check_shape(shape)
+    shape = (rows, cols)
     cell_size = check_number(cell_size, "cell_size", low=0.0, low_open=True)
     rng = np.random.default_rng(check_seed(seed))
     if peaks is not None:

@@ -167,6 +167,7 @@ def move_values(scenario: "Scenario", off: np.ndarray, cells: np.ndarray
     if len(off) == 3:
         return math.sqrt(horiz**2 + vert**2), math.atan2(vert, horiz)
     if _on_terrain(scenario):
+        assert scenario.elevation is not None  # _on_terrain: it has one
         elev = scenario.elevation.ravel()
         dz = elev[cells + _shift(off, scenario.blocked.shape)] - elev[cells]  # finite: the builder checked it
         return np.sqrt(horiz**2 + dz**2), _terrain_slope(dz, horiz)

@@ -65,7 +65,7 @@ def _code_digest() -> bytes:
 
     h = hashlib.sha256()
     for module in (graph, segments, terrain, tolerances):
-        h.update(Path(module.__file__).read_bytes())
+        h.update(Path(str(module.__file__)).read_bytes())
     return h.digest()
 
 
@@ -191,7 +191,7 @@ def release_pages(graph: "GridGraph", edges: slice | None = None) -> None:
         if not isinstance(mapped, np.memmap) or getattr(mapped, "_mmap", None) is None:
             continue
         if edges is None:
-            mapped._mmap.madvise(mmap.MADV_DONTNEED)
+            mapped._mmap.madvise(mmap.MADV_DONTNEED)  # type: ignore[attr-defined]  # numpy's private mmap
             continue
         lo, hi, _ = edges.indices(len(arr))
         base = mapped.ctypes.data - mapped.offset % mmap.ALLOCATIONGRANULARITY  # address of the mapping's start
@@ -200,4 +200,4 @@ def release_pages(graph: "GridGraph", edges: slice | None = None) -> None:
         first = -(-first // mmap.PAGESIZE) * mmap.PAGESIZE
         last = last // mmap.PAGESIZE * mmap.PAGESIZE
         if last > first:
-            mapped._mmap.madvise(mmap.MADV_DONTNEED, first, last - first)
+            mapped._mmap.madvise(mmap.MADV_DONTNEED, first, last - first)  # type: ignore[attr-defined]

@@ -104,7 +104,8 @@ def _compute(scenario: "Scenario") -> ReferencePath | None:
 
     graph = scenario.graph
     source, target = scenario.start_node, scenario.goal_node
-    dist, pred = dijkstra(graph.to_sparse("length"), directed=True, indices=source, return_predecessors=True)
+    dists, preds = dijkstra(graph.to_sparse("length"), directed=True, indices=[source], return_predecessors=True)
+    dist, pred = dists[0], preds[0]
     if not math.isfinite(float(dist[target])):
         return None
     nodes = [target]

@@ -7,7 +7,7 @@ runs still to do are costed planner by planner instead.
 
 from __future__ import annotations
 
-from collections import Counter
+from collections import Counter, defaultdict
 from dataclasses import dataclass, field
 from typing import Iterable
 
@@ -18,7 +18,7 @@ __all__ = ["RunTimes", "eta_seconds"]
 class RunTimes:
     """Finished run durations per planner label: total seconds and count."""
 
-    total_s: Counter[str] = field(default_factory=Counter)
+    total_s: dict[str, float] = field(default_factory=lambda: defaultdict(float))
     count: Counter[str] = field(default_factory=Counter)
 
     def add(self, planner: str, seconds: float) -> None:

@@ -61,7 +61,7 @@ _EXPERIMENT_KEYS = ("name", "seed", "seeds", "budget", "timeout_s", "jobs", "db"
 def _resolve_scenarios(
     items: Sequence["str | Path | Scenario | ScenarioSpec"], base: Path | None
 ) -> tuple[ScenarioSpec, ...]:
-    from pathzoo import load_scenarios
+    from pathzoo.plugins.lookup import load_scenarios
     from pathzoo.plugins.manager import get_registry
 
     specs: dict[str, ScenarioSpec] = {}
@@ -231,7 +231,7 @@ class Experiment:
         planners: Sequence[
             "str | Planner | tuple[str, Mapping[str, Any]] | tuple[str, Mapping[str, Any], str] | PlannerSpec"
         ],
-        scenarios: Sequence["str | Path | Scenario"],
+        scenarios: Sequence["str | Path | Scenario | ScenarioSpec"],
         seeds: int | Iterable[int] = 5,
         budget: Budget | None = None,
         timeout_s: float | None = None,

@@ -43,7 +43,7 @@ from pathzoo.harness.launch import NoMainContext, default_start_method, die_with
 from pathzoo.harness.specs import HeldScenarios
 from pathzoo.harness.worker import (SETUP_TIMEOUT_S, describe_exception, ensure_plugins, keep_payload, load_cached,
                                     quiet_registry)
-from pathzoo.plugins.manager import get_registry, limit_kinds
+from pathzoo.plugins.manager import PluginKind, get_registry, limit_kinds
 
 if TYPE_CHECKING:
     from multiprocessing.process import BaseProcess
@@ -57,7 +57,7 @@ __all__ = ["JudgeWorker", "JUDGE_TIMEOUT_S"]
 JUDGE_TIMEOUT_S = 60.0
 """Default limit on judging one run (validation and every metric), scenario loading excluded."""
 
-JUDGE_KINDS = ("scenarios", "metrics")
+JUDGE_KINDS: tuple[PluginKind, ...] = ("scenarios", "metrics")
 """The only kinds of plugins the judge process loads (see ``docs/register-a-planner.md``)."""
 
 _clock = time.perf_counter

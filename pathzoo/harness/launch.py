@@ -119,7 +119,7 @@ def die_with_harness(alive: Connection) -> None:
     """
     from multiprocessing import forkserver
 
-    server = forkserver._forkserver  # a forkserver child inherits the write end of the server's own life pipe:
+    server: Any = forkserver._forkserver  # a forkserver child inherits the write end of the server's own life pipe:
     if server._forkserver_alive_fd is not None:  # with it open, the server outlives the harness while we run
         os.close(server._forkserver_alive_fd)
         server._forkserver_alive_fd = None
@@ -157,7 +157,7 @@ def _main_left_out() -> Iterator[None]:
 
 
 def _no_main_popen(base: Any) -> Any:
-    class NoMainPopen(base):  # type: ignore[misc, valid-type]
+    class NoMainPopen(base):
         """Launch without the main module in the preparation data (so the child never re-imports it)."""
 
         def _launch(self, process_obj: Any) -> None:

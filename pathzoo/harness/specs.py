@@ -100,7 +100,7 @@ class PlannerSpec:
             not the one registered under its id (workers rebuild planners by
             id), or the planner needs an optional package that is not installed.
         """
-        from pathzoo import make_planner
+        from pathzoo.plugins.lookup import make_planner
         from pathzoo.plugins.manager import get_registry
 
         label = ""
@@ -158,7 +158,7 @@ class PlannerSpec:
 
     def build(self) -> Planner:
         """A fresh planner instance."""
-        from pathzoo import make_planner
+        from pathzoo.plugins.lookup import make_planner
 
         return make_planner(self.id, **self.params)
 
@@ -236,7 +236,7 @@ class ScenarioSpec:
 
 @functools.lru_cache(maxsize=2)
 def _file_scenarios(path: str) -> tuple["Scenario", ...]:
-    from pathzoo import load_scenarios
+    from pathzoo.plugins.lookup import load_scenarios
 
     return tuple(load_scenarios(path))
 

@@ -288,12 +288,12 @@ def warm_up_pairs(tasks: "list[RunTask]", shares: int) -> "list[list[RunTask]]":
 
 
 def warm_up_tasks(tasks: "list[RunTask]") -> None:
-    """Warm up (:func:`pathzoo.testing.warmup.warm_up`) the planner of each task on its scenario kind; never raises.
+    """Warm up (:func:`pathzoo.core.warmup.warm_up`) the planner of each task on its scenario kind; never raises.
 
     Nothing here is timed or stored; a planner that fails to build or to warm
     up fails again in its measured run, where that is recorded.
     """
-    from pathzoo.testing.warmup import warm_up  # not at the top: the harness imports this module before it needs numba
+    from pathzoo.core.warmup import warm_up  # not at the top: the harness imports this module before it needs numba
 
     for task in tasks:
         try:
@@ -305,10 +305,10 @@ def warm_up_tasks(tasks: "list[RunTask]") -> None:
 
 # --------------------------------------------------------------------- runs
 def _versions(task: "RunTask") -> dict[str, str]:
-    import pathzoo
     from pathzoo.plugins.manager import get_registry
+    from pathzoo.version import installed_version
 
-    out = {"pathzoo": pathzoo.__version__, "python": platform.python_version(), "numpy": np.__version__}
+    out = {"pathzoo": installed_version(), "python": platform.python_version(), "numpy": np.__version__}
     entry = get_registry().planners.get(task.planner.id)
     if entry is not None and entry.distribution:
         out[entry.distribution] = entry.version
@@ -367,7 +367,7 @@ def execute_task(task: "RunTask", report: Report | None = None, *, interruptible
 
 
 def _execute(task: "RunTask", report: Report) -> RunOutcome:
-    from pathzoo.testing.warmup import warm_up  # see warm_up_tasks; the workers' server has imported it
+    from pathzoo.core.warmup import warm_up  # see warm_up_tasks; the workers' server has imported it
 
     started_at = utc_now()
     try:

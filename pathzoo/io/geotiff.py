@@ -35,6 +35,8 @@ def _geodesic_cell(crs: Any, lon: float, lat: float, dlon: float, dlat: float) -
     from pyproj import CRS, Geod
 
     ellipsoid = CRS.from_user_input(crs.to_wkt()).ellipsoid
+    if ellipsoid is None:
+        raise InvalidScenarioError(f"{crs} has no ellipsoid, so its degrees cannot be measured in metres", field="crs")
     geod = Geod(a=ellipsoid.semi_major_metre, b=ellipsoid.semi_minor_metre)
     _, _, dx = geod.inv(lon - dlon / 2, lat, lon + dlon / 2, lat)
     _, _, dy = geod.inv(lon, lat - dlat / 2, lon, lat + dlat / 2)

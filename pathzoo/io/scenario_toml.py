@@ -235,7 +235,8 @@ def _free_point(top: Table, kind: str, occupancy: np.ndarray, elevation: np.ndar
                 cell_sizes: np.ndarray) -> np.ndarray:
     """Centre of the first cell that :attr:`Scenario.blocked` leaves free, evaluated before the Scenario exists."""
     probe = SimpleNamespace(kind=kind, occupancy=occupancy, elevation=elevation, rules=rules)
-    blocked = Scenario.blocked.func(probe)  # the Scenario's own rule, so the two cannot drift apart
+    # the Scenario's own rule, so the two cannot drift apart (``func`` of the cached_property)
+    blocked = Scenario.blocked.func(probe)  # type: ignore[attr-defined]
     free = np.argwhere(~blocked)
     if len(free) == 0:
         raise top.error("map", "every cell is blocked; there is no room for a start and a goal")
@@ -284,7 +285,7 @@ def read_scenario_toml(path: str | Path) -> Scenario:
         occupancy, metadata["map"] = _occupancy(map_table, base, cell_size, dim)
         if elevation is not None and occupancy.shape[-2:] != elevation.shape:
             raise top.error("elevation", f"shape {elevation.shape} differs from the map {occupancy.shape[-2:]}")
-    if kind == "air3d" and elevation is not None:
+    if kind == "air3d" and elevation is not None and vcs is not None:
         if occupancy is not None and "layers" in top:
             raise top.error("layers", "the [map] volume already sets the number of layers")
         layers = occupancy.shape[0] if occupancy is not None else top.number("layers", low=1, integer=True)
@@ -293,6 +294,7 @@ def read_scenario_toml(path: str | Path) -> Scenario:
     elif "layers" in top:
         raise top.error("layers", "applies to air volumes made from an [elevation] table only")
     if occupancy is None:  # a 2-D map given by its elevation alone: no obstacles but missing data
+        assert elevation is not None  # a file without a [map] has an [elevation] (checked above)
         occupancy = np.zeros(elevation.shape, dtype=bool)
 
     vehicle_table = top.table("vehicle")
@@ -327,10 +329,11 @@ def read_scenario_toml(path: str | Path) -> Scenario:
         if reference_length is not None:
             raise top.error("reference_length", "needs a given start and goal")
         start = goal = _free_point(top, kind, occupancy, elevation, rules, cell_sizes)
+    assert start is not None and goal is not None  # both given, or placed above
     try:
         scenario = Scenario(
             id=scenario_id,
-            kind=kind,  # type: ignore[arg-type]
+            kind=kind,
             occupancy=occupancy,
             cell_size=cell_size,
             start=start,

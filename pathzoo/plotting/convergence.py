@@ -74,8 +74,8 @@ def plot_convergence(
     configs = sorted(curves["config"].unique())
     colors = palette_for(configs, palette)
     for cfg, c in curves.groupby("config", sort=True):
-        ax.plot(c["x"], c["median"], color=colors[cfg], lw=1.8, label=f"{cfg} (n={c['n_runs'].iloc[0]})")
-        ax.fill_between(c["x"], c["q25"], c["q75"], color=colors[cfg], alpha=0.2, lw=0)
+        ax.plot(c["x"], c["median"], color=colors[str(cfg)], lw=1.8, label=f"{cfg} (n={c['n_runs'].iloc[0]})")
+        ax.fill_between(c["x"], c["q25"], c["q75"], color=colors[str(cfg)], alpha=0.2, lw=0)
     if curves["median"].notna().any() or curves["q25"].notna().any():
         if log:
             ax.set_xscale("log")

@@ -18,6 +18,7 @@ from matplotlib.cm import ScalarMappable
 from matplotlib.collections import LineCollection
 from matplotlib.colors import LightSource, ListedColormap, Normalize
 from matplotlib.patches import Circle
+from matplotlib.figure import Figure
 
 from pathzoo.core.scenario import Scenario
 from pathzoo.plotting.figure import legend_below, new_axes, save_figure
@@ -83,7 +84,7 @@ def _draw_air(ax: Axes, scenario: Scenario) -> None:
     ax.imshow(top, cmap="viridis", norm=norm, extent=map_extent(scenario), interpolation="nearest")
     full = occ.all(axis=0)
     if full.any():
-        ax.imshow(_blocked_overlay(full), extent=map_extent(scenario), interpolation="nearest")
+        ax.imshow(_blocked_overlay(np.asarray(full)), extent=map_extent(scenario), interpolation="nearest")
     ax.figure.colorbar(ScalarMappable(norm, "viridis"), ax=ax, label=label, shrink=0.85)
 
 
@@ -115,7 +116,7 @@ def _draw_graph(ax: Axes, scenario: Scenario) -> None:
     pts = scenario.point_of(np.arange(g.n_nodes))[:, :2]
     seg = np.stack([pts[src[keep]], pts[g.indices[keep]]], axis=1)
     seg = np.unique(np.round(seg, 9), axis=0)
-    ax.add_collection(LineCollection(seg, colors="#4a90d9", linewidths=0.4, alpha=0.5, zorder=2))
+    ax.add_collection(LineCollection(list(seg), colors="#4a90d9", linewidths=0.4, alpha=0.5, zorder=2))
 
 
 def draw_path(ax: Axes, path: np.ndarray, *, label: str | None = None, color: Any = None, **kwargs: Any) -> None:
@@ -125,7 +126,7 @@ def draw_path(ax: Axes, path: np.ndarray, *, label: str | None = None, color: An
         from pathzoo.core.errors import InvalidParameterError
 
         raise InvalidParameterError(f"path must be an (N, 2) or (N, 3) array, got shape {p.shape}")
-    style = dict(lw=2.0, zorder=6, solid_capstyle="round")
+    style: dict[str, Any] = dict(lw=2.0, zorder=6, solid_capstyle="round")
     style.update(kwargs)
     ax.plot(p[:, 0], p[:, 1], label=label, color=color, **style)
 
@@ -212,4 +213,6 @@ def save_scenario_png(
     ``planned_path`` is an optional planner path drawn on top (``path`` is the file).
     """
     ax = plot_scenario(scenario, planned_path, show_graph=show_graph)
-    return save_figure(ax.figure, path, dpi=dpi)
+    figure = ax.figure
+    assert isinstance(figure, Figure)  # plot_scenario draws on a figure of its own, not a subfigure
+    return save_figure(figure, path, dpi=dpi)

@@ -1,3 +1,5 @@
+# mypy: disable-error-code="empty-body"
+# (a hook specification is a signature and a docstring; the plugins implement the bodies)
 """All pluggy hook specifications of pathzoo, in one place.
 
 A plugin is a module (or object) exposed under the ``pathzoo`` entry-point
@@ -6,13 +8,15 @@ group. It implements any of these hooks with ``@pathzoo.hookimpl``::
     [project.entry-points.pathzoo]
     greedy = "pathzoo_greedy.plugin"
 
-Registration hooks return classes or entries; observer hooks are told about
-harness events and return nothing.
+Registration hooks return classes or entries; data hooks return files a
+plugin ships for pathzoo to read (the papers' tables); observer hooks are
+told about harness events and return nothing.
 """
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Sequence
+from pathlib import Path
+from typing import TYPE_CHECKING, Mapping, Sequence
 
 import pluggy
 
@@ -42,6 +46,16 @@ def pathzoo_register_scenarios() -> Sequence["ScenarioEntry"]:
 @hookspec
 def pathzoo_register_metrics() -> Sequence[type["Metric"]]:
     """Return the metric classes this plugin provides."""
+
+
+@hookspec
+def pathzoo_paper_tables() -> Mapping[str, Path]:
+    """Return the papers' comparison tables this plugin ships: paper name to its TOML data file.
+
+    ``pathzoo reproduce <paper>`` reruns the table (the file's format is in
+    :mod:`pathzoo.analysis.reproduction`). The first plugin registered that
+    names a paper provides it.
+    """
 
 
 @hookspec

@@ -35,6 +35,7 @@ def steep_segments(scenario: "Scenario", path: np.ndarray) -> np.ndarray:
     """For each segment, whether it breaks a slope or pitch limit (vectorised over the path)."""
     n = len(path) - 1
     if scenario.kind == "terrain":
+        assert scenario.elevation is not None  # every terrain scenario has one (checked when it was built)
         lo, hi = path_slope_ranges(scenario.elevation, path / scenario.cell_size)
         return slope_exceeds(lo, hi, scenario.cell_size, scenario.vehicle)
     if scenario.dim == 3:

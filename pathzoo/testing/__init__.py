@@ -22,7 +22,7 @@ from pathzoo.testing.conformance import (
     parametrize_with_checks,
     planner_checks,
 )
-from pathzoo.testing.scenarios import check_scenario
+from pathzoo.core.tiny_scenarios import check_scenario
 
 __all__ = [
     "DEFAULT_BUDGET",

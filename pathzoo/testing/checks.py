@@ -4,7 +4,7 @@ Every check is a function ``check_*(planner, **options)`` that returns nothing
 and raises :class:`ConformanceError` (an ``AssertionError``) naming the
 planner, the scenario and what went wrong. Checks that plan take the scenario
 ``kind`` to use and the planning ``budget``; they run on the tiny scenarios of
-:mod:`pathzoo.testing.scenarios`.
+:mod:`pathzoo.core.tiny_scenarios`.
 """
 
 from __future__ import annotations
@@ -26,8 +26,8 @@ from pathzoo.core.results import PlanResult
 from pathzoo.core.scenario import SCENARIO_KINDS, Scenario
 from pathzoo.core.status import Status
 from pathzoo.rules import validate_path
-from pathzoo.testing.scenarios import check_scenario
-from pathzoo.testing.warmup import warm_up
+from pathzoo.core.tiny_scenarios import check_scenario
+from pathzoo.core.warmup import warm_up
 
 __all__ = [
     "ConformanceError",
@@ -232,7 +232,11 @@ def _check_count_limit(planner: Planner, counter: str, limit: int, time_s: float
     """Plan with ``Budget(<counter>=limit)`` and require neither the result nor progress to exceed it."""
     scenario = check_scenario(_first_kind(planner))
     progress = _Progress()
-    result = _plan(planner, scenario, Budget(**{counter: limit, "time_s": time_s}), progress)
+    if counter == "iterations":
+        budget = Budget(iterations=limit, time_s=time_s)
+    else:
+        budget = Budget(evaluations=limit, time_s=time_s)
+    result = _plan(planner, scenario, budget, progress)
     position = 0 if counter == "iterations" else 1  # place of the count in progress(iteration, evaluations, cost)
     used = max([int(c[position]) for c in progress.calls] + [getattr(result, counter)])
     if used > limit:

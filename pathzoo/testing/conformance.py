@@ -56,7 +56,7 @@ def as_planner(obj: PlannerLike) -> Planner:
     if isinstance(obj, type) and issubclass(obj, Planner):
         return obj()
     if isinstance(obj, str):
-        from pathzoo import make_planner
+        from pathzoo.plugins.lookup import make_planner
 
         return make_planner(obj)
     raise InvalidParameterError(f"planners: expected a planner id, Planner subclass or instance, got {obj!r}")
@@ -71,6 +71,7 @@ def planner_checks(planner: Planner, *, budget: Budget | None = None) -> Iterato
     than five iterations to solve a 10x10 map.
     """
     options: dict[str, Any] = {} if budget is None else {"budget": budget}
+    check: Callable[..., None]
     yield from _PER_PLANNER
     kinds = [k for k in SCENARIO_KINDS if k in planner.kinds]
     if not kinds:

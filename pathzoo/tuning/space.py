@@ -54,7 +54,7 @@ class SearchRange:
         """Whether ``value`` lies in the range (the default configuration is enqueued only when it does)."""
         if self.choices is not None:
             return value in self.choices
-        return value is not None and self.low <= value <= self.high  # type: ignore[operator]
+        return value is not None and self.low <= value <= self.high
 
     def describe(self) -> str:
         """``[0.5, 3] (log)`` or ``{'a', 'b'}`` for tables."""

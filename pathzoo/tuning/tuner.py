@@ -87,7 +87,8 @@ class PlannerTuning:
     def test_labels(self) -> tuple[str, str]:
         """Names of the default and tuned configurations on the test scenarios (the same when tuning kept the default)."""
         if self.kept_default:
-            return (f"{self.name} default = tuned",) * 2  # type: ignore[return-value]
+            same = f"{self.name} default = tuned"
+            return same, same
         return f"{self.name} default", f"{self.name} tuned"
 
     @property
@@ -189,8 +190,8 @@ def _next_trial(study: "optuna.Study", space: Mapping[str, SearchRange], seed: i
     study.sampler = optuna.samplers.TPESampler(
         seed=_sampler_seed(seed, planner, done), n_startup_trials=max(1, min(10, n_trials // 3))
     )
-    trial = study.ask()
-    return trial.number, suggest(trial, space)
+    asked = study.ask()
+    return asked.number, suggest(asked, space)
 
 
 def _runs_of(runs: pd.DataFrame, spec: PlannerSpec, scenarios: set[str], seeds: set[int]) -> pd.DataFrame:
@@ -200,10 +201,11 @@ def _runs_of(runs: pd.DataFrame, spec: PlannerSpec, scenarios: set[str], seeds: 
 
 def _best(study: "optuna.Study", spec: PlannerSpec, space: Mapping[str, SearchRange]) -> tuple[dict[str, Any], float, float]:
     trials = _completed(study)
-    best = min(trials, key=lambda t: (t.value, t.number))
+    values = {t.number: float(t.value) for t in trials if t.value is not None}  # completed trials have a value
+    best = min((t for t in trials if t.number in values), key=lambda t: (values[t.number], t.number))
     default = {k: spec.params[k] for k in space}
-    default_scores = [t.value for t in trials if t.params == default]
-    return dict(best.params), float(best.value), float(default_scores[0]) if default_scores else float("nan")
+    default_scores = [values[t.number] for t in trials if t.params == default and t.number in values]
+    return dict(best.params), values[best.number], default_scores[0] if default_scores else float("nan")
 
 
 def tune(

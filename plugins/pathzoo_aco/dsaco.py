@@ -333,7 +333,7 @@ class DSACO(AntColonyPlanner):
             return
         p = p_schedule(state.iteration, self.p, self.gamma_p)
         amount = self.q / ((1.0 - p) * float(costs[k]) + p * state.best_cost)
-        deposit_walks(state.trail, state.problem.graph.indices, walks.flat, walks.offsets, [k], amount)
+        deposit_walks(state.trail, state.problem.graph.indices, walks.flat, walks.offsets, np.array([k]), amount)
 
     # ------------------------------------------------------------- the compiled colony
     def plan(self, scenario: Scenario, *, budget: Budget, rng: np.random.Generator,

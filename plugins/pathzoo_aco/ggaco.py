@@ -139,6 +139,7 @@ class GGACO(AntColonyPlanner):
             length, slope = state.problem.walk_geometry(walks.flat, walks.offsets)
             energy = state.problem.scenario.vehicle.segment_energy(length, slope)
             state.geometry_of, state.geometry = walks, (length, slope, energy)
+        assert state.geometry is not None  # set above, or by an earlier call on these walks
         return state.geometry
 
     @staticmethod
@@ -159,18 +160,20 @@ class GGACO(AntColonyPlanner):
             energy = problem.scenario.vehicle.segment_energy(length, slope)
         return 1.0 / (length * (1.0 + problem.tangent_from(slope))) + 1.0 / np.maximum(energy, self.energy_floor_j)
 
-    def walk_costs(self, state: GgacoState, walks: Walks) -> np.ndarray:
+    def walk_costs(self, state: ColonyState, walks: Walks) -> np.ndarray:
         """Energy (J, eq. 6) or length (m, eq. 5) of each walk (computed for the walked edges only)."""
+        assert isinstance(state, GgacoState)  # made by init_state
         if self.objective == "energy":
             return walks.sums(self.walked_geometry(state, walks)[2])
         return walks.totals(state.problem.graph.length)
 
-    def update_trail(self, state: GgacoState, walks: Walks, costs: np.ndarray) -> None:
+    def update_trail(self, state: ColonyState, walks: Walks, costs: np.ndarray) -> None:
         """Eqs. 13 and 18: ``τ <- (1 - ρ) τ + Σ_k (1 / d_ij + 1 / E_ij)`` over the edges each successful ant crossed.
 
         The deposit is computed for the crossed edges only (no per-edge table
         is kept), from their cells (:meth:`ColonyProblem.walk_geometry`).
         """
+        assert isinstance(state, GgacoState)  # made by init_state
         state.trail.evaporate(self.rho)
         ok = np.flatnonzero(walks.reached)
         deposit = self.deposit_of(state.problem, *self.walked_geometry(state, walks))

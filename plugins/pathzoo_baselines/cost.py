@@ -112,6 +112,7 @@ class PathCost:
     def _terrain_terms(self, paths: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """3-D length (pieces as ``segment_profile`` cuts them) and slope violation (cells of bad segments)."""
         sc = self.scenario
+        assert sc.elevation is not None  # only terrain scenarios get here, and every one has an elevation
         n, m = paths.shape[0], paths.shape[1]
         cs = sc.cell_size
         p0 = paths[:, :-1].reshape(-1, 2)

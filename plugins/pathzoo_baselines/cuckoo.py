@@ -78,7 +78,7 @@ class CuckooPlanner(BaselinePlanner):
         """Run cuckoo search until the budget is spent; see the class docstring."""
         encoding, search = self._start(scenario, budget, progress)
         low, high = encoding.low, encoding.high
-        nests = search.initial(rng, self.nests)
+        nests = np.asarray(search.initial(rng, self.nests))  # a fixed-length encoding: already an array
         fitness = search.evaluate(nests)
         search.report()
 

@@ -33,11 +33,11 @@ class Encoding(Protocol):
     high: np.ndarray
     integer: bool
 
-    def initial(self, rng: np.random.Generator, n: int) -> np.ndarray:
-        """``n`` random candidates, shape (n, n_genes), drawn from ``rng``."""
+    def initial(self, rng: np.random.Generator, n: int) -> Any:
+        """``n`` random candidates from ``rng``: shape (n, n_genes), or a list of arrays when ``variable_length``."""
 
-    def evaluate(self, genes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """Penalised cost and violation (0 when feasible) of candidates of shape (n, n_genes)."""
+    def evaluate(self, genes: Any) -> tuple[np.ndarray, np.ndarray]:
+        """Penalised cost and violation (0 when feasible) of candidates of shape (n, n_genes) (or a list of arrays)."""
 
     def path(self, genes: np.ndarray) -> np.ndarray:
         """The world path (N, 2) of one candidate, from ``scenario.start`` to ``scenario.goal``."""

@@ -164,7 +164,7 @@ class GaPlanner(BaselinePlanner):
         def assess(individuals: list) -> int:
             before = search.evaluations
             batch = [np.asarray(ind, dtype=np.int64) for ind in individuals] if variable else np.array(individuals)
-            costs = search.evaluate(batch) if individuals else []
+            costs = search.evaluate(batch) if individuals else np.zeros(0)
             for ind, cost in zip(individuals, costs):
                 ind.fitness.values = (float(cost),)
             return search.evaluations - before

@@ -20,7 +20,7 @@ _lock = threading.Lock()
 
 with _lock:
     _dict_config = logging.config.dictConfig
-    logging.config.dictConfig = lambda config: None  # type: ignore[assignment]
+    logging.config.dictConfig = lambda config: None
     try:
         from pyswarms.backend.generators import create_swarm
         from pyswarms.backend.handlers import BoundaryHandler, VelocityHandler
@@ -29,4 +29,4 @@ with _lock:
         from pyswarms.utils.reporter.reporter import Reporter
     finally:
         logging.config.dictConfig = _dict_config
-    Reporter._setup_logger = lambda self, path=None: None  # type: ignore[method-assign]
+    Reporter._setup_logger = lambda self, path=None: None

@@ -194,7 +194,11 @@ class CellRouter:
             if a != b:
                 piece = self.route(a, b)
                 if piece is None:
-                    return self.route(stops[0], stops[-1])
+                    direct = self.route(stops[0], stops[-1])
+                    if direct is None:
+                        raise ValueError(f"no route from node {stops[0]} to node {stops[-1]}: chain() needs the last "
+                                         "stop reachable from the first")
+                    return direct
                 parts.append(piece[1:])
         return remove_loops(np.concatenate(parts), scratch=self.scratch)
 

@@ -38,7 +38,7 @@ from __future__ import annotations
 import math
 import random
 from contextlib import contextmanager
-from typing import Any, Iterator
+from typing import Any, Callable, Iterator
 
 import numpy as np
 
@@ -125,7 +125,8 @@ class Search:
     def initial(self, rng: np.random.Generator, n: int) -> np.ndarray | list[np.ndarray]:
         """The encoding's ``n`` initial candidates; a costly encoding stops drawing new ones when time is up."""
         if getattr(self.encoding, "costly", False):
-            return self.encoding.initial(rng, n, stop=self.out_of_time)
+            initial: Callable[..., np.ndarray | list[np.ndarray]] = self.encoding.initial  # costly ones take ``stop``
+            return initial(rng, n, stop=self.out_of_time)
         return self.encoding.initial(rng, n)
 
     def evaluate(self, genes: np.ndarray | list[np.ndarray]) -> np.ndarray:
@@ -175,7 +176,7 @@ class Search:
     def result(self, extras: dict[str, Any] | None = None) -> PlanResult:
         """The best candidate as a solved path if the validator accepts it, else ``FAILED`` with the reason."""
         info = {"best_cost": self.best_cost, "violation": self.best_violation, **(extras or {})}
-        common = dict(iterations=self.iterations, evaluations=self.evaluations, extras=info)
+        common: dict[str, Any] = dict(iterations=self.iterations, evaluations=self.evaluations, extras=info)
         if self.best_genes is None:
             return PlanResult(Status.FAILED, message="no candidate was evaluated within the budget", **common)
         if self.best_violation > 0:

@@ -127,7 +127,7 @@ class AnyAnglePlanner(Planner):
         path[0], path[-1] = scenario.start, scenario.goal
         length = float(np.hypot(*np.diff(path, axis=0).T).sum()) if len(path) > 1 else 0.0
         extras: dict[str, Any] = {"optimum": ref.length, "excess": length - ref.length}
-        counts = dict(iterations=1, evaluations=ref.expansions)
+        counts: dict[str, Any] = dict(iterations=1, evaluations=ref.expansions)
         verdict = validate_path(scenario, path)
         if not verdict:
             return PlanResult(

@@ -86,5 +86,5 @@ class AStarPlanner(GraphSearchPlanner):
         if table is not None:
             args = (table.mask, table.shift, table.weight, table.cell, *problem)
             return partial(run_batch, astar_moves_batch, args, table.n_moves)
-        args = (graph.indptr, graph.indices, graph.weights(self.cost), *problem)
-        return partial(run_batch, astar_batch, args, len(graph.offsets))
+        csr_args = (graph.indptr, graph.indices, graph.weights(self.cost), *problem)
+        return partial(run_batch, astar_batch, csr_args, len(graph.offsets))

@@ -435,12 +435,12 @@ def astar_moves_batch(
         ui = np.uint64(u)
         gu = g[ui]
         # unsigned divisions: numba's signed ``//`` rounds towards minus infinity, which costs a correction
-        layer = ui // plane
-        rest = ui - layer * plane
-        row = rest // w
-        col = np.int64(rest - row * w)
-        row = np.int64(row)
-        layer = np.int64(layer)
+        layer_u = ui // plane
+        rest = ui - layer_u * plane
+        row_u = rest // w
+        col = np.int64(rest - row_u * w)
+        row = np.int64(row_u)
+        layer = np.int64(layer_u)
         bits = np.int64(mask[ui])
         for k in range(n_moves):
             if (bits >> k) & 1:

@@ -84,8 +84,8 @@ def _fill_mask(
     """Fill ``mask`` and ``weight`` (NaN on entry) from the CSR graph; False as soon as an edge breaks a rule of the module docstring."""
     seen = np.zeros(shift.shape[0], dtype=np.bool_)
     for u in range(indptr.shape[0] - 1):
-        bits = 0
-        last = -1
+        bits = np.int64(0)
+        last = np.int64(-1)
         for e in range(indptr[u], indptr[u + 1]):
             k = np.int64(offset_id[e])
             if k <= last or indices[e] != u + shift[k]:
@@ -115,7 +115,7 @@ def _build(graph: GridGraph, cost: str) -> MoveTable | None:
     shape = graph.shape
     strides = np.array([int(np.prod(shape[i + 1 :])) for i in range(len(shape))], dtype=np.int64)
     shift = graph.offsets.astype(np.int64) @ strides
-    mask = np.zeros(graph.n_nodes, dtype=_mask_dtype(n_moves))
+    mask: np.ndarray = np.zeros(graph.n_nodes, dtype=_mask_dtype(n_moves))
     weight = np.full(n_moves, np.nan)
     if not _fill_mask(graph.indptr, graph.indices, graph.offset_id, graph.weights(cost), shift, mask, weight):
         return None

@@ -147,7 +147,7 @@ class _Run:
             self.steps >= self.step_limit
             or _now() + self.reserve_s >= self.deadline
             or self.error is not None
-            or (self.motion_limited and self.checks.motions >= self.budget.evaluations)
+            or (self.budget.evaluations is not None and self.checks.motions >= self.budget.evaluations)
         )
 
     def step(self) -> bool:
@@ -353,7 +353,7 @@ def _solve(spec: "OmplPlanner", scenario: Scenario, seed: int, run: _Run) -> Pla
 
     raw = _plan_prm(planner, si, run) if spec.ompl_class == "PRMstar" else _plan_tree(spec, planner, pdef, run)
     extras: dict[str, Any] = {"ompl_planner": planner.getName(), "steps": run.steps, "motion_checks": run.motions}
-    counts = dict(iterations=run.iteration, evaluations=run.motions)
+    counts: dict[str, Any] = dict(iterations=run.iteration, evaluations=run.motions)
     if raw is None:
         return PlanResult(
             Status.FAILED, message="OMPL found no exact solution within the budget", extras=extras, **counts

@@ -54,7 +54,9 @@ class MosflaPlanner(RouteSearchPlanner):
         scores: list[np.ndarray] = []
         for _ in range(self.n_memeplexes * self.n_frogs):
             route = problem.random_route(rng)
-            f = None if route is None else run.evaluate(route)
+            if route is None:
+                return
+            f = run.evaluate(route)
             if f is None:
                 return
             frogs.append(route)

@@ -87,7 +87,7 @@ class RouteRun:
 
     def result(self) -> PlanResult:
         """The incumbent as a world path (endpoint connectors checked), with the front in ``extras``."""
-        counts = {"iterations": self.iterations, "evaluations": self.evaluations}
+        counts: dict[str, Any] = {"iterations": self.iterations, "evaluations": self.evaluations}
         if self.best is None:
             return PlanResult(Status.FAILED, message="the budget ran out before a feasible route was evaluated",
                               **counts)

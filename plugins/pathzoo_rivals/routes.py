@@ -84,7 +84,8 @@ class RouteProblem:
         self._segment_ok: dict[tuple[int, int], bool] = {}
         vehicle = scenario.vehicle
         self._slopes_matter = scenario.kind == "terrain" and (
-            min(vehicle.max_climb_deg, vehicle.max_descent_deg) < 90.0 or bool(np.isnan(scenario.elevation).any())
+            min(vehicle.max_climb_deg, vehicle.max_descent_deg) < 90.0
+            or (scenario.elevation is not None and bool(np.isnan(scenario.elevation).any()))
         )
 
     # ------------------------------------------------------------ feasibility

@@ -88,6 +88,7 @@ def zstar_heuristic(scenario: Scenario, max_climb_rad: float) -> np.ndarray:
     cs = scenario.cell_size
     horizontal = cs * np.hypot(rows - goal_r, cols - goal_c)
     if scenario.kind == "terrain":
+        assert scenario.elevation is not None  # every terrain scenario has one
         z = scenario.elevation.reshape(-1)
         rise = float(z[scenario.goal_node]) - z
     else:

@@ -37,6 +37,7 @@ obstacles.
 from __future__ import annotations
 
 from functools import partial
+from typing import Any
 
 import numpy as np
 
@@ -65,7 +66,7 @@ SIZE = 100
 CELL_M = 1.0
 SPEED_RANGE = (0.5, 1.5)
 MOVING_RADIUS = 2.0
-TABLE7_FGDACO_LENGTHS = {1: 126.65, 2: 135.96, 3: 197.69}
+TABLE7_FGDACO_LENGTHS: dict[int | str, float] = {1: 126.65, 2: 135.96, 3: 197.69}
 """Median path length (m) of FGDACO per scenario, Table 7."""
 
 BLOCK_END = 90.0
@@ -73,7 +74,7 @@ BLOCK_END = 90.0
 
 # Shapes in world metres (x = column, y = row):
 #   ("rect", x0, y0, x1, y1), ("disc", cx, cy, r), ("poly", ((x, y), ...))
-SCENARIOS: dict[int, dict[str, object]] = {
+SCENARIOS: dict[int | str, dict[str, Any]] = {
     1: {
         "start": (10.5, 12.5),
         "goal": (92.5, 88.5),
@@ -182,6 +183,7 @@ def load(scenario: int | str, dynamic: bool = True) -> Scenario:
     movers = moving_obstacles(scenario) if dynamic else ()
     suffix = "" if dynamic else "_static"
     seed = _seed(scenario)
+    extra: dict[str, Any]
     if scenario == "trap":
         source = ("pathzoo stress test (not from the paper): the goal inside a C-shaped obstacle "
                   "open away from the start")

@@ -29,6 +29,7 @@ scenario points are those cells' centres.
 from __future__ import annotations
 
 from functools import lru_cache, partial
+from typing import Any
 
 import numpy as np
 
@@ -69,7 +70,7 @@ TABLE5_GANT_LENGTHS: dict[str, tuple[float, float, float]] = {
 }
 """G-Ant's path lengths in Table 5, per space and pair."""
 
-SMALL_SPACES: dict[str, dict[str, object]] = {
+SMALL_SPACES: dict[str, dict[str, Any]] = {
     "fig7": {"size": 10, "obstacles": 16, "start": (0, 0), "goal": (9, 9), "seed": 0, "figure": "Fig. 7"},
     "acopso": {"size": 10, "obstacles": 16, "start": (0, 0), "goal": (8, 8), "seed": 0, "figure": "Figs. 8-13"},
 }
@@ -134,8 +135,8 @@ def load_small(name: str) -> Scenario:
         kind="grid2d",
         occupancy=occ,
         cell_size=1.0,
-        start=cell_centre(*start, 1.0),
-        goal=cell_centre(*goal, 1.0),
+        start=cell_centre(start[0], start[1], 1.0),
+        goal=cell_centre(goal[0], goal[1], 1.0),
         vehicle=VEHICLE,
         description=f"G-Ant {spec['figure']} space, {size}x{size}, {spec['obstacles']} obstacle cells",
         metadata=pack_metadata(

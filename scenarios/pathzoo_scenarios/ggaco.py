@@ -130,6 +130,7 @@ def source_dem(source: str) -> tuple[np.ndarray, float, dict[str, Any]]:
     from pathzoo.io import read_elevation
 
     check_choice(source, SOURCES, "source")
+    path: str | Path
     if source == "jacksboro":
         path = _matplotlib_sample("jacksboro_fault_dem.npz")
     elif source == "frontrange":

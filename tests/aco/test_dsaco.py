@@ -51,6 +51,7 @@ def test_q0_schedule_falls_then_jumps_to_half_and_rises():
     assert q == pytest.approx([0.9, 0.45, 0.279, 0.45, 0.585, 0.72, 0.72])
 
 
+@pytest.mark.slow
 def test_the_colony_uses_the_scheduled_q0():
     planner = pathzoo.make_planner("aco.dsaco", iterations=10, q0_initial=0.6)
     state = _state(planner, _volume())
@@ -94,6 +95,7 @@ def test_heuristic_per_node_and_step_length_equals_the_per_edge_one(step_rule):
     assert (eta > 0).any() and (step_rule == "graph" or (eta == 0).any())
 
 
+@pytest.mark.slow
 def test_longitude_rule_advances_one_column_per_step():
     scenario = pathzoo.load_scenario("dsaco.complex")
     planner = pathzoo.make_planner("aco.dsaco", step_rule="longitude")
@@ -151,7 +153,8 @@ def test_trails_stay_within_tau_min_and_tau_max():
 
 
 # ------------------------------------------------------------------ smoke on the paper's pack
-@pytest.mark.parametrize("scenario_id", ["dsaco.complex", "movingai.maze-32-32-2.b9.83"])
+@pytest.mark.parametrize("scenario_id", [pytest.param("dsaco.complex", marks=pytest.mark.slow),
+                                         "movingai.maze-32-32-2.b9.83"])
 def test_solves_the_paper_volume_and_a_grid_with_a_tiny_budget(scenario_id):
     scenario = pathzoo.load_scenario(scenario_id)
     result = pathzoo.make_planner("aco.dsaco").plan(scenario, budget=Budget(iterations=2),

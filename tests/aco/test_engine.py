@@ -129,6 +129,7 @@ def test_dead_ends_backtrack_or_drop():
     assert np.all(drop.flags == STUCK) and drop.started == 5
 
 
+@pytest.mark.slow
 def test_race_stops_the_colony_when_the_first_ant_arrives():
     problem = ColonyProblem(walled_grid())
     rules = replace(_rules(problem, local_keep=0.9, local_add=0.01), race=True)
@@ -145,6 +146,7 @@ def test_race_stops_the_colony_when_the_first_ant_arrives():
     assert np.array_equal(again.flat, walks.flat) and np.array_equal(again.steps, walks.steps)
 
 
+@pytest.mark.slow
 def test_race_grows_its_stacks_and_honours_the_allowance():
     problem = ColonyProblem(open_grid(64))
     g = problem.graph

@@ -13,7 +13,7 @@ from skfuzzy import control as ctrl
 import pathzoo
 from pathzoo import Budget, MovingObstacle, Scenario
 from pathzoo.rules import validate_path
-from pathzoo.testing.scenarios import check_scenario
+from pathzoo.core.tiny_scenarios import check_scenario
 from pathzoo_aco.engine import EXHAUSTED, ColonyProblem, Pheromone
 from pathzoo_aco.fgdaco_fuzzy import (
     INPUT_SUPPORTS,
@@ -127,6 +127,7 @@ def test_two_step_inference_of_the_walks_is_bit_identical_to_the_compiled_twin()
 
 
 # ------------------------------------------------------------------ moving obstacles, compiled
+@pytest.mark.slow
 def test_compiled_obstacle_geometry_matches_moving_obstacle():
     rng = np.random.default_rng(5)
     obstacles = [
@@ -253,6 +254,7 @@ def test_gains_node_by_node_equal_the_walk_by_walk_updates(scale):
 
 
 # ------------------------------------------------------------------ timed walks
+@pytest.mark.slow
 def test_every_timed_walk_is_valid_among_moving_obstacles():
     scenario = check_scenario("dynamic")  # a disc patrols the gap the walks must use
     planner = pathzoo.make_planner("aco.fgdaco")

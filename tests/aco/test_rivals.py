@@ -12,7 +12,7 @@ from skfuzzy import control as ctrl
 import pathzoo
 from pathzoo import Budget, MovingObstacle, Scenario
 from pathzoo.rules import validate_path
-from pathzoo.testing.scenarios import check_scenario
+from pathzoo.core.tiny_scenarios import check_scenario
 from pathzoo_aco.engine import ColonyProblem, Pheromone
 from pathzoo_aco.flaco import rank_deposits
 from pathzoo_aco.flaco_fuzzy import RULES, TERM_VERTICES, UNIVERSE, impedance, traffic_share

@@ -101,6 +101,7 @@ def test_same_walks_as_the_generic_kernel_product_and_sum_rules():
         assert np.all(got["flags"] == REACHED) and got["counters"][2] > 100
 
 
+@pytest.mark.slow
 def test_same_walks_with_a_turn_limit_and_with_edges_left_out():
     problem = ColonyProblem(hill())
     k = len(problem.graph.offsets)

@@ -34,6 +34,7 @@ def runs_three_scenarios() -> pd.DataFrame:
     return length.assign(energy=energy["energy"].to_numpy())
 
 
+@pytest.mark.slow
 def test_marks_and_counts_follow_the_tests():
     runs = runs_three_scenarios()
     pt = paper_table(runs, "ref", ["length", "energy"])
@@ -57,6 +58,7 @@ def test_marks_and_counts_follow_the_tests():
     assert tuple(wtl.loc[("energy", "slow")]) == (0, 3, 0, 0)
 
 
+@pytest.mark.slow
 def test_unregistered_column_given_with_its_direction():
     """A column that is not a registered metric is compared by the MetricInfo it comes with, nothing global changes."""
     runs = runs_three_scenarios()
@@ -71,6 +73,7 @@ def test_unregistered_column_given_with_its_direction():
     assert frame.RUN_COLUMNS == before
 
 
+@pytest.mark.slow
 def test_formats():
     pt = paper_table(runs_three_scenarios(), "ref", ["length", "energy"])
     text = format_paper_table(pt)

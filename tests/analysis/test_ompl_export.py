@@ -80,6 +80,7 @@ def test_ompl_script_reads_our_logs(tmp_path):
     assert best == (2,)  # the script's views work on our columns
 
 
+@pytest.mark.slow
 def test_export_from_database(small_db, tmp_path):
     db, _ = small_db
     logs = export_ompl(db, tmp_path / "logs")

@@ -55,6 +55,7 @@ def assert_offline(doc: str) -> None:
     assert "url(" not in doc and "@import" not in doc
 
 
+@pytest.mark.slow
 def test_report_from_frames_is_self_contained():
     runs = random_runs(("a", "b"), ("s1", "s2"), n_seeds=8, seed=3)
     page = render_report(runs, random_history(runs), reference="a", meta={"note": "x<y"}, max_scenarios=1)
@@ -78,6 +79,7 @@ def test_inline_runs_are_flagged_as_not_isolated():
     assert "1 of 4 runs ran inline" in doc and "not isolated" in doc
 
 
+@pytest.mark.slow
 def test_power_warning_and_empty_runs():
     few = make_runs({"s1": {"a": [1.0, 1.1, 1.2], "b": [2.0, 2.1, 2.2]},
                      "s2": {"a": [1.0, 1.1, 1.2], "b": [2.0, 2.1, 2.2]}})
@@ -90,6 +92,7 @@ def test_power_warning_and_empty_runs():
         render_report(few.iloc[:0])
 
 
+@pytest.mark.slow
 def test_write_report_from_database(small_db, tmp_path):
     db, sc = small_db
     index = write_report(db, tmp_path / "rep", scenarios=[sc], embed=False)

@@ -18,6 +18,7 @@ from pathzoo.core.errors import InvalidParameterError
 nan, inf = np.nan, np.inf
 
 
+@pytest.mark.slow
 def test_holm_hand_computed():
     # sorted: .005*4=.02, .01*3=.03, .03*2=.06, .04*1=.04 -> running max .02 .03 .06 .06
     assert holm([0.01, 0.04, 0.03, 0.005]) == pytest.approx([0.03, 0.06, 0.06, 0.02])
@@ -39,6 +40,7 @@ def previous_holm(pvalues):
     return adj
 
 
+@pytest.mark.slow
 def test_holm_from_statsmodels_gives_the_previous_numbers():
     rng = np.random.default_rng(3)
     for m in (1, 2, 5, 17):
@@ -130,6 +132,7 @@ def frame_two_scenarios():
     return make_runs(res)
 
 
+@pytest.mark.slow
 def test_pairwise_tests_end_to_end_paired_by_seed():
     runs = frame_two_scenarios()
     out = pairwise_tests(runs)
@@ -146,6 +149,7 @@ def test_pairwise_tests_end_to_end_paired_by_seed():
     assert ab.winner == "a" and ab.p_holm < 0.05 and ab.magnitude == "large"
 
 
+@pytest.mark.slow
 def test_pairing_rules():
     runs = frame_two_scenarios()
     unpaired = pairwise_tests(runs, paired=False)
@@ -163,6 +167,7 @@ def test_pairing_rules():
         pairwise_tests(runs, alpha=2)
 
 
+@pytest.mark.slow
 def test_reference_family_and_max_direction():
     runs = frame_two_scenarios()
     out = pairwise_tests(runs, reference="b")

@@ -74,6 +74,7 @@ def test_grid_walk_follows_graph_edges_without_loops():
     assert reached > 0
 
 
+@pytest.mark.slow
 def test_grid_genes_aim_at_the_goal_half_of_the_time():
     scenario = check_scenario("grid2d")  # goal due east of the start: gene 0
     enc = make_encoding(scenario, {**BASE, "encoding": "grid"})

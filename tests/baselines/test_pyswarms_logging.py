@@ -4,14 +4,17 @@ import subprocess
 import sys
 import textwrap
 
+import pytest
 
+
+@pytest.mark.slow
 def test_pso_leaves_logging_and_the_working_directory_alone(tmp_path):
     script = textwrap.dedent(
         """
         import logging
         import numpy as np
         import pathzoo
-        from pathzoo.testing.scenarios import check_scenario
+        from pathzoo.core.tiny_scenarios import check_scenario
 
         root = logging.getLogger()
         before = (list(root.handlers), root.level)

@@ -102,6 +102,7 @@ def test_list_table_columns_are_aligned():
     assert lines[3].split() == ["family.longer_name", "air3d,terrain", "d", "10.2.3", "a", "longer", "summary"]
 
 
+@pytest.mark.slow
 def test_show_writes_a_png_of_the_scenario(tmp_path, capsys):
     scenario = tmp_path / "hill.toml"
     scenario.write_text(
@@ -182,6 +183,7 @@ def test_unexpected_errors_are_not_hidden(monkeypatch):
         main(["list", "planners"])
 
 
+@pytest.mark.slow
 def test_error_through_the_console_script_has_no_traceback(tmp_path):
     proc = subprocess.run(
         [str(PATHZOO), "show", "no.such.scenario", "-o", str(tmp_path / "x.png")], capture_output=True, text=True

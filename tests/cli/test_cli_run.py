@@ -62,6 +62,7 @@ def run_cli(capsys, *argv: str) -> str:
     return capsys.readouterr().out
 
 
+@pytest.mark.slow
 def test_run_stores_validated_runs_and_prints_the_leaderboard(experiment, tmp_path, capsys):
     db = tmp_path / "r.sqlite"
     out = run_cli(capsys, "run", str(experiment), "--db", str(db), "--executor", "inline", "--no-progress")
@@ -91,6 +92,7 @@ def test_run_resumes_and_seeds_override(experiment, tmp_path, capsys):
     assert len(again) == 6 and sorted(again["seed_index"].unique()) == [0, 1, 2]
 
 
+@pytest.mark.slow
 def test_run_without_argument_runs_the_bundled_default(tmp_path, capsys, monkeypatch):
     monkeypatch.chdir(tmp_path)
     out = run_cli(capsys, "run", "--seeds", "1", "--executor", "inline", "--no-progress")

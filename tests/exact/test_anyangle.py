@@ -23,6 +23,7 @@ def _optimum(blocked, start, goal):
     return None if ref is None else ref.length
 
 
+@pytest.mark.slow
 def test_single_block_by_hand():
     blocked = np.zeros((5, 5), dtype=bool)
     blocked[2, 2] = True  # the square [2, 3] x [2, 3]

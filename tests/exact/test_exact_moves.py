@@ -10,7 +10,7 @@ import pytest
 import pathzoo
 from pathzoo.core import Budget, Scenario
 from pathzoo.generators import random_obstacles
-from pathzoo.testing.scenarios import check_scenario
+from pathzoo.core.tiny_scenarios import check_scenario
 from pathzoo_exact.kernel import (
     FOUND,
     H_EUCLID,

@@ -10,7 +10,7 @@ import pytest
 import pathzoo
 from pathzoo.core import Budget, InvalidParameterError, Scenario, Status, UnsupportedScenarioError, VehicleModel
 from pathzoo.rules import validate_path
-from pathzoo.testing.scenarios import check_scenario
+from pathzoo.core.tiny_scenarios import check_scenario
 from pathzoo_exact.astar import AStarPlanner
 from pathzoo_exact.dijkstra import DijkstraPlanner
 from pathzoo_exact.thetastar import ThetaStarPlanner

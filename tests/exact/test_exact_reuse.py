@@ -11,7 +11,7 @@ from pathzoo_exact.base import endpoints, straight_run_ends
 import pathzoo
 from pathzoo.core import Budget, PlanResult, Scenario, Status
 from pathzoo.generators import random_obstacles
-from pathzoo.testing.scenarios import check_scenario
+from pathzoo.core.tiny_scenarios import check_scenario
 
 RNG = np.random.default_rng(0)
 

@@ -25,7 +25,9 @@ def path_length(path: np.ndarray) -> float:
     return float(np.linalg.norm(np.diff(path, axis=0), axis=1).sum())
 
 
-@pytest.mark.parametrize(("scen", "stride"), SAMPLES.items())
+@pytest.mark.parametrize(("scen", "stride"), [
+    pytest.param(scen, stride, marks=[pytest.mark.slow] if "8room" in scen else []) for scen, stride in SAMPLES.items()
+])
 def test_thetastar_is_valid_and_no_longer_than_grid_optimum(
     load_scen: Callable[[str], list[Scenario]], scen: str, stride: int
 ) -> None:

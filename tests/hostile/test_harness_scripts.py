@@ -41,6 +41,7 @@ print("RESULT", sorted(runs.status), runs.isolated.all())
 '''
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("how", ["file", "stdin"])
 def test_unguarded_script_with_its_own_planner(tmp_path, how):
     script = tmp_path / "script.py"

@@ -7,6 +7,8 @@ column name: metric:success"; crashed runs could never be retried; and
 
 from __future__ import annotations
 
+import pytest
+
 from harness_support import experiment, hostile  # noqa: F401 - fixture
 from pathzoo.core.results import RunRecord
 from pathzoo.core.status import RunStatus
@@ -30,6 +32,7 @@ def test_two_harnesses_on_a_fresh_database_add_metric_columns_without_clashing(h
     assert sorted(read_runs(db, "e").success) == [0.0, 1.0]
 
 
+@pytest.mark.slow
 def test_retry_reruns_stored_crashes_and_replaces_their_rows(hostile, tmp_path):
     marker = tmp_path / "missing-dependency"
     marker.touch()

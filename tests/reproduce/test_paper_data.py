@@ -91,3 +91,27 @@ def test_bad_paper_file_names_the_file_and_field(tmp_path, edit, field):
     assert str(bad) in msg and "\n" not in msg
     if field != "toml":
         assert field in msg
+
+
+def test_the_papers_tables_come_through_the_plugin_hook(tmp_path):
+    """The analysis reads no plugin's files by itself: a plugin hands each table over (``pathzoo_paper_tables``)."""
+    import types
+
+    from pathzoo.analysis.reproduction import paper_tables
+    from pathzoo.plugins.hookspecs import hookimpl
+
+    assert set(paper_tables()) == set(PAPERS)
+    own = tmp_path / "mine.toml"
+    own.write_text(paper_file("iaca").read_text(encoding="utf-8"), encoding="utf-8")
+    plugin = types.ModuleType("paper_plugin_for_test")
+    plugin.pathzoo_paper_tables = hookimpl(lambda: {"mine": own, "iaca": tmp_path / "shadowed.toml"})
+    registry = get_registry()
+    registry.pm.register(plugin, name="paper-plugin-for-test")
+    try:
+        assert paper_file("mine") == own
+        assert paper_file("iaca").name == "iaca.toml" and paper_file("iaca").is_file()  # the first provider wins
+        assert load_paper("mine").runs == load_paper("iaca").runs
+    finally:
+        registry.pm.unregister(plugin)
+    with pytest.raises(InvalidParameterError, match="unknown paper 'mine'"):
+        paper_file("mine")

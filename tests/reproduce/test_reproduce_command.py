@@ -20,6 +20,7 @@ from pathzoo.cli.main import main
 TINY = ["--seeds", "1", "--iterations", "3", "--executor", "inline", "--no-progress"]
 
 
+@pytest.mark.slow
 def test_reproduce_iaca_prints_the_table_beside_the_paper(tmp_path, capsys):
     db = tmp_path / "r.sqlite"
     md = tmp_path / "reproduction.md"
@@ -53,6 +54,7 @@ def test_reproduce_writes_the_html_report(tmp_path):
     assert "reproduce.iaca.s1.i3" in (tmp_path / "report" / "index.html").read_text(encoding="utf-8")
 
 
+@pytest.mark.slow
 def test_reproduce_fgdaco_lists_every_rival(tmp_path, capsys):
     args = ["reproduce", "fgdaco", "--seeds", "1", "--iterations", "2", "--scenarios", "fgdaco.scenario1",
             "--executor", "inline", "--no-progress", "--db", str(tmp_path / "r.sqlite")]
@@ -65,6 +67,7 @@ def test_reproduce_fgdaco_lists_every_rival(tmp_path, capsys):
     assert "126.65" in out and "135.96" not in out  # scenario 2 was not selected
 
 
+@pytest.mark.slow
 def test_unregistered_planner_is_listed_not_available(tmp_path):
     text = paper_file("iaca").read_text(encoding="utf-8")
     text = text.replace('[[metric]]', '[[planner]]\nkey = "ghost"\nlabel = "Ghost"\nid = "aco.not_reconstructed"\n\n'
@@ -100,6 +103,7 @@ def _runs(lengths: dict[str, list[float]]) -> pd.DataFrame:
     return pd.DataFrame(rows)
 
 
+@pytest.mark.slow
 def test_verdicts_follow_the_marks():
     """holds / not shown / reversed, against the paper's claim that FGDACO is shorter than every rival."""
     paper = load_paper("fgdaco")
@@ -117,6 +121,7 @@ def test_verdicts_follow_the_marks():
     assert t.loc["fgdaco", "verdict"] == ""  # the reference makes no claim about itself
 
 
+@pytest.mark.slow
 def test_an_available_planner_without_runs_is_reported_not_run():
     """A rival that is registered but cannot run the scenario kind keeps its row, marked as not run."""
     paper = load_paper("fgdaco")
@@ -128,6 +133,7 @@ def test_an_available_planner_without_runs_is_reported_not_run():
     assert "not run" in format_reproduction(rep)
 
 
+@pytest.mark.slow
 def test_too_few_runs_give_not_testable_never_reversed():
     """With 2 seeds and 3 rivals no Holm-corrected test can reach 0.05: every claim is 'not testable'."""
     paper = load_paper("fgdaco")

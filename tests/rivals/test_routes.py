@@ -9,7 +9,7 @@ import pytest
 
 from pathzoo.core import Scenario, VehicleModel
 from pathzoo.rules import validate_path
-from pathzoo.testing.scenarios import check_scenario
+from pathzoo.core.tiny_scenarios import check_scenario
 from pathzoo_rivals.movns import shake
 from pathzoo_rivals.route_moves import insert, leap, relocate, remove
 from pathzoo_rivals.routes import RouteProblem

@@ -13,7 +13,7 @@ import pathzoo
 from pathzoo.core import Budget, Scenario, Status, VehicleModel
 from pathzoo.core.vehicle import GRAVITY
 from pathzoo.rules import validate_path
-from pathzoo.testing.scenarios import check_scenario
+from pathzoo.core.tiny_scenarios import check_scenario
 from pathzoo_rivals.zstar import ZStarPlanner, zstar_edge_cost, zstar_heuristic
 
 MU = 0.1

@@ -79,6 +79,7 @@ def one_error(capsys) -> str:
     return err[0]
 
 
+@pytest.mark.slow
 def test_every_planner_gets_the_same_trials_and_default_and_tuned_rows(tuning_file, tmp_path):
     setup = load_tuning(tuning_file())
     assert [len(s) for s in setup.spaces] == [2, 1, 0]  # exact.astar declares nothing to tune
@@ -100,6 +101,7 @@ def test_every_planner_gets_the_same_trials_and_default_and_tuned_rows(tuning_fi
     assert "mmas default" in text and "exact.astar default = tuned" in text
 
 
+@pytest.mark.slow
 def test_resumed_tuning_ends_with_the_same_parameters(tuning_file, tmp_path):
     whole = tune(load_tuning(tuning_file()), db=tmp_path / "a.sqlite", executor="inline")
     setup = load_tuning(tuning_file())
@@ -118,6 +120,7 @@ def test_resumed_tuning_ends_with_the_same_parameters(tuning_file, tmp_path):
     assert trial.params == params and trial.state.name == "COMPLETE"  # the interrupted trial was finished, not redrawn
 
 
+@pytest.mark.slow
 def test_cli_prints_trials_tuned_parameters_and_both_rows(tuning_file, tmp_path, capsys):
     db = tmp_path / "c.sqlite"
     argv = ["tune", tuning_file(), "--db", str(db), "--executor", "inline", "--no-progress", "--trials", "2"]

@@ -95,8 +95,8 @@ _clock_gettime = getattr(time, "clock_gettime", None)  # bound at import, like _
 _CPU_CLOCK_OF_PID = sys.platform.startswith("linux") and _clock_gettime is not None
 
 
-def process_cpu_time(pid: int) -> float:
-    """User + system CPU seconds of a process, read from outside it (NaN when it is gone).
+def process_cpu_time(pid: int | None) -> float:
+    """User + system CPU seconds of a process, read from outside it (NaN when it is gone or never started).
 
     On Linux this reads the process's CPU-time clock (``clock_gettime`` on
     the clock id the kernel derives from a pid, as glibc's
@@ -104,7 +104,9 @@ def process_cpu_time(pid: int) -> float:
     resolution, against 0.3-0.6 ms and 10 ms clock ticks for psutil's
     ``cpu_times``, which is the fallback elsewhere.
     """
-    if _CPU_CLOCK_OF_PID:
+    if pid is None:
+        return math.nan
+    if _CPU_CLOCK_OF_PID and _clock_gettime is not None:
         try:
             return _clock_gettime((~pid << 3) | 2)  # MAKE_PROCESS_CPUCLOCK(pid, CPUCLOCK_SCHED)
         except OSError:  # gone

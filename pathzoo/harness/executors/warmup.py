@@ -5,8 +5,8 @@ The workers *and* the judge are forked from that server
 of once in each of them: numpy, numba, the parts of scipy the harness uses,
 pathzoo's geometry, rules, validators and built-in metrics, the harness's
 own modules, and numba's start-up with the shared geometry kernels (the
-neighbourhood graph, clearance and digest of the conformance kit's tiny
-``grid2d`` map, loaded from numba's cache or compiled). It never discovers
+neighbourhood graph, clearance and digest of the tiny ``grid2d`` map of
+:mod:`pathzoo.core.tiny_scenarios`, loaded from numba's cache or compiled). It never discovers
 plugins and never imports a planner or a scenario plugin: the judge must
 start in a process where no planner code ran, and import its scenario and
 metric plugins itself (``docs/register-a-planner.md``). Each worker
@@ -35,8 +35,8 @@ import pathzoo.harness.executors.process  # noqa: E402,F401 - a worker's code
 import pathzoo.harness.judge_worker  # noqa: E402,F401 - the judge's code
 import pathzoo.metrics  # noqa: E402,F401 - the built-in metrics the judge computes
 from pathzoo.harness.digest import scenario_digest, warm  # noqa: E402
-from pathzoo.testing.scenarios import check_scenario  # noqa: E402
-from pathzoo.testing.warmup import warm_up  # noqa: E402,F401 - every worker's untimed first call
+from pathzoo.core.tiny_scenarios import check_scenario  # noqa: E402
+from pathzoo.core.warmup import warm_up  # noqa: E402,F401 - every worker's untimed first call
 
 scenario_digest(warm(check_scenario("grid2d")))
 atexit.register(os._exit, 0)

@@ -28,7 +28,7 @@ from pathzoo_aco.engine.pheromone import Pheromone
 from pathzoo_aco.engine.prefetch import AHEAD, prefetch
 from pathzoo_aco.engine.problem import ColonyProblem
 from pathzoo_aco.engine.rules import WalkRules
-from pathzoo_aco.engine.walk_weighted import choose, unsigned_lists, weighted_colony
+from pathzoo_aco.engine.walk_weighted import Adjacency, choose, unsigned_lists, weighted_colony
 
 __all__ = ["Walks", "WalkEngine", "REACHED", "STUCK", "STEP_CAP", "EXHAUSTED", "ABORTED", "OUTRUN"]
 
@@ -424,7 +424,7 @@ class WalkEngine:
         self.weights = np.zeros(0)  # per-colony weights of the listed edges (see :func:`_fill_weights`)
         self.total_steps = 0
 
-    def adjacency(self, rules: WalkRules) -> tuple[np.ndarray | None, ...]:
+    def adjacency(self, rules: WalkRules) -> Adjacency:
         """The edges an ant may take under ``rules``, per node, as the kernel reads them.
 
         Returns ``(adj_ptr, adj_node, adj_edge, adj_offset, weight_mul,
@@ -447,9 +447,9 @@ class WalkEngine:
         return self.problem.memo(key, lambda: (rules.weight_mul, rules.weight_add, rules.pre_add,
                                                self._adjacency(rules)))[3]
 
-    def _adjacency(self, rules: WalkRules) -> tuple[np.ndarray | None, ...]:
+    def _adjacency(self, rules: WalkRules) -> Adjacency:
         g = self.problem.graph
-        adjacency = (g.indptr, self.indices, None, self.offset_id, rules.weight_mul, rules.weight_add)
+        adjacency: Adjacency = (g.indptr, self.indices, None, self.offset_id, rules.weight_mul, rules.weight_add)
         if rules.pre_add.size == 0:
             live = rules.weight_mul != 0.0
             if rules.weight_add.size:

@@ -24,7 +24,12 @@ from pathzoo_aco.engine.outcomes import ABORTED, DONE, EXHAUSTED, NEED_SPACE, RE
 from pathzoo_aco.engine.prefetch import prefetch
 from pathzoo_aco.engine.problem import ColonyProblem
 
-__all__ = ["weighted_colony", "unsigned_lists", "choose"]
+__all__ = ["weighted_colony", "unsigned_lists", "choose", "Adjacency"]
+
+Adjacency = tuple[np.ndarray, np.ndarray, "np.ndarray | None", np.ndarray, np.ndarray, np.ndarray]
+"""``(adj_ptr, adj_node, adj_edge, adj_offset, weight_mul, weight_add)`` of
+:meth:`WalkEngine.adjacency <pathzoo_aco.engine.walk.WalkEngine.adjacency>`; ``adj_edge`` is None when the
+lists are the whole graph."""
 
 
 @numba.njit(cache=True, inline="always")
@@ -53,8 +58,7 @@ def choose(cand_w, nc, total_w, q0):
     return nc - 1
 
 
-def unsigned_lists(problem: ColonyProblem, indices: np.ndarray,
-                   adjacency: tuple[np.ndarray | None, ...]) -> tuple[np.ndarray | None, ...]:
+def unsigned_lists(problem: ColonyProblem, indices: np.ndarray, adjacency: Adjacency) -> tuple[np.ndarray | None, ...]:
     """``indices`` and ``adjacency`` (:meth:`WalkEngine.adjacency <pathzoo_aco.engine.walk.WalkEngine.adjacency>`)
     as :func:`weighted_colony` reads them: node ids (int32 arrays) viewed as uint32, and the list pointers as
     uint32 (:attr:`ColonyProblem.indptr32`) when the lists are the graph's own. An unsigned index needs no

@@ -8,7 +8,7 @@ import numpy as np
 
 from pathzoo.core.budget import Budget
 from pathzoo.core.planner import Planner
-from pathzoo.testing.scenarios import check_scenario
+from pathzoo.core.tiny_scenarios import check_scenario
 
 __all__ = ["warm_up", "WARM_UP_BUDGET"]
 
@@ -26,7 +26,7 @@ def warm_up(planner: Planner, kind: str, budget: Budget = WARM_UP_BUDGET) -> Non
     seconds. Both the harness and the conformance kit call this before they
     start a clock, so the first run in a worker is not charged for it and a
     run cut short by the clock does not give a different answer. The call uses
-    the conformance kit's tiny scenario of ``kind`` and its own random
+    the tiny scenario of ``kind`` (:mod:`pathzoo.core.tiny_scenarios`) and its own random
     generator, so it cannot influence the measured run. Errors are ignored:
     the measured call that follows makes the same mistakes and is judged.
     """

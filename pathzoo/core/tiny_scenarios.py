@@ -1,4 +1,8 @@
-"""Tiny scenarios of every kind, made in code, on which the conformance checks run.
+"""Tiny scenarios of every kind, made in code: the conformance checks and every warm-up plan on them.
+
+They sit in the core, below both the harness (whose workers warm up on them)
+and the conformance kit (:func:`pathzoo.testing.check_scenario`), so
+neither imports the other.
 
 Each kind has a reachable variant (a wall forces a detour, and the start is
 deliberately *not* a cell centre, so a planner must prepend the exact start)

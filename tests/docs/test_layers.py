@@ -1,0 +1,184 @@
+"""The import layers of ``docs/layers.md``, checked: no module imports from a layer above its own.
+
+Every ``import`` and ``from ... import`` in ``pathzoo/``, ``plugins/`` and
+``scenarios/`` is read with :mod:`ast`, those inside functions and under
+``TYPE_CHECKING`` included, and the relative ones resolved. A module belongs
+to the unit with the longest matching name in :data:`LAYERS`; it may import
+its own unit and any unit of a lower layer, nothing else, except the pairs
+in :data:`ALLOWED` (each explained in ``docs/layers.md``).
+"""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+import pytest
+
+REPO_ROOT = Path(__file__).resolve().parents[2]
+SOURCES = ("pathzoo", "plugins", "scenarios")
+
+LAYERS: tuple[tuple[str, ...], ...] = (
+    ("pathzoo.lazy_names", "pathzoo.text_table", "pathzoo.version", "pathzoo.experiments"),
+    ("pathzoo.core",),
+    ("pathzoo.grid", "pathzoo.generators"),
+    ("pathzoo.rules",),
+    ("pathzoo.grid.reference",),
+    ("pathzoo.metrics",),
+    ("pathzoo.io",),
+    ("pathzoo.plugins",),
+    ("pathzoo.builtin", "pathzoo_exact", "pathzoo_scenarios"),
+    ("pathzoo_aco", "pathzoo_baselines", "pathzoo_rivals", "pathzoo_ompl"),
+    ("pathzoo.harness", "pathzoo.testing"),
+    ("pathzoo.analysis",),
+    ("pathzoo.plotting",),
+    ("report",),
+    ("pathzoo.tuning",),
+    ("pathzoo",),
+    ("pathzoo.cli",),
+)
+"""Units from the lowest layer up; units of one layer do not import each other.
+
+``pathzoo`` is the package's top-level interface (``pathzoo/__init__.py``
+alone); a unit named in :data:`UNIT_MODULES` is the modules listed there;
+every other name covers its submodules too.
+"""
+
+UNIT_MODULES: dict[str, tuple[str, ...]] = {
+    "report": ("pathzoo.analysis.report", "pathzoo.analysis.tuning_report"),
+}
+"""Units made of named modules: the HTML report, which draws with :mod:`pathzoo.plotting`."""
+
+ALLOWED: dict[tuple[str, str], str] = {
+    ("pathzoo.core.scenario", "pathzoo.grid"): "a scenario's geometry queries and graph, built on first use",
+    ("pathzoo.core.scenario", "pathzoo.rules"): "a scenario's segment and path queries, answered by the rules",
+}
+"""(importing module, imported unit) pairs allowed across the layers, each explained in ``docs/layers.md``."""
+
+PLUGIN_PACKAGES = frozenset(unit for layer in LAYERS for unit in layer if unit.startswith("pathzoo_"))
+
+
+def module_name(path: Path) -> str:
+    parts = list(path.relative_to(REPO_ROOT).with_suffix("").parts)
+    if parts[0] in ("plugins", "scenarios"):
+        parts = parts[1:]
+    if parts[-1] == "__init__":
+        parts = parts[:-1]
+    return ".".join(parts)
+
+
+def unit_of(module: str) -> str | None:
+    """The unit of ``module`` (longest matching name), or None for a module outside pathzoo and its plugins."""
+    best, longest = None, -1
+    for layer in LAYERS:
+        for unit in layer:
+            for name in UNIT_MODULES.get(unit, (unit,)):
+                matches = module == name if name == "pathzoo" else module == name or module.startswith(name + ".")
+                if matches and len(name) > longest:
+                    best, longest = unit, len(name)
+    return best
+
+
+RANK = {unit: rank for rank, layer in enumerate(LAYERS) for unit in layer}
+
+
+def imports(path: Path, text: str) -> list[tuple[int, str]]:
+    """``(line, imported module)`` of every import in ``text``, the source of ``path``; relative ones resolved."""
+    module = module_name(path)
+    package = module if path.name == "__init__.py" else module.rpartition(".")[0]
+    found = []
+    for node in ast.walk(ast.parse(text, str(path))):
+        if isinstance(node, ast.Import):
+            found.extend((node.lineno, alias.name) for alias in node.names)
+        elif isinstance(node, ast.ImportFrom):
+            if node.level:
+                base = package.split(".")[: len(package.split(".")) - node.level + 1]
+                target = ".".join(base + ([node.module] if node.module else []))
+            else:
+                target = node.module or ""
+            found.append((node.lineno, target))
+            # ``from pathzoo import analysis`` imports a submodule: judge the submodule
+            found.extend((node.lineno, f"{target}.{alias.name}") for alias in node.names
+                         if unit_of(f"{target}.{alias.name}") not in (None, unit_of(target)))
+    return found
+
+
+def source_files() -> dict[Path, str]:
+    """Every module of pathzoo and its plugins, with its source."""
+    return {p: p.read_text(encoding="utf-8") for root in SOURCES for p in sorted((REPO_ROOT / root).rglob("*.py"))}
+
+
+def layer_violations(sources: dict[Path, str]) -> list[str]:
+    """One line per import against the layers."""
+    out = []
+    for path, text in sources.items():
+        module = module_name(path)
+        source = unit_of(module)
+        assert source is not None, f"{path}: in no unit of LAYERS (add it here and to docs/layers.md)"
+        for line, target in imports(path, text):
+            unit = unit_of(target)
+            if unit is None or unit == source or (module, unit) in ALLOWED:
+                continue
+            if unit in PLUGIN_PACKAGES and source.startswith("pathzoo."):
+                problem = "pathzoo imports no plugin package"
+            elif RANK[unit] >= RANK[source]:
+                problem = "same layer" if RANK[unit] == RANK[source] else "higher layer"
+            else:
+                continue
+            out.append(f"{path.relative_to(REPO_ROOT)}:{line}: {source} imports {target} ({problem})")
+    return out
+
+
+def test_no_module_imports_from_a_layer_above_its_own() -> None:
+    found = layer_violations(source_files())
+    assert not found, "imports against the layers of docs/layers.md:\n" + "\n".join(found)
+
+
+def plugin_files_read(sources: dict[Path, str]) -> list[str]:
+    """pathzoo's modules that name a plugin package in a string (``resources.files("pathzoo_scenarios")``)."""
+    out = []
+    for path, text in sources.items():
+        if not module_name(path).startswith("pathzoo."):
+            continue
+        for node in ast.walk(ast.parse(text, str(path))):
+            if isinstance(node, ast.Constant) and isinstance(node.value, str) and (
+                    node.value.split(".")[0].split("/")[0] in PLUGIN_PACKAGES):
+                out.append(f"{path.relative_to(REPO_ROOT)}:{node.lineno}: names the plugin package {node.value!r}")
+    return out
+
+
+def test_pathzoo_reads_no_plugin_package_by_name() -> None:
+    """What a plugin ships reaches pathzoo through a hook (the papers' tables: ``pathzoo_paper_tables``)."""
+    found = plugin_files_read(source_files())
+    assert not found, "\n".join(found)
+    planted = 'from importlib import resources\nfile = resources.files("pathzoo_scenarios") / "papers"\n'
+    assert len(plugin_files_read({REPO_ROOT / "pathzoo/analysis/reproduction.py": planted})) == 1
+
+
+def test_every_allowed_exception_is_used_and_explained() -> None:
+    page = (REPO_ROOT / "docs" / "layers.md").read_text(encoding="utf-8")
+    sources = source_files()
+    by_module = {module_name(p): p for p in sources}
+    for (module, unit), _why in ALLOWED.items():
+        assert module in by_module, f"ALLOWED names {module}, which does not exist"
+        path = by_module[module]
+        assert any(unit_of(target) == unit for _, target in imports(path, sources[path])), (
+            f"ALLOWED lets {module} import {unit}, which it no longer does: remove the exception")
+        assert f"`{module}`" in page and f"`{unit}`" in page, f"docs/layers.md does not explain {module} -> {unit}"
+
+
+@pytest.mark.parametrize(("module", "code", "expected"), [
+    ("pathzoo/harness/executors/warmup.py", "from pathzoo.testing.scenarios import check_scenario\n", "same layer"),
+    ("pathzoo/plotting/boxplots.py", "def f():\n    from pathzoo.analysis.report import write_report\n",
+     "higher layer"),
+    ("pathzoo/analysis/summary.py", "def f():\n    from pathzoo.plotting.figure import new_figure\n",
+     "higher layer"),
+    ("pathzoo/harness/worker.py", "def f():\n    import pathzoo_aco.acs\n", "pathzoo imports no plugin package"),
+    ("pathzoo/grid/graph.py", "from ..rules import segments\n", "higher layer"),
+    ("plugins/pathzoo_exact/astar.py", "from pathzoo.harness import run_experiment\n", "higher layer"),
+    ("pathzoo/core/budget.py", "import pathzoo.grid\n", "higher layer"),
+])
+def test_the_check_finds_upward_imports(module: str, code: str, expected: str) -> None:
+    """A planted import of each kind the issue found (module level, in a function, relative) is reported."""
+    found = layer_violations({REPO_ROOT / module: code})
+    assert len(found) == 1 and expected in found[0], found
