@@ -1,12 +1,15 @@
 """One GNU Octave process per worker, started on first use and kept, serving the runs of Octave function files.
 
 The process runs pathzoo's shim (``octave/pathzoo_octave_server.m``): it
-reads one request per line on standard input (the function file, the
-scratch folder, the problem), seeds Octave's generators, calls the
+reads one request at a time on standard input (a line with its length in
+bytes, then the JSON naming the function file, the scratch folder and the
+problem), seeds Octave's generators, calls the
 function with its printed output captured, and writes one answer line
 after a marker. Octave's start-up (about a second) is paid once per
 worker, before the deadline of the first request starts; a request that
 misses its deadline kills the process, and the next one starts a new one.
+The process's working directory is a temporary folder of its own, removed
+when it stops.
 """
 
 from __future__ import annotations
@@ -58,6 +61,7 @@ class OctaveServer:
     def __init__(self, executable: str) -> None:
         self.executable = executable
         self.proc: Any = None
+        self.home = ""
         self.lock = threading.Lock()
 
     def _start(self, who: str) -> None:
@@ -69,7 +73,8 @@ class OctaveServer:
         shim = str(SHIM_DIR).replace("'", "''")
         argv = [path, "--norc", "--no-history", "--quiet", "--no-window-system",
                 "--eval", f"addpath('{shim}'); pathzoo_octave_server"]
-        self.proc = start(argv, cwd=tempfile.gettempdir(), who=who)
+        self.home = tempfile.mkdtemp(prefix="pathzoo-octave-")
+        self.proc = start(argv, cwd=self.home, who=who)
         try:
             ready = pump(self.proc, b"", deadline=_clock() + STARTUP_LIMIT_S, limit_s=STARTUP_LIMIT_S, who=who,
                          done=_complete, close_stdin=False)
@@ -85,7 +90,7 @@ class OctaveServer:
         raise ExternalPlannerError(with_stderr(f"{who}: Octave {describe_exit(code)} {when}", output.stderr))
 
     def ask(self, request: bytes, *, limit_s: float | None, who: str) -> tuple[bytes, str]:
-        """Send one request line; return the answer line and any output printed outside the function's capture.
+        """Send one request (JSON text); return the answer line and any output printed outside the function's capture.
 
         The deadline (``limit_s`` from now, once Octave is running) covers
         the request, the call and the answer.
@@ -101,7 +106,7 @@ class OctaveServer:
                 self._start(who)
             deadline = None if limit_s is None else _clock() + limit_s
             try:
-                output = pump(self.proc, request + b"\n", deadline=deadline, limit_s=limit_s, who=who,
+                output = pump(self.proc, b"%d\n" % len(request) + request, deadline=deadline, limit_s=limit_s, who=who,
                               done=_complete, close_stdin=False)
             except ExternalPlannerError:
                 self.stop()
@@ -116,6 +121,9 @@ class OctaveServer:
         if self.proc is not None:
             kill_group(self.proc)
             self.proc = None
+        if self.home:
+            shutil.rmtree(self.home, ignore_errors=True)
+            self.home = ""
 
 
 _servers: dict[str, OctaveServer] = {}

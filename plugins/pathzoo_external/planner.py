@@ -102,7 +102,7 @@ class OctavePlanner(ExternalPlannerBase):
     def ask(self, problem: str, scratch: str, *, limit_s: float | None, dim: int) -> Answer:
         """Send the call to Octave and read its answer; printed output goes below the message."""
         name = Path(self.program.octave).name
-        request = (f'{{"function":{json.dumps(self.program.octave)},"scratch":{json.dumps(scratch)},'
+        request = (f'{{"file":{json.dumps(self.program.octave)},"scratch":{json.dumps(scratch)},'
                    f'"problem":{problem}}}')
         line, printed = octave_server().ask(request.encode(), limit_s=limit_s, who=self.id)
         reply = decode_answer(line, self.id)

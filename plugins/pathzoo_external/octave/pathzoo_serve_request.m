@@ -10,9 +10,14 @@
 function text = pathzoo_serve_request (line)
   try
     request = jsondecode (line);
-    [folder, name] = fileparts (request.function);
-    addpath (folder);
-    cd (request.scratch);
+    [folder, name] = fileparts (request.file);
+    if (! any (strcmp (folder, strsplit (path (), pathsep ()))))
+      addpath (folder);  # slow (tens of ms): once per folder, which stays on the path
+    endif
+    files = dir (fullfile (folder, "*.m"));
+    [~, names] = cellfun (@fileparts, {files.name}, "UniformOutput", false);
+    clear (names{:});  # the folder's functions, with their persistent variables: each run starts alike
+    clear -global;
     problem = pathzoo_load_arrays (request.problem);
     pathzoo_seed (problem.seed);
     n_out = nargout (name);
