@@ -147,12 +147,12 @@ int main(void) {
         }
     }
     if (!isfinite(g[t])) {
-        printf("{\"status\":\"no_path\",\"iterations\":1,\"evaluations\":%ld}\n", expanded);
+        printf("{\"status\":\"no_path\",\"iterations\":1,\"evaluations\":1,\"message\":\"%ld cells expanded\"}\n", expanded);
         return 0;
     }
     long count = 0;
     for (long v = t; v != -1; v = parent[v]) value[count++] = (double)v;
-    printf("{\"status\":\"solved\",\"iterations\":1,\"evaluations\":%ld,\"path\":[[%.17g,%.17g]", expanded,
+    printf("{\"status\":\"solved\",\"iterations\":1,\"evaluations\":1,\"message\":\"%ld cells expanded\",\"path\":[[%.17g,%.17g]", expanded,
            start[0], start[1]);
     for (long i = count - 1; i >= 0; i--) {
         long v = (long)value[i];
@@ -160,6 +160,6 @@ int main(void) {
         if ((i == count - 1 && x == start[0] && y == start[1]) || (i == 0 && x == goal[0] && y == goal[1])) continue;
         printf(",[%.17g,%.17g]", x, y);
     }
-    printf(",[%.17g,%.17g]],\"history\":[[1,%ld,%.17g]]}\n", goal[0], goal[1], expanded, g[t] * cell);
+    printf(",[%.17g,%.17g]],\"history\":[[1,1,%.17g]]}\n", goal[0], goal[1], g[t] * cell);
     return 0;
 }

@@ -31,4 +31,5 @@ def planner_class(declaration: "ExternalPlanner") -> type[ExternalPlannerBase]:
         "kinds": frozenset(declaration.kinds),
         "params": dict(declaration.params),
         "program": program,
+        "declaration": declaration,
     })

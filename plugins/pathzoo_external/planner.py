@@ -15,7 +15,7 @@ import tempfile
 import time
 from dataclasses import replace
 from pathlib import Path
-from typing import ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
 
@@ -30,7 +30,10 @@ from pathzoo_external.octave import octave_server
 from pathzoo_external.problem import SEED_LIMIT, problem_json
 from pathzoo_external.program import Program
 
-__all__ = ["ExternalPlannerBase", "CommandPlanner", "OctavePlanner", "answer_limit", "GRACE_S", "GRACE_SHARE",
+if TYPE_CHECKING:
+    from pathzoo.plugins.external import ExternalPlanner
+
+__all__ = ["ExternalPlannerBase", "CommandPlanner", "OctavePlanner", "answer_limit", "rebuild", "GRACE_S", "GRACE_SHARE",
            "MAX_GRACE_S"]
 
 GRACE_S = 1.0
@@ -59,10 +62,24 @@ def _attach(message: str, label: str, text: str) -> str:
     return with_stderr(message, text).replace("\nstandard error:\n", f"\n{label}:\n", 1).lstrip("\n")
 
 
+def rebuild(declaration: "ExternalPlanner", params: dict[str, Any]) -> "ExternalPlannerBase":
+    """An external planner from its declaration and parameters (how its instances are unpickled)."""
+    planner: ExternalPlannerBase = declaration.load()(**params)
+    return planner
+
+
 class ExternalPlannerBase(Planner):
-    """A planner that is a program (built per declaration by :func:`pathzoo_external.declared.planner_class`)."""
+    """A planner that is a program (built per declaration by :func:`pathzoo_external.declared.planner_class`).
+
+    Its class is made at run time, so an instance pickles as its
+    declaration and parameters (:func:`rebuild`).
+    """
 
     program: ClassVar[Program] = Program(command=("true",))
+    declaration: ClassVar["ExternalPlanner | None"] = None
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        return (rebuild, (self.declaration, self.get_params()))
 
     def plan(self, scenario: Scenario, *, budget: Budget, rng: np.random.Generator,
              progress: ProgressCallback | None = None) -> PlanResult:
