@@ -65,7 +65,7 @@ class ExternalPlanner(LazyPlanner):
     id, summary : str
         As for every planner (``family.name`` and one line for ``pathzoo list``).
     kinds : frozenset of str
-        The scenario kinds the program plans on (default ``grid2d``).
+        The scenario kinds the program plans on (default ``{"grid2d"}``).
     command : tuple of str
         The program and its arguments, started once per run; it reads the
         problem as JSON on standard input and writes one JSON answer on
@@ -78,6 +78,7 @@ class ExternalPlanner(LazyPlanner):
     """
 
     target: str = "pathzoo_external.declared:planner_class"
+    kinds: frozenset[str] = _DEFAULT_KINDS
     command: tuple[str, ...] = ()
     octave: str = ""
     params: Mapping[str, Param] = field(default_factory=dict)
@@ -187,6 +188,9 @@ class ExternalPlanner(LazyPlanner):
 def declare(registry: "Registry", planner: ExternalPlanner) -> None:
     """Register a planner declared in an experiment file, replacing an earlier one of the same id from such a file.
 
+    The declaration read last wins, with its class built anew, so a file
+    read again after its program changed gets the new version.
+
     Raises
     ------
     InvalidExperimentError
@@ -196,5 +200,4 @@ def declare(registry: "Registry", planner: ExternalPlanner) -> None:
     if entry is not None and entry.plugin != EXPERIMENT_FILES:
         raise InvalidExperimentError(
             f"'{planner.id}' is the id of a planner of the plugin {entry.plugin}; give this one another label")
-    if entry is None or entry.provided != planner:
-        registry.planners[planner.id] = PluginEntry(planner.id, planner.summary, planner, EXPERIMENT_FILES, "", "")
+    registry.planners[planner.id] = PluginEntry(planner.id, planner.summary, planner, EXPERIMENT_FILES, "", "")
