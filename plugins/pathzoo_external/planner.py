@@ -1,9 +1,9 @@
 """The planner classes behind external planners: a command started per run, or a function run by Octave.
 
 Each run writes the problem (:mod:`pathzoo_external.problem`) to the
-program in a fresh scratch folder (its working directory, removed after the
-run), waits for one answer under the deadline of :func:`answer_limit`, and
-checks it (:mod:`pathzoo_external.answer`). Whatever goes wrong raises
+program, whose working directory is an empty scratch folder
+(:mod:`pathzoo_external.scratch`), waits for one answer under the deadline
+of :func:`answer_limit`, and checks it (:mod:`pathzoo_external.answer`). Whatever goes wrong raises
 :class:`~pathzoo.core.errors.ExternalPlannerError`, which the harness stores
 as a crash with its one-line reason.
 """
@@ -11,7 +11,6 @@ as a crash with its one-line reason.
 from __future__ import annotations
 
 import json
-import tempfile
 import time
 from dataclasses import replace
 from pathlib import Path
@@ -29,6 +28,7 @@ from pathzoo_external.child import run_once, with_stderr
 from pathzoo_external.octave import octave_server
 from pathzoo_external.problem import SEED_LIMIT, problem_json
 from pathzoo_external.program import Program
+from pathzoo_external.scratch import scratch_folder
 
 if TYPE_CHECKING:
     from pathzoo.plugins.external import ExternalPlanner
@@ -87,7 +87,7 @@ class ExternalPlannerBase(Planner):
         self.check_supports(scenario)
         self.program.check_unchanged(self.id, self.version)
         seed = int(rng.integers(SEED_LIMIT))
-        with tempfile.TemporaryDirectory(prefix="pathzoo-external-") as scratch:
+        with scratch_folder() as scratch:
             problem = problem_json(scenario, budget=budget, seed=seed, params=self.get_params(), scratch=Path(scratch))
             answer = self.ask(problem, scratch, limit_s=answer_limit(budget), dim=scenario.dim)
         if progress is not None:
