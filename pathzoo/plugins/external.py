@@ -153,6 +153,7 @@ class ExternalPlanner(LazyPlanner):
                 raise InvalidExperimentError(f"command must be a list of non-empty strings, got {command!r}")
             argv = tuple(str((base / arg).resolve()) if (base / arg).is_file() else arg for arg in command)
             default_label = Path(command[0]).stem
+            what = f"command {' '.join(command)}"
         else:
             if not isinstance(octave, str) or not octave.endswith(".m"):
                 raise InvalidExperimentError(f"octave must name a function file ending in .m, got {octave!r}")
@@ -161,6 +162,7 @@ class ExternalPlanner(LazyPlanner):
                 raise InvalidExperimentError(f"octave: no function file {path}")
             function = str(path)
             default_label = path.stem
+            what = f"Octave function {path.name}"
         label = table.get("label", default_label)
         if not isinstance(label, str) or not _slug(label):
             raise InvalidExperimentError(f"label must be a non-empty string, got {label!r}")
@@ -173,7 +175,6 @@ class ExternalPlanner(LazyPlanner):
         bad = [name for name, value in values.items() if not _param_value_ok(value)]
         if bad:
             raise InvalidExperimentError(f"params {bad}: a value must be a string, number or boolean, or a list of them")
-        what = f"Octave function {Path(function).name}" if function else f"command {' '.join(command)}"
         summary = table.get("summary", f"{label}: {what}")
         if not isinstance(summary, str):
             raise InvalidExperimentError(f"summary must be a string, got {summary!r}")

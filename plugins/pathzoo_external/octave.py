@@ -75,19 +75,21 @@ class OctaveServer:
                 "--eval", f"addpath('{shim}'); pathzoo_octave_server"]
         self.home = tempfile.mkdtemp(prefix="pathzoo-octave-")
         self.proc = start(argv, cwd=self.home, who=who)
+        self._exchange(b"", STARTUP_LIMIT_S, who, "while starting")
+
+    def _exchange(self, data: bytes, limit_s: float | None, who: str, when: str) -> Output:
+        """Write ``data`` and read up to a complete answer line; stop the process if that fails."""
         try:
-            ready = pump(self.proc, b"", deadline=_clock() + STARTUP_LIMIT_S, limit_s=STARTUP_LIMIT_S, who=who,
-                         done=_complete, close_stdin=False)
+            output = pump(self.proc, data, deadline=None if limit_s is None else _clock() + limit_s, limit_s=limit_s,
+                          who=who, done=_complete, close_stdin=False)
         except ExternalPlannerError:
             self.stop()
             raise
-        if not _complete(bytearray(ready.stdout)):
-            self._died(who, "while starting", ready)
-
-    def _died(self, who: str, when: str, output: Output) -> None:
-        code = self.proc.wait()
-        self.stop()
-        raise ExternalPlannerError(with_stderr(f"{who}: Octave {describe_exit(code)} {when}", output.stderr))
+        if not _complete(bytearray(output.stdout)):
+            code = self.proc.wait()
+            self.stop()
+            raise ExternalPlannerError(with_stderr(f"{who}: Octave {describe_exit(code)} {when}", output.stderr))
+        return output
 
     def ask(self, request: bytes, *, limit_s: float | None, who: str) -> tuple[bytes, str]:
         """Send one request (JSON text); return the answer line and any output printed outside the function's capture.
@@ -104,15 +106,7 @@ class OctaveServer:
         with self.lock:
             if self.proc is None or self.proc.poll() is not None:
                 self._start(who)
-            deadline = None if limit_s is None else _clock() + limit_s
-            try:
-                output = pump(self.proc, b"%d\n" % len(request) + request, deadline=deadline, limit_s=limit_s, who=who,
-                              done=_complete, close_stdin=False)
-            except ExternalPlannerError:
-                self.stop()
-                raise
-            if not _complete(bytearray(output.stdout)):
-                self._died(who, "before answering", output)
+            output = self._exchange(b"%d\n" % len(request) + request, limit_s, who, "before answering")
             answer, stray = _split(output.stdout)
             return answer, stray + output.stderr
 
