@@ -114,3 +114,24 @@ def test_a_python_command_planner_plans_in_this_process(tmp_path):
     assert result.status.value == "solved" and result.path.tolist() == [[0.5, 0.5], [9.5, 9.5]]
     assert result.message == "7\nstandard error:\nhello"
     assert points == [(1, 1, float("inf"))]
+
+
+@pytest.mark.skipif(shutil.which("octave-cli") is None, reason="GNU Octave is not installed (CI installs it)")
+def test_one_octave_process_serves_every_run_and_the_seed_decides_the_path():
+    import numpy as np
+
+    from pathzoo_external.octave import octave_server
+
+    planner = ExternalPlanner.from_table({"octave": "shortest.m"}, PROGRAMS).load()()
+    scenario = pathzoo.load_scenario("gant.fig7")
+
+    def path(seed: int) -> list[list[float]]:
+        result = planner.plan(scenario, budget=pathzoo.Budget(time_s=30), rng=np.random.default_rng(seed))
+        return result.path.tolist()
+
+    first = path(0)
+    pid = octave_server().proc.pid
+    paths = [path(seed) for seed in range(1, 6)]
+    assert octave_server().proc.pid == pid  # started once, not once per run
+    assert path(0) == first  # same seed, same path, after other runs in the same Octave process
+    assert len({str(p) for p in [first, *paths]}) > 1  # the seed picks among the shortest paths
