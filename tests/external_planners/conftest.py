@@ -5,6 +5,7 @@ from __future__ import annotations
 import shutil
 import subprocess
 from pathlib import Path
+from typing import Iterator
 
 import pytest
 
@@ -25,3 +26,14 @@ def astar_program(tmp_path_factory: pytest.TempPathFactory) -> Path:
     out = tmp_path_factory.mktemp("astar") / "astar"
     subprocess.run([compiler, "-O2", "-o", str(out), str(ASTAR_C), "-lm"], check=True)
     return out
+
+
+@pytest.fixture(autouse=True)
+def forget_declared_planners() -> Iterator[None]:
+    """After each test, forget the planners its experiment files declared (later tests see the installed ones)."""
+    yield
+    from pathzoo.plugins.external import EXPERIMENT_FILES
+    from pathzoo.plugins.manager import get_registry, reset_registry
+
+    if any(e.plugin == EXPERIMENT_FILES for e in get_registry().planners.values()):
+        reset_registry()
