@@ -41,7 +41,9 @@ from pathzoo.plotting.paths import plot_paths
 
 FULL = os.environ.get("PATHZOO_DOCS_BUDGET", "tiny") == "full"
 SEEDS, ITERATIONS = (10, 100) if FULL else (3, 10)
-IACA_M = Path(__file__).resolve().parents[1] / "external" / "iaca.m"
+# sphinx-gallery runs the examples in their folder, without __file__
+GALLERY = Path(__file__).resolve().parent if "__file__" in globals() else Path.cwd()
+IACA_M = GALLERY.parent / "external" / "iaca.m"
 HAVE_OCTAVE = shutil.which("octave-cli") is not None
 
 experiment_file = f"""

@@ -20,10 +20,16 @@ import subprocess
 import tempfile
 from pathlib import Path
 
-from pathzoo.analysis import format_leaderboard, leaderboard
-from pathzoo.harness import Experiment, run_experiment
+import matplotlib.pyplot as plt
 
-ASTAR_C = Path(__file__).resolve().parents[1] / "external" / "astar.c"
+import pathzoo
+from pathzoo.analysis import format_leaderboard, leaderboard
+from pathzoo.harness import Experiment, read_path, run_experiment
+from pathzoo.plotting.paths import plot_paths
+
+# sphinx-gallery runs the examples in their folder, without __file__
+GALLERY = Path(__file__).resolve().parent if "__file__" in globals() else Path.cwd()
+ASTAR_C = GALLERY.parent / "external" / "astar.c"
 folder = Path(tempfile.mkdtemp())
 compiler = shutil.which("cc") or shutil.which("gcc")
 program = None
@@ -71,3 +77,14 @@ if program is not None:
                           progress=False)
     print(format_leaderboard(leaderboard(runs, "length")))
     print(runs[["scenario", "label", "valid", "length", "wall_time_s"]].to_string(index=False))
+
+# %%
+# Both paths on the 32 x 32 map: equally long, not necessarily the same
+# (A* breaks ties between equally short paths in its own order).
+
+if program is not None:
+    scenario = "movingai.random-32-32-20.b10.13"
+    rows = runs[runs["scenario"] == scenario]
+    paths = {row.label: read_path(folder / "c.sqlite", "c-astar", row.run_key)[0] for row in rows.itertuples()}
+    fig, ax = plt.subplots(figsize=(6.5, 6.5), layout="constrained")
+    plot_paths(pathzoo.load_scenario(scenario), paths, ax=ax)
