@@ -37,6 +37,13 @@ printed first, and the CPU figures are the ones to compare.
   process's and the judge's S, jobs=1 runs at about 1/max(W, S) on two
   cores and jobs=2 at most 2/(W + S), a ratio of 2 max(W, S)/(W + S), which
   reaches 1.8 only when S <= W/9.
+- *external planners*: ``--external`` runs each of three planners that spin
+  for 1 ms and return a straight line on the same problem (``inline``
+  executor, stored wall times of ``plan()``): a Python planner (the
+  reference), a C program behind the JSON protocol (a process per run) and
+  an Octave function file (one Octave process, started in the warm-up).
+  The medians' differences from the reference are the protocol's cost per
+  run; the largest Octave run shows that Octave's start-up is in no run.
 - *short runs*: ``--short`` runs of ``aco.as`` (1000 iterations, about 0.15 CPU s each) on the same
   problem at jobs=1 and jobs=2, where the planner's time dominates: the
   throughput ratio the target is about.
@@ -46,6 +53,7 @@ from __future__ import annotations
 
 import argparse
 import os
+import shutil
 import sqlite3
 import subprocess
 import sys
@@ -217,6 +225,84 @@ def tiny(tmp: Path, jobs: int, n: int, planner: str = "exact.astar", iterations:
     return usage, plan_wall, plan_cpu
 
 
+EXTERNAL_OVERHEAD_TARGET_S = {"command": 0.010, "octave": 0.020}
+"""Targets for the protocol's cost per run on a 1 ms planner (median over the reference's)."""
+
+_SPIN_C = r"""
+#include <stdio.h>
+#include <string.h>
+#include <time.h>
+static double now(void) { struct timespec t; clock_gettime(CLOCK_MONOTONIC, &t); return t.tv_sec + 1e-9 * t.tv_nsec; }
+int main(void) {
+    static char buf[1 << 22];
+    size_t n = fread(buf, 1, sizeof buf - 1, stdin);
+    buf[n] = 0;
+    double t0 = now();
+    while (now() - t0 < 1e-3) {}
+    char *s = strstr(buf, "\"start\":"), *g = strstr(buf, "\"goal\":");
+    double sx, sy, gx, gy;
+    sscanf(s + 8, "[%lf,%lf]", &sx, &sy);
+    sscanf(g + 7, "[%lf,%lf]", &gx, &gy);
+    printf("{\"status\":\"solved\",\"path\":[[%.17g,%.17g],[%.17g,%.17g]]}\n", sx, sy, gx, gy);
+    return 0;
+}
+"""
+
+_SPIN_M = """function [path, info] = spin (problem, params)
+  t0 = tic ();
+  while (toc (t0) < 1e-3)
+  endwhile
+  path = [problem.start(:)'; problem.goal(:)'];
+  info.status = "solved";
+endfunction
+"""
+
+_EXTERNAL_SCRIPT = """
+import time
+import numpy as np
+import pathzoo
+from pathzoo.harness import Experiment, run_experiment
+from pathzoo.plugins.manager import get_registry
+
+class Spin(pathzoo.Planner):
+    id, version, summary, kinds = "bench.spin", "1", "spins 1 ms", frozenset({{"grid2d"}})
+
+    def plan(self, scenario, *, budget, rng, progress=None):
+        t0 = time.perf_counter()
+        while time.perf_counter() - t0 < 1e-3:
+            pass
+        return pathzoo.PlanResult(pathzoo.Status.SOLVED, np.stack([scenario.start, scenario.goal]))
+
+get_registry().add_plugin(type("plugin", (), {{"pathzoo_register_planners": staticmethod(lambda: [Spin])}})(), "spin")
+exp = Experiment.from_toml({toml!r})
+runs = run_experiment(exp, db={db!r}, executor="inline", progress=False)
+for label, group in runs.groupby("label"):
+    wall = group["wall_time_s"].to_numpy()
+    print(label, len(wall), np.median(wall), wall.max())
+"""
+
+
+def external_overhead(tmp: Path, n: int) -> dict[str, tuple[int, float, float]]:
+    """Per planner label: runs, median and largest stored wall time of ``plan()`` (see the module docstring)."""
+    folder = tmp / "external"
+    folder.mkdir()
+    (folder / "spin.c").write_text(_SPIN_C)
+    (folder / "spin.m").write_text(_SPIN_M)
+    subprocess.run(["cc", "-O2", "-o", str(folder / "spin"), str(folder / "spin.c")], check=True)
+    (folder / "spin.toml").write_text(
+        f'[experiment]\nname = "spin"\nseeds = {n}\nbudget = {{ time_s = 10 }}\nscenarios = ["{TINY_SCENARIO}"]\n'
+        '[[planner]]\nid = "bench.spin"\nlabel = "python"\n'
+        '[[planner]]\ncommand = ["./spin"]\nlabel = "command"\n'
+        '[[planner]]\noctave = "spin.m"\nlabel = "octave"\n')
+    usage = run_tree([sys.executable, "-c", _EXTERNAL_SCRIPT.format(toml=str(folder / "spin.toml"),
+                                                                    db=str(folder / "spin.sqlite"))], cwd=str(folder))
+    out = {}
+    for line in usage.stdout.splitlines():
+        label, runs, median, largest = line.split()
+        out[label] = (int(runs), float(median), float(largest))
+    return out
+
+
 def verdict(ok: bool) -> str:
     return "met" if ok else "not met"
 
@@ -235,6 +321,8 @@ def main() -> None:
     parser.add_argument("--quick", action="store_true", help="skip the cold default experiment")
     parser.add_argument("--tiny", type=positive_int, default=140, help="tiny runs per jobs setting (default 140)")
     parser.add_argument("--short", type=positive_int, default=40, help="short aco.as runs per jobs setting (default 40)")
+    parser.add_argument("--external", type=positive_int, default=40,
+                        help="runs of each 1 ms planner behind the external protocol (default 40)")
     add_write_docs_option(parser, "harness.md")
     args = parser.parse_args()
     print(f"load average {os.getloadavg()[0]:.2f} {os.getloadavg()[1]:.2f} on {os.cpu_count()} cores; "
@@ -267,6 +355,19 @@ def main() -> None:
               f"(`plan()` itself {(cpu1 - cpu0) / extra * 1e3:.1f} CPU ms; whole tree with start-up: "
               f"{one.cpu_s / args.tiny * 1e3:.1f} ms at jobs=1, {two.cpu_s / args.tiny * 1e3:.1f} ms at jobs=2) "
               f"| - | - |")
+        if shutil.which("cc") and shutil.which("octave-cli"):
+            ext = external_overhead(tmp, args.external)
+            ref = ext["python"][1]
+            for label in ("command", "octave"):
+                runs, median, largest = ext[label]
+                cost = median - ref
+                target = EXTERNAL_OVERHEAD_TARGET_S[label]
+                print(f"| external protocol cost per run, {label} ({runs} runs of a 1 ms planner: median stored "
+                      f"`plan()` wall {median * 1e3:.2f} ms against {ref * 1e3:.2f} ms in-process Python, the "
+                      f"reference; largest {largest * 1e3:.1f} ms) | {cost * 1e3:.2f} ms | <= {target * 1e3:g} ms "
+                      f"| {verdict(cost <= target)} |")
+        else:
+            print("| external protocol cost per run | skipped: needs cc and octave-cli | - | - |")
         s1, _, scpu = tiny(tmp, 1, args.short, "aco.as", SHORT_ITERATIONS)
         s2, _, _ = tiny(tmp, 2, args.short, "aco.as", SHORT_ITERATIONS)
         print(throughput_row(f"{args.short} short runs (`aco.as`, {SHORT_ITERATIONS} iterations, `plan()` "

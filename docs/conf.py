@@ -76,6 +76,7 @@ numpydoc_show_class_members = False  # autodoc documents the members (autodoc_de
 
 API_PACKAGES = (
     "pathzoo", "pathzoo_exact", "pathzoo_aco", "pathzoo_baselines", "pathzoo_ompl", "pathzoo_rivals", "pathzoo_scenarios",
+    "pathzoo_external",
 )
 
 

@@ -9,6 +9,7 @@ __all__ = [
     "UnknownPluginError",
     "UnsupportedScenarioError",
     "InvalidExperimentError",
+    "ExternalPlannerError",
 ]
 
 
@@ -60,3 +61,14 @@ class UnsupportedScenarioError(PathzooError, TypeError):
 
 class InvalidExperimentError(PathzooError, ValueError):
     """An experiment description (TOML file or Python arguments) is malformed."""
+
+
+class ExternalPlannerError(PathzooError, RuntimeError):
+    """An external planner (a command or an Octave function file) broke pathzoo's planner protocol.
+
+    The message's first line names the planner and the cause (Octave missing,
+    the function raised, the answer has the wrong shape, no answer in time,
+    too much output); the lines after it hold the tail of what the program
+    wrote on standard error. A run that raises it is stored as a crash with
+    this message, without a traceback of the bridge (``docs/external-planners.md``).
+    """

@@ -20,6 +20,12 @@ TOML format (every key but the planners and scenarios is optional)::
     params = { n_ants = 40 }
     label = "gant-40"           # optional name in tables and plots
 
+    [[planner]]                 # an external planner (docs/external-planners.md)
+    command = ["./my_planner", "--fast"]   # or: octave = "planners/aco_variant.m"
+    label = "my-planner"        # its id is external.my-planner
+    kinds = ["grid2d"]          # default ["grid2d"]
+    params = { n_ants = 20 }    # sent to the program
+
 Without a ``label`` a configuration is named ``id(param=value, ...)`` for the
 parameters that differ from the defaults (docs/configurations.md).
 
@@ -161,6 +167,17 @@ _FIELD_CHECKS = {
     "timeout_s": _check_timeout,
     "jobs": _check_jobs,
 }
+
+
+def _external_spec(table: Mapping[str, Any], base: Path) -> PlannerSpec:
+    """Declare the external planner of a ``[[planner]]`` table (``command`` or ``octave``) and return its spec."""
+    from pathzoo.plugins.external import ExternalPlanner, declare
+    from pathzoo.plugins.manager import get_registry
+
+    planner = ExternalPlanner.from_table(table, base)
+    declare(get_registry(), planner)
+    label = table.get("label")
+    return PlannerSpec.of((planner.id, {}) if label is None else (planner.id, {}, label))
 
 
 def read_toml(path: str | Path) -> dict[str, Any]:
@@ -372,10 +389,15 @@ class Experiment:
         if not isinstance(planner_tables, list) or not all(isinstance(p, dict) for p in planner_tables):
             raise bad("planner", "must be [[planner]] tables")
         planners: list[PlannerSpec] = []
+        base = path.resolve().parent
         for i, table in enumerate(planner_tables):
+            if "command" in table or "octave" in table:
+                planners.append(checked(f"planner[{i}]", lambda: _external_spec(table, base)))
+                continue
             extra = sorted(set(table) - {"id", "params", "label"})
             if extra:
-                raise bad(f"planner[{i}]", f"unknown key(s) {extra}; allowed: id, params, label")
+                raise bad(f"planner[{i}]", f"unknown key(s) {extra}; allowed: id, params, label "
+                          "(or command or octave, for an external planner)")
             pid, params = table.get("id"), table.get("params", {})
             label = table.get("label")
             if not isinstance(pid, str) or not pid:
@@ -390,7 +412,6 @@ class Experiment:
             if not isinstance(exp["budget"], dict):
                 raise bad("experiment.budget", "must be a table such as { time_s = 5 }")
             budget = checked("experiment.budget", lambda: Budget.from_mapping(exp["budget"], where="budget"))
-        base = path.resolve().parent
         specs: list[ScenarioSpec] = []
         for i, item in enumerate(scenarios):
             specs.extend(checked(f"{sfield}[{i}]", lambda: _resolve_scenarios([item], base)))

@@ -57,13 +57,26 @@ def run_seed(experiment_seed: int, key: str) -> int:
 
 
 def planner_by_value(cls: type) -> bytes:
-    """The class pickled by value when workers could not import it by name (defined in ``__main__``), else ``b""``."""
+    """The class pickled by value when workers could not import it by name, else ``b""``.
+
+    That is a class defined in ``__main__``, or one made at run time whose
+    module does not hold it under its qualified name (the planner classes
+    of external planners, :mod:`pathzoo.plugins.external`).
+    """
     module = sys.modules.get(cls.__module__)
-    if cls.__module__ not in ("__main__", "__mp_main__") and getattr(module, "__spec__", None) is not None:
+    if (cls.__module__ not in ("__main__", "__mp_main__") and getattr(module, "__spec__", None) is not None
+            and _attribute_path(module, cls.__qualname__) is cls):
         return b""
     import cloudpickle
 
     return cloudpickle.dumps(cls)
+
+
+def _attribute_path(obj: Any, qualname: str) -> Any:
+    """``obj.a.b`` for ``qualname`` ``"a.b"``, or ``None``."""
+    for part in qualname.split("."):
+        obj = getattr(obj, part, None)
+    return obj
 
 
 @dataclass(frozen=True)

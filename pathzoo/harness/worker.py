@@ -40,6 +40,7 @@ from typing import TYPE_CHECKING, Any, Callable
 
 import numpy as np
 
+from pathzoo.core.errors import ExternalPlannerError
 from pathzoo.core.results import HistoryPoint, PlanResult
 from pathzoo.core.status import Status
 from pathzoo.harness.bounds import bound_outcome, bound_text
@@ -146,7 +147,14 @@ def utc_now() -> str:
 
 
 def describe_exception(exc: BaseException) -> str:
-    """``"Type: message"`` plus the last lines of the traceback."""
+    """``"Type: message"`` plus the last lines of the traceback.
+
+    An :class:`~pathzoo.core.errors.ExternalPlannerError` is its own
+    report (one line naming the planner and the cause, then the program's
+    standard error): the bridge's traceback would add nothing.
+    """
+    if isinstance(exc, ExternalPlannerError):
+        return str(exc)
     head = f"{type(exc).__name__}: {exc}".splitlines()[0] if str(exc) else type(exc).__name__
     tail = traceback.format_exception(type(exc), exc, exc.__traceback__)
     lines = "".join(tail).rstrip().splitlines()[-TRACEBACK_LINES:]

@@ -75,7 +75,7 @@ def test_api_reference_covers_the_public_packages(built_docs: tuple[Path, Path])
     public = {
         "pathzoo", "pathzoo.core", "pathzoo.io", "pathzoo.generators", "pathzoo.harness", "pathzoo.analysis",
         "pathzoo.plotting", "pathzoo.testing", "pathzoo.metrics", "pathzoo_exact", "pathzoo_aco",
-        "pathzoo_baselines", "pathzoo_ompl", "pathzoo_rivals", "pathzoo_scenarios",
+        "pathzoo_baselines", "pathzoo_ompl", "pathzoo_rivals", "pathzoo_scenarios", "pathzoo_external",
     }
     assert public <= pages, f"no API page for {sorted(public - pages)}"
     top = (out / "gen_modules" / "pathzoo.html").read_text(encoding="utf-8")
