@@ -40,6 +40,8 @@ from multiprocessing import popen_forkserver, popen_spawn_posix, spawn
 from multiprocessing.connection import Connection
 from typing import Any, Iterator
 
+from pathzoo.parent_death import die_with_parent
+
 __all__ = [
     "NoMainContext",
     "ForkServerNoMainProcess",
@@ -95,18 +97,6 @@ def harness_alive() -> Connection:
         if _alive is None:
             _alive = mp.Pipe(duplex=False)
         return _alive[0]
-
-
-_PR_SET_PDEATHSIG = 1
-
-
-def die_with_parent() -> None:
-    """Ask the kernel for ``SIGKILL`` when the thread that started this process exits (Linux; elsewhere nothing)."""
-    if sys.platform.startswith("linux"):
-        try:
-            ctypes.CDLL(None, use_errno=True).prctl(_PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
-        except (OSError, AttributeError):
-            pass
 
 
 def die_with_harness(alive: Connection) -> None:

@@ -4,7 +4,7 @@ A program is started with ``start_new_session`` (so it and every process
 it starts share one process group that :func:`kill_group` ends at once) and
 asks the kernel to kill it when the worker dies: through util-linux's
 ``setpriv --pdeathsig KILL`` where it is installed (an exec, about 1 ms),
-else with :func:`pathzoo.harness.launch.die_with_parent` run in the child
+else with :func:`pathzoo.parent_death.die_with_parent` run in the child
 before the exec (a ``preexec_fn``, which makes Python fork the whole worker:
 10-20 ms per run). :func:`pump` feeds its
 standard input and reads its standard output and error at the same time,
@@ -24,7 +24,7 @@ from dataclasses import dataclass
 from typing import Callable, Sequence
 
 from pathzoo.core.errors import ExternalPlannerError
-from pathzoo.harness.launch import die_with_parent
+from pathzoo.parent_death import die_with_parent
 
 __all__ = ["MAX_OUTPUT_BYTES", "STDERR_KEEP_CHARS", "Output", "start", "kill_group", "pump", "run_once",
            "with_stderr", "describe_exit"]

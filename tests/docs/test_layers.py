@@ -19,7 +19,7 @@ REPO_ROOT = Path(__file__).resolve().parents[2]
 SOURCES = ("pathzoo", "plugins", "scenarios")
 
 LAYERS: tuple[tuple[str, ...], ...] = (
-    ("pathzoo.lazy_names", "pathzoo.text_table", "pathzoo.version", "pathzoo.experiments"),
+    ("pathzoo.lazy_names", "pathzoo.text_table", "pathzoo.version", "pathzoo.experiments", "pathzoo.parent_death"),
     ("pathzoo.core",),
     ("pathzoo.grid", "pathzoo.generators"),
     ("pathzoo.rules",),
@@ -28,7 +28,7 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("pathzoo.io",),
     ("pathzoo.plugins",),
     ("pathzoo.builtin", "pathzoo_exact", "pathzoo_scenarios"),
-    ("pathzoo_aco", "pathzoo_baselines", "pathzoo_rivals", "pathzoo_ompl"),
+    ("pathzoo_aco", "pathzoo_baselines", "pathzoo_rivals", "pathzoo_ompl", "pathzoo_external"),
     ("pathzoo.harness", "pathzoo.testing"),
     ("pathzoo.analysis",),
     ("pathzoo.plotting",),
@@ -52,6 +52,8 @@ UNIT_MODULES: dict[str, tuple[str, ...]] = {
 ALLOWED: dict[tuple[str, str], str] = {
     ("pathzoo.core.scenario", "pathzoo.grid"): "a scenario's geometry queries and graph, built on first use",
     ("pathzoo.core.scenario", "pathzoo.rules"): "a scenario's segment and path queries, answered by the rules",
+    ("pathzoo.plugins.external", "pathzoo_external"): "a program planner's declaration loads the bundled bridge "
+                                                       "(planner code) on first use, in the worker only",
 }
 """(importing module, imported unit) pairs allowed across the layers, each explained in ``docs/layers.md``."""
 
@@ -138,11 +140,13 @@ def plugin_files_read(sources: dict[Path, str]) -> list[str]:
     """pathzoo's modules that name a plugin package in a string (``resources.files("pathzoo_scenarios")``)."""
     out = []
     for path, text in sources.items():
-        if not module_name(path).startswith("pathzoo."):
+        module = module_name(path)
+        if not module.startswith("pathzoo."):
             continue
         for node in ast.walk(ast.parse(text, str(path))):
             if isinstance(node, ast.Constant) and isinstance(node.value, str) and (
-                    node.value.split(".")[0].split("/")[0] in PLUGIN_PACKAGES):
+                    node.value.split(".")[0].split("/")[0] in PLUGIN_PACKAGES) and (
+                    (module, node.value.split(".")[0]) not in ALLOWED):
                 out.append(f"{path.relative_to(REPO_ROOT)}:{node.lineno}: names the plugin package {node.value!r}")
     return out
 
