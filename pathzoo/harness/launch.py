@@ -30,7 +30,6 @@ in a long C call, which is why the kernel's signal comes first).
 from __future__ import annotations
 
 import contextlib
-import ctypes
 import multiprocessing as mp
 import os
 import signal
