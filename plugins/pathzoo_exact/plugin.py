@@ -19,7 +19,7 @@ PLANNERS: tuple[LazyPlanner, ...] = (
     LazyPlanner("exact.thetastar", "Theta* any-angle search (Nash et al. 2007); never longer than the grid optimum",
                 "pathzoo_exact.thetastar:ThetaStarPlanner", kinds=frozenset({"grid2d"})),
     LazyPlanner("exact.anyangle",
-                "exact any-angle optimum (visibility graph over corners), pushed 1e-6 cells off obstacles",
+                "exact any-angle optimum (Polyanya on a rectangle mesh), pushed 1e-6 cells off obstacles",
                 "pathzoo_exact.anyangle:AnyAnglePlanner", kinds=frozenset({"grid2d"})),
 )
 """The exact reference planners, declared without importing them."""
