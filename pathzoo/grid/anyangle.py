@@ -158,7 +158,9 @@ def anyangle_path(
     ends = to_cell_units(np.stack([start_xy, goal_xy]), cell_size)
     cap = np.iinfo(np.int64).max if max_expansions is None else int(max_expansions)
     scale = _lattice_scale(ends) if np.isfinite(ends).all() else MAX_LATTICE_EXTENT + 1
-    if method == "polyanya" and scale * max(h, w) <= MAX_LATTICE_EXTENT:
+    if np.array_equal(ends[0], ends[1]):
+        cells, expansions, finished = ends.copy(), 0, True  # as the visibility graph answers it
+    elif method == "polyanya" and scale * max(h, w) <= MAX_LATTICE_EXTENT:
         cells, expansions, finished = _polyanya(blocked, ends, scale, mesh, cap)
     elif blocked.size <= MAX_VISIBILITY_CELLS:
         cells, expansions, finished = visibility_search(blocked, ends[0], ends[1], cap)

@@ -64,6 +64,14 @@ def _cross(ax: int, ay: int, bx: int, by: int) -> int:
 
 
 @numba.njit(cache=True)
+def _on_segment(px: int, py: int, ax: int, ay: int, bx: int, by: int) -> bool:
+    # the point lies on the closed segment [a, b]
+    if _cross(bx - ax, by - ay, px - ax, py - ay) != 0:
+        return False
+    return (px - ax) * (bx - ax) + (py - ay) * (by - ay) >= 0 and (px - bx) * (ax - bx) + (py - by) * (ay - by) >= 0
+
+
+@numba.njit(cache=True)
 def _h(rx: float, ry: float, ax: float, ay: float, bx: float, by: float, gx: float, gy: float) -> float:
     # shortest |r - p| + |p - g| over p on the segment [a, b], with g reflected to the far side of its line
     ex, ey = bx - ax, by - ay
@@ -157,8 +165,8 @@ def _search(
             b = vertex[i + 1] if i + 1 < hi else vertex[lo]
             ax, ay = (a % w1) * scale, (a // w1) * scale
             bx, by = (b % w1) * scale, (b // w1) * scale
-            if _cross(bx - ax, by - ay, sx - ax, sy - ay) == 0:
-                continue  # the start lies on this edge's line: its polygons are all expanded here
+            if _on_segment(sx, sy, ax, ay, bx, by):
+                continue  # the start lies on this edge: the polygon beyond also contains it and is expanded here
             nodes = _grow_int(nodes, n_nodes + 1)
             nd = nodes[n_nodes]
             nd[_ROOT], nd[_POLY], nd[_EDGE] = 0, q, twin[i]
@@ -356,8 +364,8 @@ def _search(
             for t in range(m):
                 sr = pieces[t, 0]
                 srx, sry = roots[sr, _RPX], roots[sr, _RPY]
-                if roots[sr, _RV] == -1 and _cross(bx - ax, by - ay, srx - ax, sry - ay) == 0:
-                    continue  # a piece in line with the start: covered by the start's own polygons
+                if roots[sr, _RV] == -1 and _on_segment(srx, sry, ax, ay, bx, by):
+                    continue  # an edge through the start: the polygons around it are expanded from the start
                 nodes = _grow_int(nodes, n_nodes + 1)
                 s = nodes[n_nodes]
                 s[_ROOT], s[_POLY], s[_EDGE], s[_FINAL], s[_VIA] = sr, q, twin[i], 0, -1
