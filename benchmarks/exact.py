@@ -54,7 +54,7 @@ import statistics
 import sys
 import time
 from pathlib import Path
-from typing import Callable
+from typing import Callable, TypeVar
 
 import numpy as np
 from scipy.sparse.csgraph import dijkstra
@@ -72,7 +72,10 @@ GRID_DATA = Path(__file__).resolve().parents[1] / ".." / "shared" / "data" / "mo
 SCEN = GRID_DATA / "grid" / "rooms" / "8room_000.map.scen"
 
 
-def timed(fn: Callable[[], object]) -> tuple[object, float, float]:
+T = TypeVar("T")
+
+
+def timed(fn: Callable[[], T]) -> tuple[T, float, float]:
     """Result, wall seconds and CPU seconds of one call."""
     wall, cpu = time.perf_counter(), time.process_time()
     out = fn()
@@ -264,7 +267,7 @@ def anyangle_part(every: int) -> int:
         count += 1
         if (fast is None) != (slow is None):
             worst_diff = math.inf
-        elif fast is not None:
+        elif fast is not None and slow is not None:
             worst_diff = max(worst_diff, abs(fast.length - slow.length))
     all_met &= worst_diff <= 1e-6
     print(f"agreement with the visibility graph on {count} problems of maps up to 256 x 256: largest length "

@@ -158,6 +158,7 @@ def anyangle_path(
     ends = to_cell_units(np.stack([start_xy, goal_xy]), cell_size)
     cap = np.iinfo(np.int64).max if max_expansions is None else int(max_expansions)
     scale = _lattice_scale(ends) if np.isfinite(ends).all() else MAX_LATTICE_EXTENT + 1
+    cells: np.ndarray | None
     if np.array_equal(ends[0], ends[1]):
         cells, expansions, finished = ends.copy(), 0, True  # as the visibility graph answers it
     elif method == "polyanya" and scale * max(h, w) <= MAX_LATTICE_EXTENT:

@@ -134,16 +134,16 @@ class AnyAnglePlanner(Planner):
         path[0], path[-1] = scenario.start, scenario.goal
         length = float(np.hypot(*np.diff(path, axis=0).T).sum()) if len(path) > 1 else 0.0
         extras: dict[str, Any] = {"optimum": ref.length, "excess": length - ref.length}
-        counts = dict(iterations=1, evaluations=ref.expansions)
         verdict = validate_path(scenario, path)
         if not verdict:
             return PlanResult(
                 Status.FAILED,
                 message=f"the limit path pushed {self.margin} cells off the obstacles fails the check: {verdict.reason}",
                 extras=extras,
-                **counts,
+                iterations=1,
+                evaluations=ref.expansions,
             )
         if progress is not None:
             progress(1, ref.expansions, length)
-        return PlanResult(Status.SOLVED, path=path, extras=extras, **counts)
+        return PlanResult(Status.SOLVED, path=path, extras=extras, iterations=1, evaluations=ref.expansions)
 
