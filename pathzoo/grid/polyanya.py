@@ -52,8 +52,8 @@ _EPS = 1e-9
 """Tolerance (in lattice units) of root-level pruning: a root reached more expensively by more than this is dropped."""
 
 # node columns (int64)
-_ROOT, _POLY, _EDGE, _RX, _RY, _LX, _LY, _FINAL, _VIA = range(9)
-_NI = 9
+_ROOT, _POLY, _EDGE, _RX, _RY, _LX, _LY, _FINAL = range(8)
+_NI = 8
 # root record columns (int64): vertex (-1 = start), x, y, parent record
 _RV, _RPX, _RPY, _RPAR = range(4)
 
@@ -117,6 +117,55 @@ def _grow_float(a: np.ndarray, need: int) -> np.ndarray:
 
 
 @numba.njit(cache=True)
+def _edge(vertex: np.ndarray, lo: int, n: int, j: int, w1: int, scale: int) -> tuple[int, int, int, int]:
+    # the ends a, b (lattice units) of edge j of the polygon whose vertices are vertex[lo:lo + n]
+    a = vertex[lo + j % n]
+    b = vertex[lo + (j + 1) % n]
+    return (a % w1) * scale, (a // w1) * scale, (b % w1) * scale, (b // w1) * scale
+
+
+@numba.njit(cache=True)
+def _push(
+    nodes: np.ndarray, n_nodes: int, heap: list[tuple[float, np.int64]], f: float, root: int, final: int,
+    poly: int, edge: int, rx: int, ry: int, lx: int, ly: int,
+) -> np.ndarray:
+    # store node n_nodes (growing the table) and put it on the open list with priority f
+    nodes = _grow_int(nodes, n_nodes + 1)
+    s = nodes[n_nodes]
+    s[_ROOT], s[_FINAL], s[_POLY], s[_EDGE], s[_RX], s[_RY], s[_LX], s[_LY] = root, final, poly, edge, rx, ry, lx, ly
+    heapq.heappush(heap, (f, np.int64(n_nodes)))
+    return nodes
+
+
+@numba.njit(cache=True)
+def _turn_at(
+    roots: np.ndarray, root_g: np.ndarray, n_roots: int, best: np.ndarray, corner_id: int,
+    v: int, x: int, y: int, parent: int, g: float,
+) -> tuple[np.ndarray, np.ndarray, int]:
+    # a new root record for the corner v reached with g, or -1 when v was a root more cheaply before
+    if g > best[corner_id] + _EPS:
+        return roots, root_g, -1
+    best[corner_id] = min(best[corner_id], g)
+    roots = _grow_int(roots, n_roots + 1)
+    root_g = _grow_float(root_g, n_roots + 1)
+    roots[n_roots, _RV], roots[n_roots, _RPX], roots[n_roots, _RPY], roots[n_roots, _RPAR] = v, x, y, parent
+    root_g[n_roots] = g
+    return roots, root_g, n_roots
+
+
+@numba.njit(cache=True)
+def _outside_piece(pieces: np.ndarray, m: int, root: int, oa: int, ob: int, ray: int) -> None:
+    # row m: the part of a -> b where the cross product with the cone's side `ray` (2 right, 3 left) is negative
+    pieces[m, 0] = root
+    if oa < 0 and ob < 0:
+        pieces[m, 1], pieces[m, 2], pieces[m, 3], pieces[m, 4], pieces[m, 5], pieces[m, 6] = 0, 1, 0, 1, 1, 1
+    elif oa < 0:
+        pieces[m, 1], pieces[m, 2], pieces[m, 3], pieces[m, 4], pieces[m, 5], pieces[m, 6] = 0, ray, 0, 1, -oa, ob - oa
+    else:
+        pieces[m, 1], pieces[m, 2], pieces[m, 3], pieces[m, 4], pieces[m, 5], pieces[m, 6] = ray, 1, oa, oa - ob, 1, 1
+
+
+@numba.njit(cache=True)
 def _search(
     offsets: np.ndarray,
     vertex: np.ndarray,
@@ -157,26 +206,19 @@ def _search(
             return roots[:1], root_g[:1], 0, math.hypot(gx - sx, gy - sy), 0, 1
     for p in start_polys:
         lo, hi = offsets[p], offsets[p + 1]
-        for i in range(lo, hi):
-            q = neighbour[i]
+        for j in range(hi - lo):
+            q = neighbour[lo + j]
             if q < 0:
                 continue
-            a = vertex[i]
-            b = vertex[i + 1] if i + 1 < hi else vertex[lo]
-            ax, ay = (a % w1) * scale, (a // w1) * scale
-            bx, by = (b % w1) * scale, (b // w1) * scale
+            ax, ay, bx, by = _edge(vertex, lo, hi - lo, j, w1, scale)
             if _on_segment(sx, sy, ax, ay, bx, by):
                 continue  # the start lies on this edge: the polygon beyond also contains it and is expanded here
-            nodes = _grow_int(nodes, n_nodes + 1)
-            nd = nodes[n_nodes]
-            nd[_ROOT], nd[_POLY], nd[_EDGE] = 0, q, twin[i]
-            nd[_RX], nd[_RY], nd[_LX], nd[_LY] = ax - sx, ay - sy, bx - sx, by - sy
-            nd[_FINAL], nd[_VIA] = 0, -1
             f = _h(float(sx), float(sy), float(ax), float(ay), float(bx), float(by), fgx, fgy)
-            heapq.heappush(heap, (f, np.int64(n_nodes)))
+            nodes = _push(nodes, n_nodes, heap, f, 0, 0, q, twin[lo + j], ax - sx, ay - sy, bx - sx, by - sy)
             n_nodes += 1
     expansions = 0
-    pieces = np.empty((3, 9), dtype=np.int64)
+    pieces = np.empty((3, 7), dtype=np.int64)  # root record, the two ends' kinds, their fractions of a -> b
+    ends = np.empty((2, 2), dtype=np.int64)
     while heap:
         f, ni = heapq.heappop(heap)
         nd = nodes[ni].copy()
@@ -215,40 +257,25 @@ def _search(
                 if corner[c] < 0:
                     continue
                 cg = g + math.hypot(cx - fr, cy - fry)
-                if cg > best[corner[c]] + _EPS:
+                roots, root_g, croot = _turn_at(roots, root_g, n_roots, best, corner[c], c, cx, cy, rr, cg)
+                if croot < 0:
                     continue
-                best[corner[c]] = min(best[corner[c]], cg)
-                roots = _grow_int(roots, n_roots + 1)
-                root_g = _grow_float(root_g, n_roots + 1)
-                roots[n_roots, _RV], roots[n_roots, _RPX], roots[n_roots, _RPY], roots[n_roots, _RPAR] = c, cx, cy, rr
-                root_g[n_roots] = cg
-                croot = n_roots
                 n_roots += 1
             if is_goal[p]:
                 # the root is now a vertex of the goal's polygon: straight to the goal
-                nodes = _grow_int(nodes, n_nodes + 1)
-                fin = nodes[n_nodes]
-                fin[_ROOT], fin[_FINAL], fin[_VIA] = croot, 1, -1
-                heapq.heappush(heap, (root_g[croot] + math.hypot(gx - float(cx), gy - float(cy)), np.int64(n_nodes)))
+                cost = root_g[croot] + math.hypot(gx - float(cx), gy - float(cy))
+                nodes = _push(nodes, n_nodes, heap, cost, croot, 1, -1, -1, 0, 0, 0, 0)
                 n_nodes += 1
                 continue
             cgv = root_g[croot]
-            for j in range(1, n):
-                i = lo + (k + j) % n
+            for j in range(k + 1, k + n):
+                i = lo + j % n
                 q = neighbour[i]
                 if q < 0:
                     continue
-                a = vertex[i]
-                b = vertex[lo + (k + j + 1) % n]
-                ax, ay = (a % w1) * scale, (a // w1) * scale
-                bx, by = (b % w1) * scale, (b // w1) * scale
-                nodes = _grow_int(nodes, n_nodes + 1)
-                s = nodes[n_nodes]
-                s[_ROOT], s[_POLY], s[_EDGE] = croot, q, twin[i]
-                s[_RX], s[_RY], s[_LX], s[_LY] = ax - cx, ay - cy, bx - cx, by - cy
-                s[_FINAL], s[_VIA] = 0, -1
+                ax, ay, bx, by = _edge(vertex, lo, n, j, w1, scale)
                 hh = _h(float(cx), float(cy), float(ax), float(ay), float(bx), float(by), fgx, fgy)
-                heapq.heappush(heap, (cgv + hh, np.int64(n_nodes)))
+                nodes = _push(nodes, n_nodes, heap, cgv + hh, croot, 0, q, twin[i], ax - cx, ay - cy, bx - cx, by - cy)
                 n_nodes += 1
             continue
         drx, dry, dlx, dly = nd[_RX], nd[_RY], nd[_LX], nd[_LY]
@@ -269,55 +296,34 @@ def _search(
                 via = u
                 cost = g + math.hypot(ux - fr, uy - fry) + math.hypot(gx - float(ux), gy - float(uy))
             if via >= 0:
-                vg = g + math.hypot((via % w1) * scale - fr, (via // w1) * scale - fry)
-                if vg > best[corner[via]] + _EPS:
+                vx, vy = (via % w1) * scale, (via // w1) * scale
+                vg = g + math.hypot(vx - fr, vy - fry)
+                roots, root_g, rr = _turn_at(roots, root_g, n_roots, best, corner[via], via, vx, vy, rr, vg)
+                if rr < 0:
                     continue
-                best[corner[via]] = min(best[corner[via]], vg)
-                roots = _grow_int(roots, n_roots + 1)
-                root_g = _grow_float(root_g, n_roots + 1)
-                roots[n_roots, _RV], roots[n_roots, _RPAR] = via, rr
-                roots[n_roots, _RPX], roots[n_roots, _RPY] = (via % w1) * scale, (via // w1) * scale
-                root_g[n_roots] = vg
-                rr = n_roots
                 n_roots += 1
             if cost < np.inf:
-                nodes = _grow_int(nodes, n_nodes + 1)
-                fin = nodes[n_nodes]
-                fin[_ROOT], fin[_FINAL], fin[_VIA] = rr, 1, -1
-                heapq.heappush(heap, (cost, np.int64(n_nodes)))
+                nodes = _push(nodes, n_nodes, heap, cost, rr, 1, -1, -1, 0, 0, 0, 0)
                 n_nodes += 1
             continue
         right_root = -1
         left_root = -1
         if right_turn:
             cg = g + math.hypot(wx - fr, wy - fry)
-            if cg <= best[corner[w]] + _EPS:
-                best[corner[w]] = min(best[corner[w]], cg)
-                roots = _grow_int(roots, n_roots + 1)
-                root_g = _grow_float(root_g, n_roots + 1)
-                roots[n_roots, _RV], roots[n_roots, _RPX], roots[n_roots, _RPY], roots[n_roots, _RPAR] = w, wx, wy, rr
-                root_g[n_roots] = cg
-                right_root = n_roots
+            roots, root_g, right_root = _turn_at(roots, root_g, n_roots, best, corner[w], w, wx, wy, rr, cg)
+            if right_root >= 0:
                 n_roots += 1
         if left_turn:
             cg = g + math.hypot(ux - fr, uy - fry)
-            if cg <= best[corner[u]] + _EPS:
-                best[corner[u]] = min(best[corner[u]], cg)
-                roots = _grow_int(roots, n_roots + 1)
-                root_g = _grow_float(root_g, n_roots + 1)
-                roots[n_roots, _RV], roots[n_roots, _RPX], roots[n_roots, _RPY], roots[n_roots, _RPAR] = u, ux, uy, rr
-                root_g[n_roots] = cg
-                left_root = n_roots
+            roots, root_g, left_root = _turn_at(roots, root_g, n_roots, best, corner[u], u, ux, uy, rr, cg)
+            if left_root >= 0:
                 n_roots += 1
-        for j in range(1, n):
-            i = lo + (k + j) % n
+        for j in range(k + 1, k + n):
+            i = lo + j % n
             q = neighbour[i]
             if q < 0:
                 continue
-            a = vertex[i]
-            b = vertex[lo + (k + j + 1) % n]
-            ax, ay = (a % w1) * scale, (a // w1) * scale
-            bx, by = (b % w1) * scale, (b // w1) * scale
+            ax, ay, bx, by = _edge(vertex, lo, n, j, w1, scale)
             oar = _cross(drx, dry, ax - rx, ay - ry)
             obr = _cross(drx, dry, bx - rx, by - ry)
             oal = _cross(ax - rx, ay - ry, dlx, dly)
@@ -343,52 +349,32 @@ def _search(
                 pieces[m, 3], pieces[m, 4], pieces[m, 5], pieces[m, 6] = lon, lod, hin, hid
                 m += 1
             if right_root >= 0 and (oar < 0 or obr < 0):
-                # the part to the right of the right ray, seen from the interval's right end
-                if oar < 0 and obr < 0:
-                    pieces[m, 1], pieces[m, 2], pieces[m, 3], pieces[m, 4], pieces[m, 5], pieces[m, 6] = 0, 1, 0, 1, 1, 1
-                elif oar < 0:
-                    pieces[m, 1], pieces[m, 2], pieces[m, 3], pieces[m, 4], pieces[m, 5], pieces[m, 6] = 0, 2, 0, 1, -oar, obr - oar
-                else:
-                    pieces[m, 1], pieces[m, 2], pieces[m, 3], pieces[m, 4], pieces[m, 5], pieces[m, 6] = 2, 1, oar, oar - obr, 1, 1
-                pieces[m, 0] = right_root
+                _outside_piece(pieces, m, right_root, oar, obr, 2)  # seen from the interval's right end
                 m += 1
             if left_root >= 0 and (oal < 0 or obl < 0):
-                if oal < 0 and obl < 0:
-                    pieces[m, 1], pieces[m, 2], pieces[m, 3], pieces[m, 4], pieces[m, 5], pieces[m, 6] = 0, 1, 0, 1, 1, 1
-                elif oal < 0:
-                    pieces[m, 1], pieces[m, 2], pieces[m, 3], pieces[m, 4], pieces[m, 5], pieces[m, 6] = 0, 3, 0, 1, -oal, obl - oal
-                else:
-                    pieces[m, 1], pieces[m, 2], pieces[m, 3], pieces[m, 4], pieces[m, 5], pieces[m, 6] = 3, 1, oal, oal - obl, 1, 1
-                pieces[m, 0] = left_root
+                _outside_piece(pieces, m, left_root, oal, obl, 3)  # seen from its left end
                 m += 1
             for t in range(m):
                 sr = pieces[t, 0]
                 srx, sry = roots[sr, _RPX], roots[sr, _RPY]
                 if roots[sr, _RV] == -1 and _on_segment(srx, sry, ax, ay, bx, by):
                     continue  # an edge through the start: the polygons around it are expanded from the start
-                nodes = _grow_int(nodes, n_nodes + 1)
-                s = nodes[n_nodes]
-                s[_ROOT], s[_POLY], s[_EDGE], s[_FINAL], s[_VIA] = sr, q, twin[i], 0, -1
-                for end in range(2):
+                for end in range(2):  # each end's direction from the root: to a, to b, or along a side
                     kind = pieces[t, 1 + end]
                     if kind == 0:
-                        ex, ey = ax - srx, ay - sry
+                        ends[end, 0], ends[end, 1] = ax - srx, ay - sry
                     elif kind == 1:
-                        ex, ey = bx - srx, by - sry
+                        ends[end, 0], ends[end, 1] = bx - srx, by - sry
                     elif kind == 2:
-                        ex, ey = drx, dry
+                        ends[end, 0], ends[end, 1] = drx, dry
                     else:
-                        ex, ey = dlx, dly
-                    if end == 0:
-                        s[_RX], s[_RY] = ex, ey
-                    else:
-                        s[_LX], s[_LY] = ex, ey
+                        ends[end, 0], ends[end, 1] = dlx, dly
                 t0 = pieces[t, 3] / pieces[t, 4]
                 t1 = pieces[t, 5] / pieces[t, 6]
                 pax, pay = ax + t0 * (bx - ax), ay + t0 * (by - ay)
                 pbx, pby = ax + t1 * (bx - ax), ay + t1 * (by - ay)
-                hh = _h(float(srx), float(sry), pax, pay, pbx, pby, fgx, fgy)
-                heapq.heappush(heap, (root_g[sr] + hh, np.int64(n_nodes)))
+                f = root_g[sr] + _h(float(srx), float(sry), pax, pay, pbx, pby, fgx, fgy)
+                nodes = _push(nodes, n_nodes, heap, f, sr, 0, q, twin[i], ends[0, 0], ends[0, 1], ends[1, 0], ends[1, 1])
                 n_nodes += 1
     return roots[:n_roots], root_g[:n_roots], -1, np.inf, expansions, 1
 
