@@ -17,7 +17,8 @@ How
 map's rectangle mesh (:mod:`pathzoo.grid.navmesh`, built once per scenario
 by :func:`~pathzoo.grid.navmesh.scenario_mesh`), in exact integer arithmetic
 on a lattice of ``scale`` units per cell, the smallest power of two on which
-both endpoints lie (2 for cell centres). Every segment of the result is then
+both endpoints lie (2 for cell centres; endpoints within :data:`SNAP_CELLS`
+of the lattice are moved onto it). Every segment of the result is then
 checked with :func:`pathzoo.grid.visibility_graph.visible`, the independent
 exact segment test of the visibility-graph search. Endpoints so fine that
 ``scale * max(H, W)`` exceeds :data:`~pathzoo.grid.polyanya.MAX_LATTICE_EXTENT`
@@ -42,6 +43,7 @@ __all__ = [
     "SCALE",
     "MAX_EXACT_CELLS",
     "MAX_VISIBILITY_CELLS",
+    "SNAP_CELLS",
     "AnyAngleError",
     "SearchCapReached",
     "AnyAnglePath",
@@ -50,6 +52,15 @@ __all__ = [
 
 MAX_EXACT_CELLS = 4096 * 4096
 """Largest map (in cells) searched: its mesh takes about 10 bytes per cell (160 MB here)."""
+
+SNAP_CELLS = 1e-9
+"""Endpoints this close (per axis, in cells) to Polyanya's lattice are searched from the lattice point.
+
+A cell centre of a map whose cell size is no power of two comes out of the
+division by the cell size a rounding error (about 1e-13 cell) away from its
+half-integer. The optimum from the moved endpoints differs from the true one
+by at most the distance moved, and the returned path keeps the exact endpoints.
+"""
 
 MAX_VISIBILITY_CELLS = 256 * 256
 """Largest map on which the visibility graph (cost N**1.5 to N**2 in the cells N) is searched."""
@@ -86,9 +97,21 @@ class AnyAnglePath:
     expansions: int
 
 
-def _lattice_scale(points: np.ndarray) -> int:
-    """The smallest power of two ``s`` for which every coordinate times ``s`` is an integer."""
-    return max(1, *(float(v).as_integer_ratio()[1] for v in np.ravel(points)))
+def _lattice(ends: np.ndarray, side: int) -> tuple[int, np.ndarray] | None:
+    """The smallest usable power-of-two scale putting both endpoints within :data:`SNAP_CELLS` of its lattice.
+
+    Returns the scale and the endpoints moved onto the lattice, or None when
+    even the finest lattice allowed by :data:`MAX_LATTICE_EXTENT` is too coarse.
+    """
+    if not np.isfinite(ends).all():
+        return None
+    scale = 1
+    while scale * side <= MAX_LATTICE_EXTENT:
+        snapped = np.round(ends * scale) / scale
+        if (np.abs(snapped - ends) <= SNAP_CELLS).all():
+            return scale, snapped
+        scale *= 2
+    return None
 
 
 def _polyanya(
@@ -157,18 +180,18 @@ def anyangle_path(
     goal_xy = np.asarray(goal, dtype=np.float64)[:2]
     ends = to_cell_units(np.stack([start_xy, goal_xy]), cell_size)
     cap = np.iinfo(np.int64).max if max_expansions is None else int(max_expansions)
-    scale = _lattice_scale(ends) if np.isfinite(ends).all() else MAX_LATTICE_EXTENT + 1
+    lattice = _lattice(ends, max(h, w)) if method == "polyanya" else None
     cells: np.ndarray | None
     if np.array_equal(ends[0], ends[1]):
         cells, expansions, finished = ends.copy(), 0, True  # as the visibility graph answers it
-    elif method == "polyanya" and scale * max(h, w) <= MAX_LATTICE_EXTENT:
-        cells, expansions, finished = _polyanya(blocked, ends, scale, mesh, cap)
+    elif lattice is not None:
+        cells, expansions, finished = _polyanya(blocked, lattice[1], lattice[0], mesh, cap)
     elif blocked.size <= MAX_VISIBILITY_CELLS:
         cells, expansions, finished = visibility_search(blocked, ends[0], ends[1], cap)
     else:
         raise AnyAngleError(
-            f"the endpoints are not on a lattice of 1/{MAX_LATTICE_EXTENT // max(h, w)} cell, which the exact "
-            f"search of a {h}x{w} map needs"
+            f"the endpoints are not within {SNAP_CELLS} cell of a lattice of 1/{MAX_LATTICE_EXTENT // max(h, w)} "
+            f"cell, which the exact search of a {h}x{w} map needs"
         )
     if not finished:
         raise SearchCapReached(f"the any-angle search expanded {expansions} nodes without reaching the goal")

@@ -162,3 +162,22 @@ def test_on_a_512_map_valid_and_never_longer_than_theta_star(load_scen):
         assert result.extras["optimum"] <= float(np.hypot(*np.diff(theta.path, axis=0).T).sum()) + 1e-9
         assert result.extras["optimum"] <= scenario.reference_length + 1e-5  # 8-connected, 5-6 digits
         assert 0.0 <= result.extras["excess"] <= 1e-4
+
+
+def test_cell_centres_of_a_cell_size_that_is_no_power_of_two():
+    # (i + 0.5) * 0.1 / 0.1 misses i + 0.5 by a rounding error for about one centre in seven
+    rng = np.random.default_rng(5)
+    blocked = rng.random((300, 300)) < 0.2
+    free = np.argwhere(~blocked)
+    misses = 0
+    for _ in range(10):
+        i, j = rng.choice(len(free), 2, replace=False)
+        start, goal = free[i][::-1] + 0.5, free[j][::-1] + 0.5
+        misses += bool(((start * 0.1) / 0.1 != start).any() or ((goal * 0.1) / 0.1 != goal).any())
+        unit = anyangle_path(blocked, start, goal, 1.0)
+        tenth = anyangle_path(blocked, start * 0.1, goal * 0.1, 0.1)
+        assert (unit is None) == (tenth is None)
+        if unit is not None:
+            assert tenth.length == pytest.approx(0.1 * unit.length, rel=1e-12)
+            assert np.array_equal(tenth.path[0], start * 0.1) and np.array_equal(tenth.path[-1], goal * 0.1)
+    assert misses > 0
