@@ -18,7 +18,7 @@ and drops nodes whose root was reached more cheaply.
 
 Exactness. Coordinates are integers on a lattice of ``scale`` units per cell
 (vertices are grid points; the start and goal must lie on the lattice). The
-edges of every cone are stored as integer direction vectors from the root
+two sides of every cone are stored as integer direction vectors from the root
 (towards a vertex, or along the line through two earlier roots), so every
 decision (which side of a cone a vertex lies on, whether an interval ends at
 a vertex, where a piece of an edge begins) is an exact integer cross product

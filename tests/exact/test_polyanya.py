@@ -181,3 +181,25 @@ def test_cell_centres_of_a_cell_size_that_is_no_power_of_two():
             assert tenth.length == pytest.approx(0.1 * unit.length, rel=1e-12)
             assert np.array_equal(tenth.path[0], start * 0.1) and np.array_equal(tenth.path[-1], goal * 0.1)
     assert misses > 0
+
+
+def test_the_mesh_is_built_once_per_scenario(monkeypatch):
+    from pathzoo import Scenario
+    from pathzoo.grid import navmesh
+    from pathzoo.grid.reference import anyangle_length
+
+    builds = []
+
+    def counting(blocked):
+        builds.append(1)
+        return navigation_mesh(blocked)
+
+    monkeypatch.setattr(navmesh, "navigation_mesh", counting)
+    occ = np.zeros((12, 12), dtype=bool)
+    occ[2:10, 6] = True
+    scenario = Scenario(id="wall", kind="grid2d", occupancy=occ, cell_size=1.0, start=(0.5, 5.5), goal=(11.5, 5.5))
+    planner = make_planner("exact.anyangle")
+    for seed in range(2):
+        assert planner.plan(scenario, budget=Budget(), rng=np.random.default_rng(seed)).status is Status.SOLVED
+    assert anyangle_length(scenario) == pytest.approx(math.hypot(5.5, 3.5) + 1 + math.hypot(4.5, 3.5), abs=1e-12)
+    assert len(builds) == 1
