@@ -58,6 +58,9 @@ class NavMesh:
         number among these corners; -1 for every other grid point.
     n_corners : int
         Number of corners.
+    component : ndarray of shape (P,) of int64
+        The connected component of each polygon (polygons joined by an
+        edge); a limit path joins two points only within one component.
     """
 
     shape: tuple[int, int]
@@ -68,6 +71,7 @@ class NavMesh:
     twin: np.ndarray
     corner: np.ndarray
     n_corners: int
+    component: np.ndarray
 
     @property
     def n_polygons(self) -> int:
@@ -149,6 +153,32 @@ def _boundaries(cell: np.ndarray, rect: np.ndarray, fill: bool, offsets: np.ndar
     return k
 
 
+@numba.njit(cache=True)
+def _components(offsets: np.ndarray, neighbour: np.ndarray) -> np.ndarray:
+    # label the polygons joined through edges, by depth-first search
+    n = len(offsets) - 1
+    label = np.full(n, -1, dtype=np.int64)
+    stack = np.empty(n, dtype=np.int64)
+    count = 0
+    for seed in range(n):
+        if label[seed] >= 0:
+            continue
+        label[seed] = count
+        top = 1
+        stack[0] = seed
+        while top > 0:
+            top -= 1
+            p = stack[top]
+            for i in range(offsets[p], offsets[p + 1]):
+                q = neighbour[i]
+                if q >= 0 and label[q] < 0:
+                    label[q] = count
+                    stack[top] = q
+                    top += 1
+        count += 1
+    return label
+
+
 def navigation_mesh(blocked: np.ndarray) -> NavMesh:
     """The rectangle mesh of a 2-D boolean grid (``True`` = blocked, indexed ``[row, col]``)."""
     blocked = np.ascontiguousarray(blocked, dtype=np.bool_)
@@ -181,9 +211,10 @@ def navigation_mesh(blocked: np.ndarray) -> NavMesh:
     n_corners = int(is_corner.sum())
     corner = np.full(is_corner.shape, -1, dtype=np.int32)
     corner[is_corner] = np.arange(n_corners, dtype=np.int32)
-    for a in (cell, offsets, vertex, neighbour, twin, corner):
+    component = _components(offsets, neighbour)
+    for a in (cell, offsets, vertex, neighbour, twin, corner, component):
         a.setflags(write=False)
-    return NavMesh((h, w), cell, offsets, vertex, neighbour, twin, corner, n_corners)
+    return NavMesh((h, w), cell, offsets, vertex, neighbour, twin, corner, n_corners, component)
 
 
 def polygons_at(mesh: NavMesh, x: int, y: int, scale: int) -> np.ndarray:

@@ -390,9 +390,13 @@ def polyanya_search(
     the goal is unreachable, or when the search stopped at
     ``max_expansions`` expansions (then ``finished`` is False).
     """
+    start_polys = polygons_at(mesh, start[0], start[1], scale)
+    goal_polys = polygons_at(mesh, goal[0], goal[1], scale)
+    if not np.isin(mesh.component[start_polys], mesh.component[goal_polys]).any():
+        return None, math.inf, 0, True  # no polygon path joins them: nothing to search
     roots, _, final, length, expansions, finished = _search(
         mesh.offsets, mesh.vertex, mesh.neighbour, mesh.twin, mesh.corner, mesh.n_corners, mesh.shape[1] + 1,
-        scale, polygons_at(mesh, start[0], start[1], scale), polygons_at(mesh, goal[0], goal[1], scale),
+        scale, start_polys, goal_polys,
         int(start[0]), int(start[1]), int(goal[0]), int(goal[1]), int(max_expansions),
     )
     if final < 0:

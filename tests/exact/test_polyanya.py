@@ -135,12 +135,14 @@ def test_mesh_covers_the_free_cells_and_its_edges_pair_up():
                 qlo, qhi = mesh.offsets[q], mesh.offsets[q + 1]
                 assert mesh.vertex[qlo + t] == b and mesh.vertex[qlo + (t + 1) % (qhi - qlo)] == a
                 assert mesh.neighbour[qlo + t] == p
-    # a pinch point belongs to the polygons on both free sides, which share no edge
+    # a pinch point belongs to the polygons on both free sides, which share no edge and no component
     pinch = np.zeros((2, 2), dtype=bool)
     pinch[0, 0] = pinch[1, 1] = True
     mesh = navigation_mesh(pinch)
     assert list(polygons_at(mesh, 1, 1, 1)) == [0, 1]
     assert (mesh.neighbour == -1).all()
+    assert mesh.component[0] != mesh.component[1]
+    assert anyangle_path(pinch, np.array([0.5, 1.5]), np.array([1.5, 0.5]), 1.0) is None
 
 
 def test_expansion_cap_stops_the_search():
