@@ -246,13 +246,13 @@ def _search(
         fry = float(ry)
         if ori > 0:
             continue  # cannot happen: the root is never inside the polygon it looks into
+        croot = rr
         if ori == 0:
             # the root lies on the interval's line: the path slides along it to the nearer endpoint and turns there
             du = (ux - rx) ** 2 + (uy - ry) ** 2
             dw = (wx - rx) ** 2 + (wy - ry) ** 2
             c = u if du <= dw else w
             cx, cy = (c % w1) * scale, (c // w1) * scale
-            croot = rr
             if cx != rx or cy != ry:
                 if corner[c] < 0:
                     continue
@@ -267,21 +267,10 @@ def _search(
                 nodes = _push(nodes, n_nodes, heap, cost, croot, 1, -1, -1, 0, 0, 0, 0)
                 n_nodes += 1
                 continue
-            cgv = root_g[croot]
-            for j in range(k + 1, k + n):
-                i = lo + j % n
-                q = neighbour[i]
-                if q < 0:
-                    continue
-                ax, ay, bx, by = _edge(vertex, lo, n, j, w1, scale)
-                hh = _h(float(cx), float(cy), float(ax), float(ay), float(bx), float(by), fgx, fgy)
-                nodes = _push(nodes, n_nodes, heap, cgv + hh, croot, 0, q, twin[i], ax - cx, ay - cy, bx - cx, by - cy)
-                n_nodes += 1
-            continue
         drx, dry, dlx, dly = nd[_RX], nd[_RY], nd[_LX], nd[_LY]
-        right_turn = _cross(drx, dry, wx - rx, wy - ry) == 0 and corner[w] >= 0
-        left_turn = _cross(dlx, dly, ux - rx, uy - ry) == 0 and corner[u] >= 0
-        if is_goal[p]:
+        right_turn = ori < 0 and _cross(drx, dry, wx - rx, wy - ry) == 0 and corner[w] >= 0
+        left_turn = ori < 0 and _cross(dlx, dly, ux - rx, uy - ry) == 0 and corner[u] >= 0
+        if ori < 0 and is_goal[p]:
             # the goal's polygon: straight through the interval, or round a corner at one of its ends
             ogr = _cross(drx, dry, gx - rx, gy - ry)
             ogl = _cross(gx - rx, gy - ry, dlx, dly)
@@ -324,36 +313,41 @@ def _search(
             if q < 0:
                 continue
             ax, ay, bx, by = _edge(vertex, lo, n, j, w1, scale)
-            oar = _cross(drx, dry, ax - rx, ay - ry)
-            obr = _cross(drx, dry, bx - rx, by - ry)
-            oal = _cross(ax - rx, ay - ry, dlx, dly)
-            obl = _cross(bx - rx, by - ry, dlx, dly)
-            m = 0
-            # observable piece: t in [lo_t, hi_t] (fractions of a->b) with both cross products >= 0;
-            # an end is 0: vertex a, 1: vertex b, 2: on the right ray, 3: on the left ray
-            lon, lod, loe = 0, 1, 0
-            hin, hid, hie = 1, 1, 1
-            empty = False
-            for side in range(2):
-                oa, ob, e = (oar, obr, 2) if side == 0 else (oal, obl, 3)
-                if oa < 0 and ob < 0:
-                    empty = True
-                elif oa < 0:  # t >= -oa / (ob - oa)
-                    if _less(lon, lod, -oa, ob - oa):
-                        lon, lod, loe = -oa, ob - oa, e
-                elif ob < 0:  # t <= oa / (oa - ob)
-                    if _less(oa, oa - ob, hin, hid):
-                        hin, hid, hie = oa, oa - ob, e
-            if not empty and _less(lon, lod, hin, hid):
-                pieces[m, 0], pieces[m, 1], pieces[m, 2] = rr, loe, hie
-                pieces[m, 3], pieces[m, 4], pieces[m, 5], pieces[m, 6] = lon, lod, hin, hid
-                m += 1
-            if right_root >= 0 and (oar < 0 or obr < 0):
-                _outside_piece(pieces, m, right_root, oar, obr, 2)  # seen from the interval's right end
-                m += 1
-            if left_root >= 0 and (oal < 0 or obl < 0):
-                _outside_piece(pieces, m, left_root, oal, obl, 3)  # seen from its left end
-                m += 1
+            if ori == 0:  # every far edge, whole, seen from the corner the path turned at
+                pieces[0, 0], pieces[0, 1], pieces[0, 2], pieces[0, 3] = croot, 0, 1, 0
+                pieces[0, 4], pieces[0, 5], pieces[0, 6] = 1, 1, 1
+                m = 1
+            else:
+                oar = _cross(drx, dry, ax - rx, ay - ry)
+                obr = _cross(drx, dry, bx - rx, by - ry)
+                oal = _cross(ax - rx, ay - ry, dlx, dly)
+                obl = _cross(bx - rx, by - ry, dlx, dly)
+                m = 0
+                # observable piece: t in [lo_t, hi_t] (fractions of a->b) with both cross products >= 0;
+                # an end is 0: vertex a, 1: vertex b, 2: on the right ray, 3: on the left ray
+                lon, lod, loe = 0, 1, 0
+                hin, hid, hie = 1, 1, 1
+                empty = False
+                for side in range(2):
+                    oa, ob, e = (oar, obr, 2) if side == 0 else (oal, obl, 3)
+                    if oa < 0 and ob < 0:
+                        empty = True
+                    elif oa < 0:  # t >= -oa / (ob - oa)
+                        if _less(lon, lod, -oa, ob - oa):
+                            lon, lod, loe = -oa, ob - oa, e
+                    elif ob < 0:  # t <= oa / (oa - ob)
+                        if _less(oa, oa - ob, hin, hid):
+                            hin, hid, hie = oa, oa - ob, e
+                if not empty and _less(lon, lod, hin, hid):
+                    pieces[m, 0], pieces[m, 1], pieces[m, 2] = rr, loe, hie
+                    pieces[m, 3], pieces[m, 4], pieces[m, 5], pieces[m, 6] = lon, lod, hin, hid
+                    m += 1
+                if right_root >= 0 and (oar < 0 or obr < 0):
+                    _outside_piece(pieces, m, right_root, oar, obr, 2)  # seen from the interval's right end
+                    m += 1
+                if left_root >= 0 and (oal < 0 or obl < 0):
+                    _outside_piece(pieces, m, left_root, oal, obl, 3)  # seen from its left end
+                    m += 1
             for t in range(m):
                 sr = pieces[t, 0]
                 srx, sry = roots[sr, _RPX], roots[sr, _RPY]
