@@ -16,7 +16,7 @@ METRICS: tuple[LazyMetric, ...] = (
                unit="m", direction="min"),
     LazyMetric("length_ratio", "length / exact graph optimum (any-angle paths may be < 1)",
                "pathzoo.metrics.optimality:LengthRatio", unit="1", direction="min"),
-    LazyMetric("length_ratio_anyangle", "length / exact any-angle optimum (grid2d up to 256x256; never below 1)",
+    LazyMetric("length_ratio_anyangle", "length / exact any-angle optimum (grid2d up to 4096x4096; never below 1)",
                "pathzoo.metrics.optimality:LengthRatioAnyAngle", unit="1", direction="min"),
     LazyMetric("length_ratio_anyangle_bound",
                "length / Lazy Theta* length (air3d; an upper bound on the any-angle optimum, may be < 1)",

@@ -1,75 +1,69 @@
-"""The exact any-angle optimum of a 2-D grid under the closed-cell rule: A* on a lazy visibility graph.
+"""The exact any-angle optimum of a 2-D grid under the closed-cell rule: Polyanya on a rectangle mesh.
 
 What is computed
 ----------------
 A valid path (``docs/corner-rule.md``) may not touch any blocked cell's
-closed square. The set of valid paths is open, so the shortest valid path
-does not exist; its length is an *infimum*, approached by paths hugging
-obstacle corners ever more closely. This module computes that infimum and
-a *limit path* attaining it: a polyline that may touch blocked cells'
-boundaries (slide along an edge, turn at a corner) but
+closed square, so the valid paths form an open set and there is no shortest
+one; the optimum is an *infimum*, attained by a *limit path* that may touch
+blocked cells (slide along an edge, turn at a corner) but never enters a
+blocked cell, never runs along the edge between two blocked cells and never
+crosses a *pinch* (a grid point where two blocked cells meet diagonally).
+Every valid path is at least as long, and valid paths come arbitrarily
+close to it.
 
-- never enters a blocked cell's interior,
-- never runs along an edge shared by two blocked cells (the inside of a wall),
-- never passes through a *pinch*: a grid point where two blocked cells touch
-  diagonally and leave no gap, since no valid path can cross there.
-
-Every valid path is at least as long as the limit path, and valid paths
-come arbitrarily close to it, so its length is the exact any-angle optimum.
-
-Algorithm
----------
-The limit path bends only at *convex corners*: grid points where exactly
-one of the four surrounding cells is blocked (cells outside the map count
-as blocked); a grid point with two or more blocked cells around it leaves
-no reflex angle of free space to turn around. The vertices are these
-corners, the start and the goal. Two vertices are joined when the segment
-between them passes the limit-path rules above (:func:`visible`, exact
-integer arithmetic) and is tangent to the blocked cell at each corner end
-(the standard bitangent pruning of visibility graphs: a shortest path
-turning at a corner keeps the corner's blocked cell on the inside of the
-turn). A* with the straight-line heuristic searches this graph, checking
-an edge's visibility only when it would improve the target's distance.
-
-Every visibility test is exact integer arithmetic: corners are scaled by
-:data:`SCALE`, and segments from the start or goal by a power of two that
-makes their float coordinates integers (compiled int64 code on the
-1/:data:`SCALE` lattice, where every cell centre lies; Python integers
-elsewhere). Distances are floats.
-
-Cost: each expansion scans every vertex (a quick tangency test, then the
-visibility walk for the survivors that could improve). Maps up to
-:data:`MAX_EXACT_CELLS` cells are searched; larger ones raise
-:class:`AnyAngleError` instead of being approximated.
+How
+---
+:func:`anyangle_path` runs Polyanya (:mod:`pathzoo.grid.polyanya`) on the
+map's rectangle mesh (:mod:`pathzoo.grid.navmesh`, built once per scenario
+by :func:`~pathzoo.grid.navmesh.scenario_mesh`), in exact integer arithmetic
+on a lattice of ``scale`` units per cell, the smallest power of two on which
+both endpoints lie (2 for cell centres; endpoints within :data:`SNAP_CELLS`
+of the lattice are moved onto it). Every segment of the result is then
+checked with :func:`pathzoo.grid.visibility_graph.visible`, the independent
+exact segment test of the visibility-graph search. Endpoints so fine that
+``scale * max(H, W)`` exceeds :data:`~pathzoo.grid.polyanya.MAX_LATTICE_EXTENT`
+are searched with the visibility graph instead on maps of at most
+:data:`MAX_VISIBILITY_CELLS` cells, and refused on larger ones; maps larger
+than :data:`MAX_EXACT_CELLS` are refused.
 """
 
 from __future__ import annotations
 
-import heapq
-import math
 from dataclasses import dataclass
+from typing import Callable, Literal
 
-import numba
 import numpy as np
 
+from pathzoo.grid.navmesh import NavMesh, navigation_mesh
+from pathzoo.grid.polyanya import MAX_LATTICE_EXTENT, polyanya_search
 from pathzoo.grid.segments import to_cell_units
+from pathzoo.grid.visibility_graph import SCALE, visibility_search, visible
 
 __all__ = [
     "SCALE",
     "MAX_EXACT_CELLS",
+    "MAX_VISIBILITY_CELLS",
+    "SNAP_CELLS",
     "AnyAngleError",
     "SearchCapReached",
     "AnyAnglePath",
     "anyangle_path",
-    "convex_corners",
-    "visible",
 ]
 
-SCALE = 1024
-"""Integer units per cell for corner-to-corner tests and endpoints on the 1/SCALE lattice."""
+MAX_EXACT_CELLS = 4096 * 4096
+"""Largest map (in cells) searched: its mesh takes about 10 bytes per cell (160 MB here)."""
 
-MAX_EXACT_CELLS = 256 * 256
-"""Largest map (in cells) searched; larger maps raise :class:`AnyAngleError`."""
+SNAP_CELLS = 1e-9
+"""Endpoints this close (per axis, in cells) to Polyanya's lattice are searched from the lattice point.
+
+A cell centre of a map whose cell size is no power of two comes out of the
+division by the cell size a rounding error (about 1e-13 cell) away from its
+half-integer. The optimum from the moved endpoints differs from the true one
+by at most the distance moved, and the returned path keeps the exact endpoints.
+"""
+
+MAX_VISIBILITY_CELLS = 256 * 256
+"""Largest map on which the visibility graph (cost N**1.5 to N**2 in the cells N) is searched."""
 
 
 class AnyAngleError(ValueError):
@@ -94,7 +88,7 @@ class AnyAnglePath:
     corners : ndarray of shape (N - 2, 2) of int64
         The inner vertices as grid points ``(x, y)`` in cells.
     expansions : int
-        Vertices the search expanded.
+        Search nodes expanded (Polyanya) or vertices expanded (visibility graph).
     """
 
     path: np.ndarray
@@ -103,260 +97,109 @@ class AnyAnglePath:
     expansions: int
 
 
-@numba.njit(cache=True)
-def _blk(blocked: np.ndarray, r: int, c: int) -> bool:
+def _lattice(ends: np.ndarray, side: int) -> tuple[int, np.ndarray] | None:
+    """The smallest usable power-of-two scale putting both endpoints within :data:`SNAP_CELLS` of its lattice.
+
+    Returns the scale and the endpoints moved onto the lattice, or None when
+    even the finest lattice allowed by :data:`MAX_LATTICE_EXTENT` is too coarse.
+    """
+    if not np.isfinite(ends).all():
+        return None
+    scale = 1
+    while scale * side <= MAX_LATTICE_EXTENT:
+        snapped = np.round(ends * scale) / scale
+        if (np.abs(snapped - ends) <= SNAP_CELLS).all():
+            return scale, snapped
+        scale *= 2
+    return None
+
+
+def _polyanya(
+    blocked: np.ndarray, ends: np.ndarray, scale: int, get_mesh: Callable[[], NavMesh] | None, cap: int
+) -> tuple[np.ndarray | None, int, bool]:
     h, w = blocked.shape
-    return r < 0 or c < 0 or r >= h or c >= w or blocked[r, c]
-
-
-@numba.njit(cache=True)
-def _along_line(blocked: np.ndarray, line: int, k_lo: int, k_end: int, vertical: bool) -> bool:
-    # a segment lying on grid line `line` (x = line if vertical, else y = line) over the unit pieces k_lo..k_end-1:
-    # every piece needs a free cell on one side, and every grid point between two pieces needs one side free
-    # on both pieces (otherwise it is a pinch or the inside of a wall)
-    for k in range(k_lo, k_end):
-        if vertical:
-            a, b = _blk(blocked, k, line - 1), _blk(blocked, k, line)
-        else:
-            a, b = _blk(blocked, line - 1, k), _blk(blocked, line, k)
-        if a and b:
-            return False
-        if k + 1 < k_end:
-            if vertical:
-                a2, b2 = _blk(blocked, k + 1, line - 1), _blk(blocked, k + 1, line)
-            else:
-                a2, b2 = _blk(blocked, line - 1, k + 1), _blk(blocked, line, k + 1)
-            if (a or a2) and (b or b2):
-                return False
-    return True
-
-
-@numba.njit(cache=True)
-def visible(blocked: np.ndarray, s: int, px: int, py: int, qx: int, qy: int) -> bool:
-    """True when the segment may be part of a limit path (integer units, ``s`` per cell).
-
-    The segment's relative interior must avoid every blocked cell's interior,
-    every edge between two blocked cells and every pinch point; its
-    endpoints are not checked. ``blocked`` is indexed ``[row, col]`` with
-    ``x`` along columns; cells outside the grid are blocked.
-    """
-    if px > qx or (px == qx and py > qy):
-        px, py, qx, qy = qx, qy, px, py
-    dx = qx - px
-    dy = qy - py
-    if dx == 0 and dy == 0:
-        return True
-    if dx == 0:
-        if px % s == 0:
-            return _along_line(blocked, px // s, py // s, -((-qy) // s), True)
-        c = px // s
-        for r in range(py // s, -((-qy) // s)):
-            if _blk(blocked, r, c):
-                return False
-        return True
-    if dy == 0:
-        if py % s == 0:
-            return _along_line(blocked, py // s, px // s, -((-qx) // s), False)
-        r = py // s
-        for c in range(px // s, -((-qx) // s)):
-            if _blk(blocked, r, c):
-                return False
-        return True
-    den = s * dx  # y = Y / dx, so row boundaries r*s sit at Y = r*den
-    for c in range(px // s, -((-qx) // s)):
-        xa = max(px, c * s)
-        xb = min(qx, (c + 1) * s)
-        ya = py * dx + (xa - px) * dy
-        yb = py * dx + (xb - px) * dy
-        ylo, yhi = min(ya, yb), max(ya, yb)
-        for r in range(ylo // den, -((-yhi) // den)):
-            if _blk(blocked, r, c):
-                return False
-        x = (c + 1) * s
-        if x < qx:
-            num = py * dx + (x - px) * dy
-            if num % den == 0:  # passes through the grid point (c + 1, j)
-                j = num // den
-                if dy > 0:
-                    pinch = _blk(blocked, j, c) and _blk(blocked, j - 1, c + 1)
-                else:
-                    pinch = _blk(blocked, j - 1, c) and _blk(blocked, j, c + 1)
-                if pinch:
-                    return False
-    return True
-
-
-def convex_corners(blocked: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Grid points with exactly one blocked cell around them, and the direction of that cell.
-
-    Returns
-    -------
-    points : ndarray of shape (K, 2) of int64
-        ``(x, y)`` in cells.
-    quadrant : ndarray of shape (K, 2) of int64
-        ``(sx, sy)`` in {-1, +1}: the blocked cell lies towards ``+sx`` in x and ``+sy`` in y.
-    """
-    h, w = blocked.shape
-    pad = np.ones((h + 2, w + 2), dtype=np.int8)
-    pad[1:-1, 1:-1] = blocked
-    # grid point (x, y) is surrounded by padded cells [y:y+2, x:x+2] (cell (r, c) is pad[r + 1, c + 1])
-    ul, ur, ll, lr = pad[:-1, :-1], pad[:-1, 1:], pad[1:, :-1], pad[1:, 1:]  # rows y-1 / y, cols x-1 / x
-    count = ul + ur + ll + lr
-    ys, xs = np.nonzero(count == 1)
-    sx = np.where(ur[ys, xs] | lr[ys, xs], 1, -1)
-    sy = np.where(ll[ys, xs] | lr[ys, xs], 1, -1)
-    return np.stack([xs, ys], axis=1).astype(np.int64), np.stack([sx, sy], axis=1).astype(np.int64)
-
-
-@numba.njit(cache=True)
-def _search(
-    blocked: np.ndarray,
-    fx: np.ndarray,
-    fy: np.ndarray,
-    qx: np.ndarray,
-    qy: np.ndarray,
-    start_sees: np.ndarray,
-    goal_sees: np.ndarray,
-    max_expansions: int,
-) -> tuple[np.ndarray, int, bool]:
-    # A* from vertex 0 (start) to vertex 1 (goal) over vertices at (fx, fy) (cell units; corners are integers);
-    # qx = qy = 0 for start and goal (no tangency condition); the endpoints' visibility is given
-    # (start_sees[v], goal_sees[v]), corner-to-corner visibility is tested here on the SCALE lattice.
-    # Returns the parent array (-1 = unreached), the number of expansions and whether the search finished
-    # (goal reached or open list empty) within max_expansions.
-    n = len(fx)
-    expansions = 0
-    g = np.full(n, np.inf)
-    parent = np.full(n, -1, dtype=np.int64)
-    closed = np.zeros(n, dtype=np.bool_)
-    gx, gy = fx[1], fy[1]
-    g[0] = 0.0
-    heap = [(math.hypot(fx[0] - gx, fy[0] - gy), 0)]
-    while heap:
-        _, u = heapq.heappop(heap)
-        if closed[u]:
-            continue
-        if u == 1:
-            return parent, expansions, True
-        if expansions >= max_expansions:
-            return parent, expansions, False
-        expansions += 1
-        closed[u] = True
-        ux, uy, usx, usy = fx[u], fy[u], qx[u], qy[u]
-        for v in range(n):
-            if closed[v]:
-                continue
-            dx = fx[v] - ux
-            dy = fy[v] - uy
-            t = dx * dy
-            if t * usx * usy > 0 or t * qx[v] * qy[v] > 0:
-                continue  # not tangent at u's or v's corner
-            cand = g[u] + math.hypot(dx, dy)
-            if cand >= g[v]:
-                continue
-            if u == 0:
-                seen = start_sees[v]
-            elif v == 1:
-                seen = goal_sees[u]
-            else:
-                seen = visible(
-                    blocked, SCALE, int(ux) * SCALE, int(uy) * SCALE, int(fx[v]) * SCALE, int(fy[v]) * SCALE
-                )
-            if not seen:
-                continue
-            g[v] = cand
-            parent[v] = u
-            heapq.heappush(heap, (cand + math.hypot(fx[v] - gx, fy[v] - gy), v))
-    return parent, expansions, True
-
-
-@numba.njit(cache=True)
-def _sees_corners(blocked: np.ndarray, s: int, px: int, py: int, cx: np.ndarray, cy: np.ndarray) -> np.ndarray:
-    out = np.empty(len(cx), dtype=np.bool_)
-    for k in range(len(cx)):
-        out[k] = visible(blocked, s, px, py, cx[k] * s, cy[k] * s)
-    return out
-
-
-def _endpoint_visibility(blocked: np.ndarray, point: np.ndarray, ends: np.ndarray, corners: np.ndarray) -> np.ndarray:
-    """Whether ``point`` sees each of the two ``ends`` (cell units) and each of the integer ``corners``.
-
-    Exact for any floats: a float is a dyadic rational, so scaling by the
-    largest power of two among the denominators (at least :data:`SCALE`)
-    makes every coordinate an integer. On the 1/:data:`SCALE` lattice (every
-    cell centre) the corners are tested in compiled int64 code; otherwise
-    with :func:`visible`'s Python version on Python's unbounded integers.
-    """
-    coords = [float(v) for v in (*point, *np.ravel(ends))]
-    scale = max([SCALE] + [v.as_integer_ratio()[1] for v in coords])
-
-    def scaled(v: float) -> int:
-        num, den = v.as_integer_ratio()
-        return num * (scale // den)
-
-    px, py = scaled(coords[0]), scaled(coords[1])
-    exact = visible.py_func
-    sees_ends = [exact(blocked, scale, px, py, scaled(coords[k]), scaled(coords[k + 1])) for k in (2, 4)]
-    if scale == SCALE:
-        sees_corners = _sees_corners(blocked, SCALE, px, py, corners[:, 0], corners[:, 1])
-    else:
-        sees_corners = np.array(
-            [exact(blocked, scale, px, py, int(x) * scale, int(y) * scale) for x, y in corners], dtype=np.bool_
-        )
-    return np.concatenate([np.array(sees_ends, dtype=np.bool_), sees_corners])
+    if not all(0.0 <= x <= w and 0.0 <= y <= h for x, y in ends):
+        return None, 0, True  # outside the map: touches the border's blocked cells
+    mesh = navigation_mesh(blocked) if get_mesh is None else get_mesh()
+    if mesh.shape != blocked.shape:
+        raise ValueError(f"the navigation mesh is for a {mesh.shape} grid, not {blocked.shape}")
+    start, goal = ((int(x * scale), int(y * scale)) for x, y in ends)
+    points, _, expansions, finished = polyanya_search(mesh, scale, start, goal, cap)
+    if points is None:
+        return None, expansions, finished
+    for (px, py), (qx, qy) in zip(points[:-1], points[1:]):
+        if not visible(blocked, scale, px, py, qx, qy):
+            raise AnyAngleError(f"internal check: a segment of the Polyanya path fails the exact test: {points}")
+    return np.array(points, dtype=np.float64) / scale, expansions, True
 
 
 def anyangle_path(
-    blocked: np.ndarray, start: np.ndarray, goal: np.ndarray, cell_size: float, max_expansions: int | None = None
+    blocked: np.ndarray,
+    start: np.ndarray,
+    goal: np.ndarray,
+    cell_size: float,
+    max_expansions: int | None = None,
+    mesh: Callable[[], NavMesh] | None = None,
+    method: Literal["polyanya", "visibility"] = "polyanya",
 ) -> AnyAnglePath | None:
     """The exact any-angle optimum from ``start`` to ``goal`` (world coordinates), or None if unreachable.
 
     World coordinates become cell units with
     :func:`pathzoo.grid.segments.to_cell_units`, as the validator converts them.
 
-    ``max_expansions`` caps the vertices the search expands.
+    Parameters
+    ----------
+    max_expansions
+        Caps the search nodes expanded.
+    mesh
+        A function returning the map's navigation mesh (e.g. the scenario's
+        cached :func:`~pathzoo.grid.navmesh.scenario_mesh`), called only when
+        Polyanya runs; without it the mesh is built here.
+    method
+        ``"polyanya"`` (default), or ``"visibility"``: the visibility-graph
+        search, the independent reference of the tests (maps up to
+        :data:`MAX_VISIBILITY_CELLS` cells).
 
     Raises
     ------
     AnyAngleError
-        When the map is not 2-D or has more than :data:`MAX_EXACT_CELLS` cells.
+        When the map is not 2-D or too large for the method, or the endpoints
+        are too fine a fraction of a cell for Polyanya's lattice on a map
+        larger than :data:`MAX_VISIBILITY_CELLS`.
     SearchCapReached
-        When ``max_expansions`` vertices were expanded before the goal was reached.
+        When ``max_expansions`` nodes were expanded before the goal was reached.
     """
     blocked = np.ascontiguousarray(blocked, dtype=np.bool_)
     if blocked.ndim != 2:
         raise AnyAngleError(f"the any-angle optimum needs a 2-D grid, got {blocked.ndim}-D")
-    if blocked.size > MAX_EXACT_CELLS:
-        h, w = blocked.shape
-        raise AnyAngleError(
-            f"map of {h}x{w} cells is larger than the {MAX_EXACT_CELLS} cells the exact any-angle search covers"
-        )
+    h, w = blocked.shape
+    limit = MAX_EXACT_CELLS if method == "polyanya" else MAX_VISIBILITY_CELLS
+    if blocked.size > limit:
+        raise AnyAngleError(f"map of {h}x{w} cells is larger than the {limit} cells the exact any-angle search covers")
     start_xy = np.asarray(start, dtype=np.float64)[:2]
     goal_xy = np.asarray(goal, dtype=np.float64)[:2]
-    corners, quadrant = convex_corners(blocked)
-    cells = np.concatenate([to_cell_units(np.stack([start_xy, goal_xy]), cell_size), corners.astype(np.float64)])
-    qx = np.concatenate([[0, 0], quadrant[:, 0]]).astype(np.int64)
-    qy = np.concatenate([[0, 0], quadrant[:, 1]]).astype(np.int64)
-    expansions = 0
-    if np.array_equal(cells[0], cells[1]):
-        parent = np.array([-1, 0], dtype=np.int64)
+    ends = to_cell_units(np.stack([start_xy, goal_xy]), cell_size)
+    cap = np.iinfo(np.int64).max if max_expansions is None else int(max_expansions)
+    lattice = _lattice(ends, max(h, w)) if method == "polyanya" else None
+    cells: np.ndarray | None
+    if np.array_equal(ends[0], ends[1]):
+        cells, expansions, finished = ends.copy(), 0, True  # as the visibility graph answers it
+    elif lattice is not None:
+        cells, expansions, finished = _polyanya(blocked, lattice[1], lattice[0], mesh, cap)
+    elif blocked.size <= MAX_VISIBILITY_CELLS:
+        cells, expansions, finished = visibility_search(blocked, ends[0], ends[1], cap)
     else:
-        start_sees = _endpoint_visibility(blocked, cells[0], cells[:2], corners)
-        goal_sees = _endpoint_visibility(blocked, cells[1], cells[:2], corners)
-        cap = np.iinfo(np.int64).max if max_expansions is None else int(max_expansions)
-        fx, fy = np.ascontiguousarray(cells[:, 0]), np.ascontiguousarray(cells[:, 1])
-        parent, expansions, finished = _search(blocked, fx, fy, qx, qy, start_sees, goal_sees, cap)
-        if not finished:
-            raise SearchCapReached(f"the any-angle search expanded {expansions} vertices without reaching the goal")
-    if parent[1] < 0:
+        raise AnyAngleError(
+            f"the endpoints are not within {SNAP_CELLS} cell of a lattice of 1/{MAX_LATTICE_EXTENT // max(h, w)} "
+            f"cell, which the exact search of a {h}x{w} map needs"
+        )
+    if not finished:
+        raise SearchCapReached(f"the any-angle search expanded {expansions} nodes without reaching the goal")
+    if cells is None:
         return None
-    order = [1]
-    while order[-1] != 0:
-        order.append(int(parent[order[-1]]))
-    order = order[::-1]
-    xy = cells[order] * cell_size
+    xy = cells * cell_size
     xy[0], xy[-1] = start_xy, goal_xy
     length = float(np.hypot(*np.diff(xy, axis=0).T).sum()) if len(xy) > 1 else 0.0
-    inner = cells[order[1:-1]].astype(np.int64)
     xy.setflags(write=False)
-    return AnyAnglePath(path=xy, length=length, corners=inner.astype(np.int64).reshape(-1, 2), expansions=expansions)
+    inner = np.round(cells[1:-1]).astype(np.int64).reshape(-1, 2)
+    return AnyAnglePath(path=xy, length=length, corners=inner, expansions=expansions)

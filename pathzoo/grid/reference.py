@@ -39,6 +39,7 @@ import numpy as np
 
 from pathzoo.core.object_memo import ObjectMemo
 from pathzoo.grid.anyangle import AnyAngleError, AnyAnglePath, anyangle_path
+from pathzoo.grid.navmesh import scenario_mesh
 from pathzoo.grid.paths import centre_path
 
 if TYPE_CHECKING:
@@ -147,7 +148,9 @@ def _compute_anyangle(scenario: "Scenario") -> AnyAnglePath | None | AnyAngleErr
     if scenario.kind not in ANYANGLE_KINDS:
         return AnyAngleError(f"no any-angle optimum for kind {scenario.kind!r} (only {sorted(ANYANGLE_KINDS)})")
     try:
-        return anyangle_path(scenario.blocked, scenario.start, scenario.goal, scenario.cell_size)
+        return anyangle_path(
+            scenario.blocked, scenario.start, scenario.goal, scenario.cell_size, mesh=lambda: scenario_mesh(scenario)
+        )
     except AnyAngleError as exc:
         return exc
 
@@ -161,8 +164,9 @@ def anyangle_reference(scenario: "Scenario") -> AnyAnglePath | None:
     ------
     AnyAngleError
         For kinds outside :data:`ANYANGLE_KINDS`, maps larger than
-        :data:`pathzoo.grid.anyangle.MAX_EXACT_CELLS` and endpoints off the
-        search's lattice: the optimum is then not computed, never approximated.
+        :data:`pathzoo.grid.anyangle.MAX_EXACT_CELLS` and endpoints too fine
+        for the search's lattice on large maps: the optimum is then not
+        computed, never approximated.
     """
     ref = _anyangle_references.value(scenario, lambda: _compute_anyangle(scenario))
     if isinstance(ref, AnyAngleError):

@@ -19,7 +19,7 @@ PLANNERS: tuple[LazyPlanner, ...] = (
     LazyPlanner("exact.thetastar", "Theta* any-angle search (Nash et al. 2007); never longer than the grid optimum",
                 "pathzoo_exact.thetastar:ThetaStarPlanner", kinds=frozenset({"grid2d"}), path_model="anyangle"),
     LazyPlanner("exact.anyangle",
-                "exact any-angle optimum (visibility graph over corners), pushed 1e-6 cells off obstacles",
+                "exact any-angle optimum (Polyanya on a rectangle mesh), pushed 1e-6 cells off obstacles",
                 "pathzoo_exact.anyangle:AnyAnglePlanner", kinds=frozenset({"grid2d"}), path_model="anyangle"),
     LazyPlanner("exact.lazytheta3d", "Lazy Theta* in air volumes (Nash et al. 2010): a short any-angle path whose "
                 "length bounds the any-angle optimum from above",

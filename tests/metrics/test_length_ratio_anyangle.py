@@ -42,8 +42,11 @@ def test_never_below_one_for_planners_paths():
     assert ratio <= 1.0 + 1e-5  # exact.anyangle itself
 
 
-def test_nan_when_not_computed():
-    big = open_grid(257, 256, start=(0.5, 0.5), goal=(3.5, 4.5))
-    assert math.isnan(METRIC.compute(big, record([(0.5, 0.5), (3.5, 4.5)])))
+def test_computed_on_a_512_map_and_nan_when_not_computed():
+    big = open_grid(512, 512, start=(0.5, 0.5), goal=(3.5, 4.5))
+    assert METRIC.compute(big, record([(0.5, 0.5), (3.5, 4.5)])) == pytest.approx(1.0, abs=1e-12)
+    # endpoints that are no fraction 1/2**k of a cell are searched only on maps of up to 256 x 256 cells
+    off_lattice = open_grid(257, 256, start=(0.1, 0.5), goal=(3.5, 4.5))
+    assert math.isnan(METRIC.compute(off_lattice, record([(0.1, 0.5), (3.5, 4.5)])))
     sc = open_grid(start=(0.5, 0.5), goal=(3.5, 4.5))
     assert math.isnan(METRIC.compute(sc, record(None, status=RunStatus.FAILED)))
