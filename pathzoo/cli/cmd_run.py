@@ -76,6 +76,9 @@ def _harness_info_on_stderr() -> Iterator[None]:
 
 def _run(args: argparse.Namespace) -> int:
     executor = executor_of(args)
+    from pathzoo.analysis.frame import metric_info
+
+    metric_info(args.metric)  # a mistyped --metric fails now, not after every run
     from pathzoo.harness.launch import start_server
 
     start_server()  # it imports while this process reads the experiment; the judge and the workers are its forks
