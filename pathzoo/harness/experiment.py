@@ -107,6 +107,9 @@ MAX_RUNS = 2_000_000
 MAX_SEEDS = 100_000
 """Most seeds per experiment (a larger count is almost surely a typo, and would exhaust memory)."""
 
+MAX_INT = 2**63 - 1
+"""Largest seed, seed index or budget count: the database stores them as signed 64-bit integers."""
+
 
 def resolve_seeds(seeds: int | Iterable[int]) -> tuple[int, ...]:
     if isinstance(seeds, bool):
@@ -121,13 +124,36 @@ def resolve_seeds(seeds: int | Iterable[int]) -> tuple[int, ...]:
         out = tuple(seeds)
     except TypeError:
         raise InvalidExperimentError(f"seeds must be a count or a list of seed indices, got {seeds!r}") from None
-    if not out or any(isinstance(s, bool) or not isinstance(s, int) or s < 0 for s in out):
-        raise InvalidExperimentError(f"seed indices must be a non-empty list of integers >= 0, got {list(out)!r}")
+    if not out or any(isinstance(s, bool) or not isinstance(s, int) or not 0 <= s <= MAX_INT for s in out):
+        raise InvalidExperimentError(
+            f"seed indices must be a non-empty list of integers in [0, 2**63-1], got {_short(list(out))}"
+        )
     if len(out) > MAX_SEEDS:
         raise InvalidExperimentError(f"at most {MAX_SEEDS} seed indices, got {len(out)}")
     if len(set(out)) != len(out):
         raise InvalidExperimentError(f"seed indices must be distinct, got {list(out)!r}")
     return out
+
+
+def _short(value: Any, limit: int = 80) -> str:
+    """``repr(value)`` cut to ``limit`` characters, so an error message stays one short line."""
+    text = repr(value)
+    return text if len(text) <= limit else text[: limit - 3] + "..."
+
+
+def check_budget(budget: Budget) -> Budget:
+    """``budget`` if its counts fit the database's 64-bit integers.
+
+    Raises
+    ------
+    InvalidExperimentError
+        Naming the count that is too large.
+    """
+    for name in ("iterations", "evaluations"):
+        value = getattr(budget, name)
+        if value is not None and value > MAX_INT:
+            raise InvalidExperimentError(f"budget.{name} must be at most 2**63-1, got {_short(value)}")
+    return budget
 
 
 def _check_timeout(value: Any) -> float:
@@ -143,8 +169,8 @@ def _check_name(value: Any) -> str:
 
 
 def _check_seed(value: Any) -> int:
-    if isinstance(value, bool) or not isinstance(value, int):
-        raise InvalidExperimentError(f"seed must be an integer, got {value!r}")
+    if isinstance(value, bool) or not isinstance(value, int) or not -MAX_INT - 1 <= value <= MAX_INT:
+        raise InvalidExperimentError(f"seed must be a 64-bit integer, got {_short(value)}")
     return value
 
 
@@ -299,10 +325,11 @@ class Experiment:
         budget = DEFAULT_BUDGET if budget is None else budget
         if not isinstance(budget, Budget):
             raise InvalidExperimentError(f"budget must be a pathzoo.Budget, got {budget!r}")
+        check_budget(budget)
         if timeout_s is None:
             timeout_s = DEFAULT_TIMEOUT_NO_TIME_S if budget.time_s is None else budget.time_s + TIMEOUT_MARGIN_S
         timeout_s = _check_timeout(timeout_s)
-        return cls(
+        experiment = cls(
             name=name,
             seed=seed,
             planners=tuple(specs),
@@ -314,6 +341,14 @@ class Experiment:
             db=None if db is None else Path(db),
             source=_source,
         )
+        if not experiment.pairs():
+            supported = sorted({k for p in experiment.planners for k in p.planner_class.kinds})
+            given = sorted({s.kind for s in experiment.scenarios})
+            raise InvalidExperimentError(
+                f"nothing to run: no planner supports any of the scenarios (the planners support "
+                f"{', '.join(supported) or 'no kind'}; the scenarios are {', '.join(given)})"
+            )
+        return experiment
 
     @classmethod
     def from_toml(cls, path: str | Path) -> "Experiment":
@@ -389,7 +424,8 @@ class Experiment:
         if "budget" in exp:
             if not isinstance(exp["budget"], dict):
                 raise bad("experiment.budget", "must be a table such as { time_s = 5 }")
-            budget = checked("experiment.budget", lambda: Budget.from_mapping(exp["budget"], where="budget"))
+            budget = checked("experiment.budget",
+                             lambda: check_budget(Budget.from_mapping(exp["budget"], where="budget")))
         base = path.resolve().parent
         specs: list[ScenarioSpec] = []
         for i, item in enumerate(scenarios):

@@ -84,6 +84,7 @@ class OmplPlanner(Planner):
 
     kinds: ClassVar[frozenset[str]] = frozenset({"grid2d", "terrain"})
     version: ClassVar[str] = "2"
+    requires: ClassVar[Mapping[str, str]] = {"ompl": "ompl"}
     ompl_class: ClassVar[str] = ""
     anytime: ClassVar[bool] = False
 
