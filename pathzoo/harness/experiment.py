@@ -25,12 +25,16 @@ parameters that differ from the defaults (docs/configurations.md).
 
 Scenario entries are registered ids, glob patterns of registered ids
 (``"movingai.arena.*"``) or file paths (anything with a ``/`` or a scenario
-file suffix; relative paths are relative to the TOML file). ``scenarios`` may
-also be written as a top-level key before ``[experiment]``.
+file suffix; relative paths are relative to the TOML file). A ``.scen`` file
+gives all its problems; ``"maps/den312d.scen#12"`` gives the problem at the
+0-based index 12 only, and ``"maps/den312d.scen#den312d.1?"`` those whose id
+(or index) matches the glob. ``scenarios`` may also be written as a top-level
+key before ``[experiment]``.
 """
 
 from __future__ import annotations
 
+import fnmatch
 import math
 import tomllib
 from dataclasses import dataclass, field
@@ -80,11 +84,15 @@ def _resolve_scenarios(
         elif isinstance(item, Scenario):
             add(ScenarioSpec.of_object(item))
         elif isinstance(item, Path) or (isinstance(item, str) and looks_like_path(item)):
-            path = Path(item).expanduser()
+            name, selector = _split_selector(item, base)
+            path = Path(name).expanduser()
             if base is not None and not path.is_absolute():
                 path = base / path
             location = str(path.resolve())
-            for sc in load_scenarios(Path(location)):
+            if selector is not None and path.suffix.lower() != ".scen":
+                raise InvalidExperimentError(f"{item}: '#' selects problems of a .scen file, and {path.name} is not one")
+            found = load_scenarios(Path(location))
+            for sc in found if selector is None else _select_problems(found, selector, str(item)):
                 add(ScenarioSpec(sc.id, sc.kind, "file", location))
         elif isinstance(item, str):
             registry = get_registry()
@@ -99,6 +107,48 @@ def _resolve_scenarios(
     if not specs:
         raise InvalidExperimentError("no scenarios given")
     return tuple(specs.values())
+
+
+def _split_selector(item: "str | Path", base: Path | None) -> tuple["str | Path", str | None]:
+    """``("maps/x.scen", "12")`` for ``"maps/x.scen#12"``; the item and None without a ``#`` selector.
+
+    A ``#`` belongs to the file name when a file of the whole name exists.
+    """
+    if not isinstance(item, str) or "#" not in item:
+        return item, None
+    whole = Path(item).expanduser()
+    if (whole if base is None or whole.is_absolute() else base / whole).exists():
+        return item, None
+    name, _, selector = item.rpartition("#")
+    return name, selector
+
+
+def _select_problems(scenarios: "list[Scenario]", selector: str, item: str) -> "list[Scenario]":
+    """The problems of a ``.scen`` file that ``file.scen#<selector>`` names.
+
+    ``selector`` is a 0-based problem index (``#12``: the 13th problem line
+    after the ``version`` line) or a glob pattern matched against the
+    scenario ids (``#den312d.1?``) and the indices (``#1?``).
+
+    Raises
+    ------
+    InvalidExperimentError
+        An index past the last problem, or a pattern that matches nothing.
+    """
+    if selector.isdigit():
+        index = int(selector)
+        if index >= len(scenarios):
+            raise InvalidExperimentError(
+                f"{item}: problem index {index} is past the last problem, {len(scenarios) - 1} (indices start at 0)"
+            )
+        return [scenarios[index]]
+    chosen = [s for i, s in enumerate(scenarios)
+              if fnmatch.fnmatchcase(s.id, selector) or fnmatch.fnmatchcase(str(i), selector)]
+    if not chosen:
+        raise InvalidExperimentError(
+            f"{item}: no problem id or index matches '{selector}' (ids {scenarios[0].id} .. {scenarios[-1].id})"
+        )
+    return chosen
 
 
 MAX_RUNS = 2_000_000
