@@ -104,7 +104,10 @@ def _run(args: argparse.Namespace) -> int:
                                   retry=args.retry)
     except KeyboardInterrupt:
         raise CommandError(f"interrupted; finished runs are stored in {db}, run the same command again to resume") from None
-    print(f"experiment '{exp.name}': {len(runs)} runs stored in {db}", file=sys.stderr)
+    skipped = len(exp.skipped())
+    unrun = f"; {skipped} planner x scenario pair(s) not run, the planner not supporting the scenario's kind" + (
+        "" if args.verbose else " (-v lists them)") if skipped else ""
+    print(f"experiment '{exp.name}': {len(runs)} runs stored in {db}{unrun}", file=sys.stderr)
     sys.stdout.write(render_leaderboard(runs, args))
     note = isolation_note(runs)
     if note:

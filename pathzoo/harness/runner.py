@@ -42,7 +42,7 @@ if TYPE_CHECKING:
     from pathzoo.harness.worker import RunOutcome
     from pathzoo.plugins.manager import Registry
 
-__all__ = ["run_experiment", "extra_plugin_modules", "skipped_summary", "DEFAULT_DB"]
+__all__ = ["run_experiment", "extra_plugin_modules", "skipped_summary", "never_run", "DEFAULT_DB"]
 
 DEFAULT_DB = "pathzoo-results.sqlite"
 """Result database used when neither the call nor the experiment names one."""
@@ -165,6 +165,22 @@ def skipped_summary(skipped: "list[tuple[str, str, str]]") -> str:
             f"(scenario kind not supported: {by_kind}); -v lists them")
 
 
+def never_run(experiment: "Experiment") -> str:
+    """``"no planner runs fgdaco.scenario1"`` for the scenarios no planner supports (and planners with no
+    scenario), else ``""``: what an experiment holds in vain, likely a mistake worth a warning."""
+    pairs = experiment.pairs()
+    used_planners = {p.name for p, _ in pairs}
+    used_scenarios = {s.id for _, s in pairs}
+    idle_scenarios = [s.id for s in experiment.scenarios if s.id not in used_scenarios]
+    idle_planners = [p.name for p in experiment.planners if p.name not in used_planners]
+    parts = []
+    if idle_scenarios:
+        parts.append(f"no planner runs {', '.join(idle_scenarios)}")
+    if idle_planners:
+        parts.append(f"{', '.join(idle_planners)} run(s) on no scenario")
+    return "; ".join(parts)
+
+
 def run_experiment(
     experiment: "Experiment",
     *,
@@ -208,8 +224,10 @@ def run_experiment(
     Notes
     -----
     Planner x scenario pairs whose scenario kind the planner does not declare
-    are not run; they are counted in one warning of the ``pathzoo.harness``
-    logger and listed at its INFO level (``pathzoo run -v``). The progress
+    are not run; they are counted in one line of the ``pathzoo.harness``
+    logger and listed at its INFO level (``pathzoo run -v``). The line is a
+    warning only when a scenario is run by no planner or a planner runs on
+    no scenario (:func:`never_run`). The progress
     bar's ``left`` is :func:`pathzoo.harness.eta.eta_seconds`. Runs already stored (any status) are skipped, so an interrupted
     experiment resumes where it stopped, without doubled rows.
     """
@@ -223,7 +241,8 @@ def run_experiment(
     registry = get_registry()
     skipped = experiment.skipped()
     if skipped:
-        log.warning("%s", skipped_summary(skipped))
+        idle = never_run(experiment)  # a planner or scenario in vain is worth a warning; a partial cross product is not
+        log.log(logging.WARNING if idle else logging.INFO, "%s", skipped_summary(skipped) + (f"; {idle}" if idle else ""))
         log.info("pathzoo: unsupported pairs not run:\n%s", "\n".join(f"  {p} x {s} ({k})" for p, s, k in skipped))
     with ResultStore(db_path) as store:
         store.add_experiment(experiment)
