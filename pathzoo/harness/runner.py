@@ -28,7 +28,7 @@ from pathzoo.core.errors import InvalidExperimentError
 from pathzoo.core.status import RunStatus
 from pathzoo.harness.executors import RunExecutor, make_executor
 from pathzoo.harness.bounds import bound_outcome
-from pathzoo.harness.eta import RunTimes, eta_seconds
+from pathzoo.harness.eta import RunTimes, pilot_first
 from pathzoo.harness.judge import unjudged
 from pathzoo.harness.judge_worker import JUDGE_TIMEOUT_S, JudgeWorker
 from pathzoo.harness.store import ResultStore, read_runs
@@ -120,8 +120,8 @@ def _execute(
     in_flight: dict[Future[RunOutcome], RunTask] = {}
     isolated = bool(getattr(executor, "isolated", False))
     failures = 0
-    remaining = Counter(t.planner.name for t in tasks)
-    times = RunTimes()
+    remaining = Counter((t.planner.name, t.scenario.id) for t in tasks)
+    times = RunTimes(parallel=executor.capacity)
 
     scenarios_seen: set[tuple[str, str, str, str]] = set()
 
@@ -148,10 +148,10 @@ def _execute(
             _call_hook(registry, "pathzoo_run_finished", record=record)
             if record.status is not RunStatus.SOLVED:
                 failures += 1
-            remaining[task.planner.name] -= 1
-            times.add(task.planner.name, record.wall_time_s)
+            remaining[(task.planner.name, task.scenario.id)] -= 1
+            times.add(task.planner.name, task.scenario.id, record.wall_time_s)
             if bar is not None:
-                eta = eta_seconds(remaining.elements(), times, executor.capacity)
+                eta = times.eta(remaining.elements())
                 bar.set_postfix(failures=failures, left=_format_eta(eta), refresh=False)
                 bar.update(1)
         submit_more()
@@ -228,7 +228,7 @@ def run_experiment(
     logger and listed at its INFO level (``pathzoo run -v``). The line is a
     warning only when a scenario is run by no planner or a planner runs on
     no scenario (:func:`never_run`). The progress
-    bar's ``left`` is :func:`pathzoo.harness.eta.eta_seconds`. Runs already stored (any status) are skipped, so an interrupted
+    bar's ``left`` is :meth:`pathzoo.harness.eta.RunTimes.eta`. Runs already stored (any status) are skipped, so an interrupted
     experiment resumes where it stopped, without doubled rows.
     """
     from pathzoo.plugins.manager import get_registry
@@ -248,7 +248,9 @@ def run_experiment(
         store.add_experiment(experiment)
         finished = store.finished_keys(experiment.name, exclude_statuses=retry_statuses)
         all_tasks = experiment.tasks(extra_plugin_modules(registry))
-        tasks = [t for t in all_tasks if t.run_key not in finished]
+        # a pilot of every scenario and planner first, so the time left is costed from the start
+        tasks = pilot_first([t for t in all_tasks if t.run_key not in finished],
+                            lambda t: (t.planner.name, t.scenario.id))
         if tasks:
             bar = _progress_bar(len(tasks), experiment.name, progress)
             try:
