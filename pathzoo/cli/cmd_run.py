@@ -108,7 +108,7 @@ def _run(args: argparse.Namespace) -> int:
     unrun = f"; {skipped} planner x scenario pair(s) not run, the planner not supporting the scenario's kind" + (
         "" if args.verbose else " (-v lists them)") if skipped else ""
     print(f"experiment '{exp.name}': {len(runs)} runs stored in {db}{unrun}", file=sys.stderr)
-    sys.stdout.write(render_leaderboard(runs, args))
+    sys.stdout.write(render_leaderboard(runs, args, db))
     note = isolation_note(runs)
     if note:
         print(note, file=sys.stderr)
