@@ -26,6 +26,7 @@ def can_bound() -> bool:
 
 
 def _child(fn: Callable[[], Any], conn: Any) -> None:
+    reply: dict[str, Any]
     try:
         fn()
         reply = {"ok": True}
