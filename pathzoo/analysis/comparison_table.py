@@ -9,8 +9,9 @@ reference's side:
 - ``↑``: the reference is significantly better than this configuration;
 - ``↓``: the reference is significantly worse;
 - ``≈``: no significant difference;
-- ``n/s``: not testable: with this many runs no outcome could reach the
-  level after Holm's correction (see :func:`pathzoo.analysis.stats.min_pvalue`).
+- ``n/s`` (in :attr:`PaperTable.table`; shown as no mark at all): not
+  testable: with this many runs no outcome could reach the level after
+  Holm's correction (see :func:`pathzoo.analysis.stats.min_pvalue`).
 
 The w/t/l counts give, per metric and configuration, on how many scenarios
 the reference wins, ties and loses. Unlike the paper, the success rate is
@@ -146,8 +147,8 @@ def format_paper_table(pt: PaperTable, fmt: str = "text") -> str:
     for info in pt.metrics:
         m = info.id
         med = t[f"{m}_median"].map(format_number)
-        mark = t[f"{m}_mark"]
-        display[f"{info.label} median"] = [f"{v} {k}" if k else v for v, k in zip(med, mark)]
+        mark = t[f"{m}_mark"]  # an untestable comparison shows its number bare (one note below says why)
+        display[f"{info.label} median"] = [f"{v} {k}" if k and k != NOT_TESTABLE else v for v, k in zip(med, mark)]
         display[f"{info.label} SD"] = t[f"{m}_sd"].map(format_number)
     others = sorted(pt.wtl["config"].unique())
     wtl_display = pd.DataFrame({"metric": [i.label for i in pt.metrics]})
@@ -165,7 +166,7 @@ def format_paper_table(pt: PaperTable, fmt: str = "text") -> str:
         f"Median and SD over successful runs; marks compare {pt.reference} with each planner "
         f"(two-sided rank tests, Holm-corrected per scenario and metric, alpha={pt.alpha:g}).",
         f"↑: {pt.reference} significantly better; ↓: {pt.reference} significantly worse; ≈: no significant difference; "
-        "n/s: not testable with this many runs (no outcome could reach alpha after the correction).",
+        "no mark: not testable with this many runs (no outcome could reach alpha after the correction).",
         f"w/t/l: scenarios on which {pt.reference} wins/ties/loses against the planner of the column; "
         "+k n/s: scenarios where the run count could not decide.",
     ]

@@ -33,6 +33,7 @@ import numpy as np
 import pandas as pd
 
 from pathzoo.core.errors import InvalidParameterError, UnknownPluginError
+from pathzoo.core.suggest import did_you_mean
 
 __all__ = [
     "MetricInfo",
@@ -125,8 +126,12 @@ def metric_info(metric: str, direction: Direction | None = None, unit: str | Non
         if entry is not None:
             known = MetricInfo(metric, str(entry.obj.unit), entry.obj.direction)
     if known is None and direction is None:
+        from pathzoo.plugins.manager import get_registry
+
+        hint = did_you_mean(metric, [*get_registry().metrics, *RUN_COLUMNS])
         raise UnknownPluginError(
-            f"unknown metric '{metric}' (see 'pathzoo list metrics'); pass direction='min' or 'max' for other columns"
+            f"unknown metric '{metric}'{hint} (see 'pathzoo list metrics'); pass direction='min' or 'max' for "
+            "other columns"
         )
     return MetricInfo(
         metric,

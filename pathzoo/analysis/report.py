@@ -2,8 +2,9 @@
 
 ``index.html`` uses no external CSS, JavaScript, fonts or images. Figures
 are PNGs embedded as base64 data URIs, or, with ``embed=False``, written to
-``figures/`` next to it and linked relatively. The page opens offline in any
-browser. Sections:
+``figures/`` next to it and linked relatively. Every figure is also written
+to ``figures/`` as SVG and PDF, linked from its caption, for papers. The page
+opens offline in any browser. Sections:
 
 1. the experiment: budget, seeds, planners with their parameters, run outcomes;
 2. the leaderboard of the chosen metric (with tests against ``reference``);
@@ -35,10 +36,13 @@ from pathzoo.core.errors import InvalidParameterError, PathzooError
 from pathzoo.core.scenario import Scenario
 from pathzoo.core.status import RunStatus
 
-__all__ = ["write_report", "render_report", "ReportPage", "BOX_METRICS", "TABLE_METRICS"]
+__all__ = ["write_report", "render_report", "ReportPage", "BOX_METRICS", "TABLE_METRICS", "VECTOR_FORMATS"]
 
 BOX_METRICS: tuple[str, ...] = ("length_ratio", "planning_time", "energy", "turns")
 """Metrics shown as box plots besides the ranked metric (when present and not all NaN)."""
+
+VECTOR_FORMATS: tuple[str, ...] = ("svg", "pdf")
+"""Formats every report figure is also written in, to ``figures/`` beside ``index.html``."""
 
 TABLE_METRICS: tuple[str, ...] = (
     "length", "length_ratio", "length_ratio_anyangle", "planning_time", "cpu_time", "travel_time", "energy", "turns",
@@ -60,6 +64,7 @@ class ReportPage:
     embed: bool = True
     blocks: list[dict[str, Any]] = field(default_factory=list)
     files: dict[str, bytes] = field(default_factory=dict)
+    n_figures: int = 0
     _open: list[list[dict[str, Any]]] = field(default_factory=list, repr=False)
 
     def _add(self, kind: str, **fields: Any) -> dict[str, Any]:
@@ -98,18 +103,28 @@ class ReportPage:
         self._open.pop()
 
     def figure(self, ax_or_fig: Any, name: str, caption: str) -> None:
-        """Render a matplotlib Axes or Figure to PNG and add it with a caption."""
-        from pathzoo.plotting.figure import png_bytes
+        """Render a matplotlib Axes or Figure and add it with a caption.
+
+        The page shows a PNG (embedded, or in ``figures/``); the same figure
+        is also kept as SVG and PDF (:data:`VECTOR_FORMATS`) for
+        ``figures/``, linked from the caption, so it can go into a paper.
+        """
+        from pathzoo.plotting.figure import figure_bytes
 
         fig = getattr(ax_or_fig, "figure", ax_or_fig)
-        data = png_bytes(fig)
+        stem = f"{self.n_figures:02d}-{_slug(name)}"
+        self.n_figures += 1
+        data = figure_bytes(fig, "png")
         if self.embed:
             src = "data:image/png;base64," + base64.b64encode(data).decode("ascii")
         else:
-            fname = f"{len(self.files):02d}-{_slug(name)}.png"
-            self.files[fname] = data
-            src = f"figures/{fname}"
-        self._add("figure", src=src, caption=caption)
+            self.files[f"{stem}.png"] = data
+            src = f"figures/{stem}.png"
+        links = []
+        for fmt in VECTOR_FORMATS:
+            self.files[f"{stem}.{fmt}"] = figure_bytes(fig, fmt)
+            links.append((fmt.upper(), f"figures/{stem}.{fmt}"))
+        self._add("figure", src=src, caption=caption, files=links)
 
     def html(self, title: str) -> str:
         """The complete document."""
@@ -422,7 +437,8 @@ def write_report(
         be rebuilt from the database (objects passed to :func:`pathzoo.run`).
         Scenarios from the registry or from files are rebuilt automatically.
     embed : bool
-        Embed figures in the HTML (default) or write them to ``out_dir/figures``.
+        Embed the PNG figures in the HTML (default) or write them to
+        ``out_dir/figures``; the SVG and PDF copies always go there.
     max_scenarios : int
         At most this many scenarios get per-scenario figures.
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import json
 import sys
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -12,7 +13,7 @@ from pathzoo.cli.errors import CommandError
 if TYPE_CHECKING:
     import pandas as pd
 
-__all__ = ["add_parser", "add_table_options", "load_runs", "render_leaderboard"]
+__all__ = ["add_parser", "add_table_options", "load_runs", "render_leaderboard", "experiment_facts"]
 
 FORMATS = ("text", "markdown", "csv", "json", "latex", "html")
 
@@ -39,12 +40,53 @@ def load_runs(db: str | Path, experiment: str | None) -> "pd.DataFrame":
     return read_runs(db, experiment)
 
 
-def render_leaderboard(runs: "pd.DataFrame", args: argparse.Namespace) -> str:
-    """The leaderboard of ``runs`` as text, Markdown, CSV or HTML, per the table options in ``args``."""
+def render_leaderboard(runs: "pd.DataFrame", args: argparse.Namespace, db: str | Path | None = None) -> str:
+    """The leaderboard of ``runs`` in ``args.format``; JSON also carries the facts of :func:`experiment_facts`."""
     from pathzoo.analysis.leaderboard import format_leaderboard, leaderboard
 
     table = leaderboard(runs, args.metric, reference=args.reference)
-    return format_leaderboard(table, args.format)
+    text = format_leaderboard(table, args.format)
+    if args.format != "json" or db is None:
+        return text
+    document = json.loads(text)
+    document["experiment"] = experiment_facts(db, runs)
+    return json.dumps(document, ensure_ascii=False, indent=1) + "\n"
+
+
+def experiment_facts(db: str | Path, runs: "pd.DataFrame") -> dict[str, Any]:
+    """What a result depends on: the experiment's seed, seed indices, budget and hard limit, and the versions.
+
+    ``versions`` gives each planner configuration's version and, for each
+    library (pathzoo, Python, numpy, ...), the version the runs used, or the
+    sorted list of versions when the runs used several.
+    """
+    from pathzoo.harness.store import read_experiments, read_versions
+
+    name = str(runs["experiment"].iloc[0]) if len(runs) else ""
+    stored = read_experiments(db)
+    row = stored[stored["name"] == name].iloc[0]
+    libraries: dict[str, set[str]] = {}
+    keys = set(runs["run_key"])
+    for key, versions in read_versions(db, name).items():
+        if key in keys:
+            for lib, version in versions.items():
+                if lib not in _MACHINE_FACTS:
+                    libraries.setdefault(lib, set()).add(str(version))
+    labels = runs["label"].where(runs["label"].astype(str) != "", runs["planner"]) if "label" in runs else runs["planner"]
+    planners = dict(sorted(zip(labels.astype(str), runs["planner_version"].astype(str))))
+    return {
+        "name": name,
+        "seed": int(row["seed"]),
+        "seeds": list(row["config"].get("seeds", sorted(set(int(i) for i in runs["seed_index"])))),
+        "budget": row["budget"],
+        "timeout_s": float(row["timeout_s"]),
+        "versions": {"planners": planners,
+                     **{lib: (v.pop() if len(v) == 1 else sorted(v)) for lib, v in sorted(libraries.items())}},
+    }
+
+
+_MACHINE_FACTS = frozenset({"cpu", "cpu_count", "peak_rss_mb"})
+"""Per-run facts of the stored ``versions`` that describe the machine or the run, not a version."""
 
 
 def isolation_note(runs: "pd.DataFrame") -> str:
@@ -72,7 +114,7 @@ def add_table_options(parser: argparse.ArgumentParser) -> None:
 
 def _run(args: argparse.Namespace) -> int:
     runs = load_runs(args.db, args.experiment)
-    sys.stdout.write(render_leaderboard(runs, args))
+    sys.stdout.write(render_leaderboard(runs, args, args.db))
     note = isolation_note(runs)
     if note:
         print(note, file=sys.stderr)

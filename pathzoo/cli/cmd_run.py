@@ -76,6 +76,9 @@ def _harness_info_on_stderr() -> Iterator[None]:
 
 def _run(args: argparse.Namespace) -> int:
     executor = executor_of(args)
+    from pathzoo.analysis.frame import metric_info
+
+    metric_info(args.metric)  # a mistyped --metric fails now, not after every run
     from pathzoo.harness.launch import start_server
 
     start_server()  # it imports while this process reads the experiment; the judge and the workers are its forks
@@ -101,8 +104,11 @@ def _run(args: argparse.Namespace) -> int:
                                   retry=args.retry)
     except KeyboardInterrupt:
         raise CommandError(f"interrupted; finished runs are stored in {db}, run the same command again to resume") from None
-    print(f"experiment '{exp.name}': {len(runs)} runs stored in {db}", file=sys.stderr)
-    sys.stdout.write(render_leaderboard(runs, args))
+    skipped = len(exp.skipped())
+    unrun = f"; {skipped} planner x scenario pair(s) not run, the planner not supporting the scenario's kind" + (
+        "" if args.verbose else " (-v lists them)") if skipped else ""
+    print(f"experiment '{exp.name}': {len(runs)} runs stored in {db}{unrun}", file=sys.stderr)
+    sys.stdout.write(render_leaderboard(runs, args, db))
     note = isolation_note(runs)
     if note:
         print(note, file=sys.stderr)

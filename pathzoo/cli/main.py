@@ -3,32 +3,56 @@
 Every :class:`~pathzoo.core.errors.PathzooError`, a missing or unreadable
 file, a damaged database and Ctrl-C end the command with one line
 ``pathzoo: error: <message>`` on stderr and exit code 2, without a
-traceback. Usage errors (argparse) also exit with code 2.
+traceback. Usage errors (argparse) are one line too, with exit code 2.
 """
 
 from __future__ import annotations
 
 import argparse
-import difflib
 import sqlite3
 import sys
-from typing import Sequence
+from typing import Any, NoReturn, Sequence
 
 from pathzoo.cli import (cmd_completion, cmd_export, cmd_leaderboard, cmd_list, cmd_report, cmd_reproduce, cmd_run,
                          cmd_show, cmd_tune)
 from pathzoo.core.errors import PathzooError
+from pathzoo.core.suggest import did_you_mean
 
-__all__ = ["build_parser", "main", "unknown_command", "EXIT_ERROR"]
+__all__ = ["OneLineParser", "build_parser", "main", "unknown_command", "EXIT_ERROR"]
 
 EXIT_ERROR = 2
 """Exit code of every handled error, as for argparse usage errors."""
+
+
+class OneLineParser(argparse.ArgumentParser):
+    """An argparse parser whose usage errors are one line, ``pathzoo: error: run: argument --jobs: ...``.
+
+    argparse prints the usage block before the message; here the message
+    names the subcommand and points to ``--help`` instead. A value outside an
+    option's choices gets the closest choice as a suggestion. Subparsers are
+    of the same class (argparse makes them of their parent's class).
+    """
+
+    def error(self, message: str) -> NoReturn:
+        """Print one line and exit with :data:`EXIT_ERROR`."""
+        command = self.prog.partition(" ")[2]
+        where = f"{command}: " if command else ""
+        text = " ".join(message.split())
+        self.exit(EXIT_ERROR, f"pathzoo: error: {where}{text} (see '{self.prog} --help')\n")
+
+    def _check_value(self, action: argparse.Action, value: Any) -> None:
+        choices = action.choices
+        if choices is not None and value not in choices:
+            names = [str(c) for c in choices]
+            hint = did_you_mean(str(value), names) or f"; choose from {', '.join(names)}"
+            raise argparse.ArgumentError(action, f"invalid choice '{value}'{hint}")
 
 
 def build_parser() -> argparse.ArgumentParser:
     """The ``pathzoo`` parser with all subcommands."""
     from pathzoo import __version__
 
-    parser = argparse.ArgumentParser(
+    parser = OneLineParser(
         prog="pathzoo",
         description="Compare path planners honestly: run planners x scenarios x seeds, validate every path, "
         "and rank them with real statistics.",
@@ -50,9 +74,8 @@ def unknown_command(parser: argparse.ArgumentParser, argv: Sequence[str]) -> str
     word = argv[0]
     if word in commands:
         return None
-    close = difflib.get_close_matches(word, list(commands), n=1)
-    hint = f"did you mean '{close[0]}'?" if close else f"choose one of {', '.join(commands)}"
-    return f"unknown command '{word}'; {hint}"
+    hint = did_you_mean(word, commands) or f"; choose one of {', '.join(commands)}"
+    return f"unknown command '{word}'{hint}"
 
 
 def _one_line(exc: BaseException) -> str:

@@ -89,9 +89,9 @@ class Param:
         """
 
         def fail() -> InvalidParameterError:
-            return InvalidParameterError(
-                f"{owner}: parameter '{name}' must be {self.describe_range()}, got {value!r}"
-            )
+            shown = repr(value)
+            shown = shown if len(shown) <= 60 else shown[:57] + "..."
+            return InvalidParameterError(f"{owner}: parameter '{name}' must be {self.describe_range()}, got {shown}")
 
         if value is None:
             if self.nullable:
@@ -110,6 +110,8 @@ class Param:
             if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)):
                 raise fail()
             value = int(value)
+            if not -(2**63) <= value < 2**63:  # planners compute with 64-bit integers (numpy, numba)
+                raise InvalidParameterError(f"{owner}: parameter '{name}' must fit in 64 bits, got {value:.3e}")
         elif kind is float:
             if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
                 raise fail()

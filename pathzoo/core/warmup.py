@@ -10,13 +10,19 @@ from pathzoo.core.budget import Budget
 from pathzoo.core.planner import Planner
 from pathzoo.core.tiny_scenarios import check_scenario
 
-__all__ = ["warm_up", "WARM_UP_BUDGET"]
+__all__ = ["warm_up", "is_warm", "WARM_UP_BUDGET"]
 
 WARM_UP_BUDGET = Budget(iterations=2, evaluations=200, time_s=2.0)
 """Budget of a warm-up call: enough to reach every compiled kernel, too little to matter."""
 
 _warmed: set[tuple[type, str]] = set()
 _lock = threading.Lock()
+
+
+def is_warm(planner: Planner, kind: str) -> bool:
+    """Whether :func:`warm_up` has run for this planner class and scenario kind in this process."""
+    with _lock:
+        return (type(planner), kind) in _warmed
 
 
 def warm_up(planner: Planner, kind: str, budget: Budget = WARM_UP_BUDGET) -> None:

@@ -31,12 +31,16 @@ parameters that differ from the defaults (docs/configurations.md).
 
 Scenario entries are registered ids, glob patterns of registered ids
 (``"movingai.arena.*"``) or file paths (anything with a ``/`` or a scenario
-file suffix; relative paths are relative to the TOML file). ``scenarios`` may
-also be written as a top-level key before ``[experiment]``.
+file suffix; relative paths are relative to the TOML file). A ``.scen`` file
+gives all its problems; ``"maps/den312d.scen#12"`` gives the problem at the
+0-based index 12 only, and ``"maps/den312d.scen#den312d.1?"`` those whose id
+(or index) matches the glob. ``scenarios`` may also be written as a top-level
+key before ``[experiment]``.
 """
 
 from __future__ import annotations
 
+import fnmatch
 import math
 import tomllib
 from dataclasses import dataclass, field
@@ -86,11 +90,15 @@ def _resolve_scenarios(
         elif isinstance(item, Scenario):
             add(ScenarioSpec.of_object(item))
         elif isinstance(item, Path) or (isinstance(item, str) and looks_like_path(item)):
-            path = Path(item).expanduser()
+            name, selector = _split_selector(item, base)
+            path = Path(name).expanduser()
             if base is not None and not path.is_absolute():
                 path = base / path
             location = str(path.resolve())
-            for sc in load_scenarios(Path(location)):
+            if selector is not None and path.suffix.lower() != ".scen":
+                raise InvalidExperimentError(f"{item}: '#' selects problems of a .scen file, and {path.name} is not one")
+            found = load_scenarios(Path(location))
+            for sc in found if selector is None else _select_problems(found, selector, str(item)):
                 add(ScenarioSpec(sc.id, sc.kind, "file", location))
         elif isinstance(item, str):
             registry = get_registry()
@@ -107,11 +115,56 @@ def _resolve_scenarios(
     return tuple(specs.values())
 
 
+def _split_selector(item: "str | Path", base: Path | None) -> tuple["str | Path", str | None]:
+    """``("maps/x.scen", "12")`` for ``"maps/x.scen#12"``; the item and None without a ``#`` selector.
+
+    A ``#`` belongs to the file name when a file of the whole name exists.
+    """
+    if not isinstance(item, str) or "#" not in item:
+        return item, None
+    whole = Path(item).expanduser()
+    if (whole if base is None or whole.is_absolute() else base / whole).exists():
+        return item, None
+    name, _, selector = item.rpartition("#")
+    return name, selector
+
+
+def _select_problems(scenarios: "list[Scenario]", selector: str, item: str) -> "list[Scenario]":
+    """The problems of a ``.scen`` file that ``file.scen#<selector>`` names.
+
+    ``selector`` is a 0-based problem index (``#12``: the 13th problem line
+    after the ``version`` line) or a glob pattern matched against the
+    scenario ids (``#den312d.1?``) and the indices (``#1?``).
+
+    Raises
+    ------
+    InvalidExperimentError
+        An index past the last problem, or a pattern that matches nothing.
+    """
+    if selector.isdigit():
+        index = int(selector)
+        if index >= len(scenarios):
+            raise InvalidExperimentError(
+                f"{item}: problem index {index} is past the last problem, {len(scenarios) - 1} (indices start at 0)"
+            )
+        return [scenarios[index]]
+    chosen = [s for i, s in enumerate(scenarios)
+              if fnmatch.fnmatchcase(s.id, selector) or fnmatch.fnmatchcase(str(i), selector)]
+    if not chosen:
+        raise InvalidExperimentError(
+            f"{item}: no problem id or index matches '{selector}' (ids {scenarios[0].id} .. {scenarios[-1].id})"
+        )
+    return chosen
+
+
 MAX_RUNS = 2_000_000
 """Most runs per experiment (planner x scenario pairs x seeds)."""
 
 MAX_SEEDS = 100_000
 """Most seeds per experiment (a larger count is almost surely a typo, and would exhaust memory)."""
+
+MAX_INT = 2**63 - 1
+"""Largest seed, seed index or budget count: the database stores them as signed 64-bit integers."""
 
 
 def resolve_seeds(seeds: int | Iterable[int]) -> tuple[int, ...]:
@@ -127,13 +180,36 @@ def resolve_seeds(seeds: int | Iterable[int]) -> tuple[int, ...]:
         out = tuple(seeds)
     except TypeError:
         raise InvalidExperimentError(f"seeds must be a count or a list of seed indices, got {seeds!r}") from None
-    if not out or any(isinstance(s, bool) or not isinstance(s, int) or s < 0 for s in out):
-        raise InvalidExperimentError(f"seed indices must be a non-empty list of integers >= 0, got {list(out)!r}")
+    if not out or any(isinstance(s, bool) or not isinstance(s, int) or not 0 <= s <= MAX_INT for s in out):
+        raise InvalidExperimentError(
+            f"seed indices must be a non-empty list of integers in [0, 2**63-1], got {_short(list(out))}"
+        )
     if len(out) > MAX_SEEDS:
         raise InvalidExperimentError(f"at most {MAX_SEEDS} seed indices, got {len(out)}")
     if len(set(out)) != len(out):
         raise InvalidExperimentError(f"seed indices must be distinct, got {list(out)!r}")
     return out
+
+
+def _short(value: Any, limit: int = 80) -> str:
+    """``repr(value)`` cut to ``limit`` characters, so an error message stays one short line."""
+    text = repr(value)
+    return text if len(text) <= limit else text[: limit - 3] + "..."
+
+
+def check_budget(budget: Budget) -> Budget:
+    """``budget`` if its counts fit the database's 64-bit integers.
+
+    Raises
+    ------
+    InvalidExperimentError
+        Naming the count that is too large.
+    """
+    for name in ("iterations", "evaluations"):
+        value = getattr(budget, name)
+        if value is not None and value > MAX_INT:
+            raise InvalidExperimentError(f"budget.{name} must be at most 2**63-1, got {_short(value)}")
+    return budget
 
 
 def _check_timeout(value: Any) -> float:
@@ -149,8 +225,8 @@ def _check_name(value: Any) -> str:
 
 
 def _check_seed(value: Any) -> int:
-    if isinstance(value, bool) or not isinstance(value, int):
-        raise InvalidExperimentError(f"seed must be an integer, got {value!r}")
+    if isinstance(value, bool) or not isinstance(value, int) or not -MAX_INT - 1 <= value <= MAX_INT:
+        raise InvalidExperimentError(f"seed must be a 64-bit integer, got {_short(value)}")
     return value
 
 
@@ -316,10 +392,11 @@ class Experiment:
         budget = DEFAULT_BUDGET if budget is None else budget
         if not isinstance(budget, Budget):
             raise InvalidExperimentError(f"budget must be a pathzoo.Budget, got {budget!r}")
+        check_budget(budget)
         if timeout_s is None:
             timeout_s = DEFAULT_TIMEOUT_NO_TIME_S if budget.time_s is None else budget.time_s + TIMEOUT_MARGIN_S
         timeout_s = _check_timeout(timeout_s)
-        return cls(
+        experiment = cls(
             name=name,
             seed=seed,
             planners=tuple(specs),
@@ -331,6 +408,14 @@ class Experiment:
             db=None if db is None else Path(db),
             source=_source,
         )
+        if not experiment.pairs():
+            supported = sorted({k for p in experiment.planners for k in p.planner_class.kinds})
+            given = sorted({s.kind for s in experiment.scenarios})
+            raise InvalidExperimentError(
+                f"nothing to run: no planner supports any of the scenarios (the planners support "
+                f"{', '.join(supported) or 'no kind'}; the scenarios are {', '.join(given)})"
+            )
+        return experiment
 
     @classmethod
     def from_toml(cls, path: str | Path) -> "Experiment":
@@ -411,7 +496,8 @@ class Experiment:
         if "budget" in exp:
             if not isinstance(exp["budget"], dict):
                 raise bad("experiment.budget", "must be a table such as { time_s = 5 }")
-            budget = checked("experiment.budget", lambda: Budget.from_mapping(exp["budget"], where="budget"))
+            budget = checked("experiment.budget",
+                             lambda: check_budget(Budget.from_mapping(exp["budget"], where="budget")))
         specs: list[ScenarioSpec] = []
         for i, item in enumerate(scenarios):
             specs.extend(checked(f"{sfield}[{i}]", lambda: _resolve_scenarios([item], base)))

@@ -28,7 +28,7 @@ from pathzoo.core.errors import InvalidExperimentError
 from pathzoo.core.status import RunStatus
 from pathzoo.harness.executors import RunExecutor, make_executor
 from pathzoo.harness.bounds import bound_outcome
-from pathzoo.harness.eta import RunTimes, eta_seconds
+from pathzoo.harness.eta import RunTimes, pilot_first
 from pathzoo.harness.judge import unjudged
 from pathzoo.harness.judge_worker import JUDGE_TIMEOUT_S, JudgeWorker
 from pathzoo.harness.store import ResultStore, read_runs
@@ -42,7 +42,7 @@ if TYPE_CHECKING:
     from pathzoo.harness.worker import RunOutcome
     from pathzoo.plugins.manager import Registry
 
-__all__ = ["run_experiment", "extra_plugin_modules", "skipped_summary", "DEFAULT_DB"]
+__all__ = ["run_experiment", "extra_plugin_modules", "skipped_summary", "never_run", "DEFAULT_DB"]
 
 DEFAULT_DB = "pathzoo-results.sqlite"
 """Result database used when neither the call nor the experiment names one."""
@@ -120,8 +120,8 @@ def _execute(
     in_flight: dict[Future[RunOutcome], RunTask] = {}
     isolated = bool(getattr(executor, "isolated", False))
     failures = 0
-    remaining = Counter(t.planner.name for t in tasks)
-    times = RunTimes()
+    remaining = Counter((t.planner.name, t.scenario.id) for t in tasks)
+    times = RunTimes(parallel=executor.capacity)
 
     scenarios_seen: set[tuple[str, str, str, str]] = set()
 
@@ -148,10 +148,10 @@ def _execute(
             _call_hook(registry, "pathzoo_run_finished", record=record)
             if record.status is not RunStatus.SOLVED:
                 failures += 1
-            remaining[task.planner.name] -= 1
-            times.add(task.planner.name, record.wall_time_s)
+            remaining[(task.planner.name, task.scenario.id)] -= 1
+            times.add(task.planner.name, task.scenario.id, record.wall_time_s)
             if bar is not None:
-                eta = eta_seconds(remaining.elements(), times, executor.capacity)
+                eta = times.eta(remaining.elements())
                 bar.set_postfix(failures=failures, left=_format_eta(eta), refresh=False)
                 bar.update(1)
         submit_more()
@@ -163,6 +163,22 @@ def skipped_summary(skipped: "list[tuple[str, str, str]]") -> str:
     by_kind = ", ".join(f"{k} {n}" for k, n in sorted(kinds.items()))
     return (f"pathzoo: skipping {len(skipped)} unsupported planner x scenario pair(s) "
             f"(scenario kind not supported: {by_kind}); -v lists them")
+
+
+def never_run(experiment: "Experiment") -> str:
+    """``"no planner runs fgdaco.scenario1"`` for the scenarios no planner supports (and planners with no
+    scenario), else ``""``: what an experiment holds in vain, likely a mistake worth a warning."""
+    pairs = experiment.pairs()
+    used_planners = {p.name for p, _ in pairs}
+    used_scenarios = {s.id for _, s in pairs}
+    idle_scenarios = [s.id for s in experiment.scenarios if s.id not in used_scenarios]
+    idle_planners = [p.name for p in experiment.planners if p.name not in used_planners]
+    parts = []
+    if idle_scenarios:
+        parts.append(f"no planner runs {', '.join(idle_scenarios)}")
+    if idle_planners:
+        parts.append(f"{', '.join(idle_planners)} run(s) on no scenario")
+    return "; ".join(parts)
 
 
 def run_experiment(
@@ -208,9 +224,11 @@ def run_experiment(
     Notes
     -----
     Planner x scenario pairs whose scenario kind the planner does not declare
-    are not run; they are counted in one warning of the ``pathzoo.harness``
-    logger and listed at its INFO level (``pathzoo run -v``). The progress
-    bar's ``left`` is :func:`pathzoo.harness.eta.eta_seconds`. Runs already stored (any status) are skipped, so an interrupted
+    are not run; they are counted in one line of the ``pathzoo.harness``
+    logger and listed at its INFO level (``pathzoo run -v``). The line is a
+    warning only when a scenario is run by no planner or a planner runs on
+    no scenario (:func:`never_run`). The progress
+    bar's ``left`` is :meth:`pathzoo.harness.eta.RunTimes.eta`. Runs already stored (any status) are skipped, so an interrupted
     experiment resumes where it stopped, without doubled rows.
     """
     from pathzoo.plugins.manager import get_registry
@@ -223,13 +241,16 @@ def run_experiment(
     registry = get_registry()
     skipped = experiment.skipped()
     if skipped:
-        log.warning("%s", skipped_summary(skipped))
+        idle = never_run(experiment)  # a planner or scenario in vain is worth a warning; a partial cross product is not
+        log.log(logging.WARNING if idle else logging.INFO, "%s", skipped_summary(skipped) + (f"; {idle}" if idle else ""))
         log.info("pathzoo: unsupported pairs not run:\n%s", "\n".join(f"  {p} x {s} ({k})" for p, s, k in skipped))
     with ResultStore(db_path) as store:
         store.add_experiment(experiment)
         finished = store.finished_keys(experiment.name, exclude_statuses=retry_statuses)
         all_tasks = experiment.tasks(extra_plugin_modules(registry))
-        tasks = [t for t in all_tasks if t.run_key not in finished]
+        # a pilot of every scenario and planner first, so the time left is costed from the start
+        tasks = pilot_first([t for t in all_tasks if t.run_key not in finished],
+                            lambda t: (t.planner.name, t.scenario.id))
         if tasks:
             bar = _progress_bar(len(tasks), experiment.name, progress)
             try:

@@ -76,8 +76,8 @@ RUN_COLUMNS: tuple[str, ...] = (
 _METRIC_ID = re.compile(r"^[A-Za-z0-9_.\-]+$")
 
 _SCHEMA = """
-CREATE TABLE pathzoo_schema (version INTEGER NOT NULL);
-CREATE TABLE experiments (
+CREATE TABLE IF NOT EXISTS pathzoo_schema (version INTEGER NOT NULL);
+CREATE TABLE IF NOT EXISTS experiments (
     name TEXT PRIMARY KEY,
     seed INTEGER NOT NULL,
     budget TEXT NOT NULL,
@@ -85,7 +85,7 @@ CREATE TABLE experiments (
     config TEXT NOT NULL,
     created TEXT NOT NULL
 );
-CREATE TABLE runs (
+CREATE TABLE IF NOT EXISTS runs (
     id INTEGER PRIMARY KEY,
     experiment TEXT NOT NULL REFERENCES experiments(name),
     run_key TEXT NOT NULL,
@@ -115,7 +115,7 @@ CREATE TABLE runs (
     isolated INTEGER NOT NULL DEFAULT 1,
     UNIQUE (experiment, run_key)
 );
-CREATE TABLE history (
+CREATE TABLE IF NOT EXISTS history (
     experiment TEXT NOT NULL,
     run_key TEXT NOT NULL,
     iteration INTEGER NOT NULL,
@@ -123,8 +123,9 @@ CREATE TABLE history (
     best_cost REAL,
     time_s REAL NOT NULL
 );
-CREATE INDEX history_run ON history (experiment, run_key);
+CREATE INDEX IF NOT EXISTS history_run ON history (experiment, run_key);
 """
+"""The tables of a new database; every statement is a no-op on a database that has them (see :func:`_connect`)."""
 
 
 class ResultsDatabaseError(PathzooError, RuntimeError):
@@ -149,8 +150,15 @@ def _connect(path: Path, *, create: bool) -> sqlite3.Connection:
         if not create:
             conn.close()
             raise ResultsDatabaseError(f"{path}: empty database, no pathzoo results in it")
+        # Two harnesses may start on one new file together: both can find it empty here. The write lock
+        # (BEGIN IMMEDIATE) puts their schema scripts one after the other, and the second one, finding
+        # the tables and the version row there, changes nothing.
         conn.execute("PRAGMA journal_mode = WAL")
-        conn.executescript("BEGIN;" + _SCHEMA + f"INSERT INTO pathzoo_schema VALUES ({SCHEMA_VERSION}); COMMIT;")
+        conn.executescript(
+            "BEGIN IMMEDIATE;" + _SCHEMA
+            + f"INSERT INTO pathzoo_schema SELECT {SCHEMA_VERSION} WHERE NOT EXISTS (SELECT 1 FROM pathzoo_schema);"
+            + "COMMIT;"
+        )
     elif "pathzoo_schema" not in tables:
         conn.close()
         raise ResultsDatabaseError(f"{path}: not a pathzoo results database (it has no pathzoo_schema table)")

@@ -6,18 +6,18 @@ import warnings
 import math
 from typing import Any, Mapping, Sequence
 
+import numpy as np
 import pandas as pd
 import seaborn as sns
 from matplotlib import MatplotlibDeprecationWarning
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
-from matplotlib.patches import Patch
 
-from pathzoo.analysis.frame import Direction, metric_info, with_config
-from pathzoo.analysis.formatting import format_percent
+from pathzoo.analysis.frame import Direction, MetricInfo, metric_info, with_config
+from pathzoo.analysis.formatting import format_number, format_percent
 from pathzoo.plotting.figure import new_axes, new_figure, palette_for
 
-__all__ = ["plot_metric_boxes", "plot_metric_panels"]
+__all__ = ["plot_metric_boxes", "plot_metric_panels", "clip_outliers", "SQUASH_FACTOR"]
 
 
 def plot_metric_boxes(
@@ -114,11 +114,14 @@ def plot_metric_panels(
     ncols: int = 3,
     log: bool | None = None,
 ) -> Figure:
-    """One box-plot panel per scenario, each with its own y axis, and one legend for the figure.
+    """One box-plot panel per scenario, each with its own y axis, planners named on its x axis.
 
     A 60 m grid map and a 400 m terrain stay readable side by side, which a
     shared axis (:func:`plot_metric_boxes`) does not allow. Success rates
-    below 100 % are printed above the boxes as there.
+    below 100 % are printed above the boxes. A panel's y axis spans the
+    whiskers (1.5 IQR) of its boxes, so one far outlier cannot squash the
+    others flat: points beyond are drawn as triangles on the panel's edge and
+    counted there with their extreme value (:func:`clip_outliers`).
 
     Parameters
     ----------
@@ -133,27 +136,104 @@ def plot_metric_panels(
     ncols : int
         Panels per row.
     log : bool, optional
-        As in :func:`plot_metric_boxes`, decided per panel.
+        As in :func:`plot_metric_boxes`, decided per panel (a log axis is not clipped).
     """
+    info = metric_info(metric)
     df = with_config(runs, metric)
     order = sorted(df["scenario"].unique()) if scenarios is None else list(scenarios)
     configs = sorted(df["config"].unique())
     palette = palette_for(configs, palette)
     ncols = max(1, min(ncols, len(order)))
     nrows = max(1, math.ceil(len(order) / ncols))
-    fig = new_figure((max(4.2 * ncols, 6.0), 3.3 * nrows + 0.5 + 0.22 * math.ceil(len(configs) / 4)))
+    label_room = 0.09 * max(len(c) for c in configs)  # inches for the rotated planner names
+    fig = new_figure((max(4.2 * ncols, 6.0), (3.0 + label_room) * nrows + 0.4))
     axes = fig.subplots(nrows, ncols, squeeze=False).ravel()
     for ax, sc in zip(axes, order):
-        plot_metric_boxes(runs, metric, ax, scenarios=[sc], palette=palette, log=log)
+        _planner_panel(ax, df[df["scenario"] == sc], metric, info, palette, log)
         ax.set_title(sc, fontsize="medium")
-        ax.set_xlabel("")
-        ax.set_xticks([])
-        if ax.get_legend() is not None:
-            ax.get_legend().remove()
     for ax in axes[len(order):]:
         ax.set_visible(False)
-    handles = [Patch(facecolor=palette[c], edgecolor="#333333", label=c) for c in configs]
-    fig.legend(handles=handles, loc="outside lower center", ncol=min(4, len(configs)), fontsize="small",
-               frameon=False)
-    fig.suptitle(f"{metric_info(metric).label} over successful runs", fontsize="medium")
+    fig.suptitle(f"{info.label} over successful runs ({info.better})", fontsize="medium")
     return fig
+
+
+def _planner_panel(ax: Axes, df: pd.DataFrame, metric: str, info: MetricInfo, palette: Mapping[str, Any],
+                   log: bool | None) -> None:
+    """Boxes of one scenario, one per configuration that ran there, named on the x axis."""
+    shown = sorted(df["config"].unique())
+    values = pd.to_numeric(df[metric], errors="coerce").to_numpy(float)
+    keep = df["success"].to_numpy(bool) & np.isfinite(values)
+    good = df.loc[keep, ["config"]].assign(**{metric: values[keep]})
+    ax.set_ylabel(info.label)
+    ax.set_xlabel("planner")
+    if good.empty:  # e.g. length_ratio on a scenario with no reference length
+        ax.text(0.5, 0.5, f"no {metric} value in any successful run", transform=ax.transAxes, ha="center",
+                va="center", color="#888888")
+        ax.set_xticks([])
+        return
+    with warnings.catch_warnings():  # seaborn 0.13 still passes matplotlib's deprecated ``vert``
+        warnings.simplefilter("ignore", MatplotlibDeprecationWarning)
+        sns.boxplot(data=good, x="config", y=metric, hue="config", order=shown, hue_order=shown, ax=ax,
+                    palette={c: palette[c] for c in shown}, fliersize=2.5, linewidth=1.0, legend=False)
+    positive = good.loc[good[metric] > 0, metric]
+    if log is None:
+        log = info.unit == "s" and len(positive) > 0 and positive.max() > 30 * positive.min()
+    if log:
+        ax.set_yscale("log")
+    else:
+        clip_outliers(ax, [good.loc[good["config"] == c, metric].to_numpy(float) for c in shown])
+    rate = df.groupby("config")["success"].mean()
+    top = ax.get_ylim()[1]
+    for i, cfg in enumerate(shown):
+        if rate.get(cfg, 1.0) < 1.0:
+            ax.annotate(format_percent(rate[cfg]), (i, top), xytext=(0, 2), textcoords="offset points", ha="center",
+                        va="bottom", fontsize="x-small", color="#b00000", annotation_clip=False)
+    ax.set_xlabel("planner")
+    ax.tick_params(axis="x", labelsize="x-small")
+    for label in ax.get_xticklabels():
+        label.set_rotation(60)
+        label.set_horizontalalignment("right")
+        label.set_rotation_mode("anchor")
+
+
+SQUASH_FACTOR = 3.0
+"""An axis is clipped to the whiskers when the full data range is more than this times the whiskers' range."""
+
+
+def clip_outliers(ax: Axes, boxes: Sequence[np.ndarray]) -> int:
+    """Limit ``ax``'s y axis to the boxes' whiskers when outliers would squash them; return the points clipped.
+
+    The whiskers are Tukey's (1.5 IQR beyond the quartiles, as the box plot
+    draws them). When the data reach more than :data:`SQUASH_FACTOR` times
+    as far, the axis spans the whiskers (plus a margin) and each box's points
+    beyond are drawn as one triangle on the edge, labelled with their count
+    and the extreme value.
+    """
+    lows, highs = [], []
+    for v in boxes:
+        if len(v) == 0:
+            continue
+        q1, q3 = np.percentile(v, [25, 75])
+        fence_lo, fence_hi = q1 - 1.5 * (q3 - q1), q3 + 1.5 * (q3 - q1)
+        lows.append(v[v >= fence_lo].min())
+        highs.append(v[v <= fence_hi].max())
+    data = np.concatenate([v for v in boxes if len(v)])
+    lo, hi = min(lows), max(highs)
+    span = max(hi - lo, 1e-12 * max(abs(hi), 1.0))
+    if data.max() - data.min() <= SQUASH_FACTOR * span:
+        return 0
+    margin = 0.12 * span
+    ymin, ymax = lo - margin, hi + margin
+    ax.set_ylim(ymin, ymax)
+    clipped = 0
+    for i, v in enumerate(boxes):
+        for beyond, edge, marker, va, extreme in ((v[v > ymax], ymax, "^", "top", np.max),
+                                                  (v[v < ymin], ymin, "v", "bottom", np.min)):
+            if len(beyond) == 0:
+                continue
+            clipped += len(beyond)
+            ax.plot([i], [edge], marker=marker, color="#444444", markersize=5, clip_on=False, zorder=5)
+            ax.annotate(f"{len(beyond)} at {format_number(extreme(beyond), 3)}", (i, edge),
+                        xytext=(4, -2 if va == "top" else 2), textcoords="offset points", fontsize="xx-small",
+                        va=va, ha="left", color="#444444", annotation_clip=False)
+    return clipped

@@ -7,12 +7,14 @@ from pathlib import Path
 
 from typing import Any, Iterable, Mapping
 
-import seaborn as sns
+from matplotlib import rc_context
 from matplotlib.axes import Axes
+from matplotlib.colors import to_rgb
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
-__all__ = ["new_figure", "new_axes", "save_figure", "png_bytes", "legend_below", "planner_colors", "palette_for"]
+__all__ = ["new_figure", "new_axes", "save_figure", "png_bytes", "figure_bytes", "legend_below", "planner_colors",
+           "palette_for", "PLANNER_PALETTE"]
 
 
 def new_figure(figsize: tuple[float, float] = (6.0, 5.0)) -> Figure:
@@ -37,8 +39,20 @@ def save_figure(fig: Figure, path: str | Path, *, dpi: int = 120) -> Path:
 
 def png_bytes(fig: Figure, *, dpi: int = 110) -> bytes:
     """``fig`` rendered as PNG bytes (for embedding in HTML)."""
+    return figure_bytes(fig, "png", dpi=dpi)
+
+
+def figure_bytes(fig: Figure, fmt: str, *, dpi: int = 110) -> bytes:
+    """``fig`` rendered in ``fmt`` (``"png"``, ``"svg"``, ``"pdf"``).
+
+    SVG keeps text as text and PDF embeds TrueType fonts, so a figure's
+    labels stay editable in a paper; neither records a creation date, so
+    the same figure gives the same bytes.
+    """
     buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=dpi)
+    metadata = {"Date": None} if fmt == "svg" else {"CreationDate": None} if fmt == "pdf" else None
+    with rc_context({"svg.fonttype": "none", "pdf.fonttype": 42}):
+        fig.savefig(buf, format=fmt, dpi=dpi, metadata=metadata)
     return buf.getvalue()
 
 
@@ -64,19 +78,31 @@ def legend_below(ax: Axes, ncol: int | None = None) -> None:
                   frameon=False)
 
 
-def planner_colors(labels: Iterable[str]) -> dict[str, Any]:
-    """One distinct colour per label, assigned in sorted order.
+PLANNER_PALETTE: tuple[str, ...] = (
+    "#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf",
+    "#ff00ff", "#ff1493", "#f99379", "#c2b280", "#008856", "#a1caf1", "#b3446c", "#800000", "#f6a600", "#008080",
+)
+"""Twenty planner colours, any two at least 25 apart in CIELAB (ΔE76; 27.7 among the first twelve).
 
-    The first ten labels get seaborn's colour-blind-safe ``colorblind``
-    palette; further labels get the same ten hues darkened, then lightened,
-    so no two labels share a colour (up to 30; beyond that colours repeat and
-    the legend is the only guide). Pass the mapping built from *all*
-    configurations of an experiment to every plotting function (their
-    ``palette`` argument) so a planner keeps its colour across figures.
+matplotlib's ``tab10`` first, then, one by one, the candidate farthest in
+CIELAB from those already chosen (candidates: Kelly's colours of maximum
+contrast and a few web colours, of lightness 25-80 so that lines show on
+white and on maps).
+"""
+
+
+def planner_colors(labels: Iterable[str]) -> dict[str, Any]:
+    """One distinct colour per label, assigned in sorted order from :data:`PLANNER_PALETTE`.
+
+    Labels past the twentieth get the same colours darkened (up to 40; beyond
+    that colours repeat and the legend is the only guide). The report builds
+    one mapping from *all* configurations of an experiment and passes it to
+    every figure (their ``palette`` argument), so a planner keeps its colour
+    across figures.
     """
     names = sorted(set(labels))
-    base = sns.color_palette("colorblind", 10)
-    shades = [*base, *(tuple(0.62 * c for c in rgb) for rgb in base), *(tuple(c + 0.5 * (1 - c) for c in rgb) for rgb in base)]
+    base = [to_rgb(c) for c in PLANNER_PALETTE]
+    shades = [*base, *(tuple(0.6 * c for c in rgb) for rgb in base)]
     return {name: shades[i % len(shades)] for i, name in enumerate(names)}
 
 

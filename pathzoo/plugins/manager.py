@@ -18,6 +18,7 @@ from typing import Any, Iterable, Literal, Sequence
 import pluggy
 
 from pathzoo.core.errors import UnknownPluginError
+from pathzoo.core.suggest import did_you_mean
 from pathzoo.plugins import hookspecs
 from pathzoo.plugins.entries import PluginEntry, PluginFailure
 
@@ -82,8 +83,10 @@ class Registry:
         try:
             return table[plugin_id]
         except KeyError:
-            close = [k for k in table if plugin_id.split(".")[0] == k.split(".")[0]][:8]
-            hint = f"; did you mean one of: {', '.join(close)}" if close else ""
+            hint = did_you_mean(plugin_id, table)
+            if not hint:  # nothing spelled alike: the ids of the same family, if any
+                family = [k for k in table if plugin_id.split(".")[0] == k.split(".")[0]][:8]
+                hint = f"; {plugin_id.split('.')[0]} has {', '.join(family)}" if family else ""
             broken = sorted({f.plugin for f in self.failures})
             if broken:
                 hint += f"; plugins that failed to load or were partly ignored: {', '.join(broken)}"

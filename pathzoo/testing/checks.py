@@ -5,16 +5,23 @@ and raises :class:`ConformanceError` (an ``AssertionError``) naming the
 planner, the scenario and what went wrong. Checks that plan take the scenario
 ``kind`` to use and the planning ``budget``; they run on the tiny scenarios of
 :mod:`pathzoo.core.tiny_scenarios`.
+
+Every check that plans has a hard limit (:mod:`pathzoo.testing.bounded`): it
+runs in a forked process that is killed after :data:`CHECK_LIMIT_S`, so a
+planner that ignores its budget fails the check instead of hanging the suite.
+The untimed warm-up before it (JIT compilation) is bounded the same way, by
+:data:`WARM_UP_LIMIT_S`, and the timed call of :func:`check_budget_time` by
+``TIME_BUDGET_S + TIME_TOLERANCE_S``.
 """
 
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 import pickle
 import random
 import re
-import time
 from typing import Any, Callable, Mapping
 
 import numpy as np
@@ -27,7 +34,8 @@ from pathzoo.core.scenario import SCENARIO_KINDS, Scenario
 from pathzoo.core.status import Status
 from pathzoo.rules import validate_path
 from pathzoo.core.tiny_scenarios import check_scenario
-from pathzoo.core.warmup import warm_up
+from pathzoo.core.warmup import is_warm, warm_up
+from pathzoo.testing.bounded import run_bounded
 
 __all__ = [
     "ConformanceError",
@@ -46,7 +54,10 @@ __all__ = [
     "check_scenario_unchanged",
     "check_picklable",
     "check_history_improves",
+    "check_leaves_global_rng_alone",
     "check_unsupported_kinds",
+    "CHECK_LIMIT_S",
+    "WARM_UP_LIMIT_S",
 ]
 
 DEFAULT_BUDGET = Budget(iterations=5, time_s=2.0)
@@ -57,6 +68,12 @@ TIME_BUDGET_S = 0.3
 
 TIME_TOLERANCE_S = 1.0
 """How far past :data:`TIME_BUDGET_S` a planner may return (stopping granularity, loaded CI machines)."""
+
+CHECK_LIMIT_S = 60.0
+"""Hard limit on one check after its warm-up: a check plans at most three times with :data:`DEFAULT_BUDGET`."""
+
+WARM_UP_LIMIT_S = 180.0
+"""Hard limit on the untimed warm-up of a planner on one scenario kind (its first numba compilation included)."""
 
 SEED = 20240611
 """Seed of the generator handed to ``plan()`` by the checks."""
@@ -80,6 +97,36 @@ class _Progress:
 
 def _fail(planner: Planner, message: str) -> ConformanceError:
     return ConformanceError(f"{planner.id}: {message}")
+
+
+def _failure(planner: Planner) -> Callable[[str], ConformanceError]:
+    """The error for a message from a bounded call, prefixed with the planner's id unless it has it."""
+    prefix = f"{planner.id}: "
+    return lambda message: ConformanceError(message if message.startswith(prefix) else prefix + message)
+
+
+def _bounded_warm_up(planner: Planner, kind: str, budget: Budget) -> None:
+    """:func:`warm_up` in this process, after a forked rehearsal has shown it returns within :data:`WARM_UP_LIMIT_S`."""
+    if is_warm(planner, kind):
+        return
+    run_bounded(lambda: warm_up(planner, kind, budget), WARM_UP_LIMIT_S,
+                f"the untimed warm-up plan() on {kind} with {budget}", _failure(planner))
+    warm_up(planner, kind, budget)
+
+
+def _bounded(check: Callable[..., None]) -> Callable[..., None]:
+    """Run ``check`` in a forked process killed after :data:`CHECK_LIMIT_S` (the warm-up first, bounded too)."""
+
+    @functools.wraps(check)
+    def bounded(planner: Planner, **options: Any) -> None:
+        kinds = [k for k in SCENARIO_KINDS if k in planner.kinds]
+        kind = options.get("kind", kinds[0] if kinds else None)
+        if kind in kinds:
+            _bounded_warm_up(planner, kind, options.get("budget", DEFAULT_BUDGET))
+
+        run_bounded(lambda: check(planner, **options), CHECK_LIMIT_S, check.__name__, _failure(planner))
+
+    return bounded
 
 
 def _plan(
@@ -178,6 +225,7 @@ def check_rejects_out_of_range(planner: Planner) -> None:
 
 
 # ------------------------------------------------------------------ solving
+@_bounded
 def check_solves(planner: Planner, *, kind: str, budget: Budget = DEFAULT_BUDGET) -> None:
     """The tiny reachable scenario is solved and the harness's validator accepts the path."""
     scenario = check_scenario(kind)
@@ -195,6 +243,7 @@ def check_solves(planner: Planner, *, kind: str, budget: Budget = DEFAULT_BUDGET
         raise _fail(planner, f"invalid path on {scenario.id}: {verdict.reason}")
 
 
+@_bounded
 def check_same_seed_same_path(planner: Planner, *, kind: str, budget: Budget = DEFAULT_BUDGET) -> None:
     """Two calls with the same seed give the same answer.
 
@@ -243,32 +292,34 @@ def _check_count_limit(planner: Planner, counter: str, limit: int, time_s: float
         raise _fail(planner, f"used {used} {counter} with Budget({counter}={limit}) on {scenario.id}")
 
 
+@_bounded
 def check_budget_iterations(planner: Planner, *, budget: Budget = DEFAULT_BUDGET) -> None:
     """``Budget(iterations=2)`` is never exceeded, neither in the result nor in progress reports."""
     _check_count_limit(planner, "iterations", 2, budget.time_s)
 
 
+@_bounded
 def check_budget_evaluations(planner: Planner, *, budget: Budget = DEFAULT_BUDGET) -> None:
     """``Budget(evaluations=3)`` is never exceeded, neither in the result nor in progress reports."""
     _check_count_limit(planner, "evaluations", 3, budget.time_s)
 
 
+@_bounded
 def check_budget_time(planner: Planner, *, budget: Budget = DEFAULT_BUDGET) -> None:
-    """With only a time limit, ``plan()`` returns within it (plus :data:`TIME_TOLERANCE_S`).
+    """With only a time limit, ``plan()`` returns within it (plus :data:`TIME_TOLERANCE_S`), or is killed then.
 
     The timed call follows the per-process warm-up (with ``budget``), so JIT
-    compilation is not counted.
+    compilation is not counted; it runs in its own forked process, killed
+    ``TIME_BUDGET_S + TIME_TOLERANCE_S`` seconds after it starts.
     """
     scenario = check_scenario(_first_kind(planner))
     warm_up(planner, scenario.kind, budget)
-    started = time.perf_counter()
-    _plan(planner, scenario, Budget(time_s=TIME_BUDGET_S))
-    elapsed = time.perf_counter() - started
-    if elapsed > TIME_BUDGET_S + TIME_TOLERANCE_S:
-        raise _fail(planner, f"took {elapsed:.2f} s with Budget(time_s={TIME_BUDGET_S}) on {scenario.id}")
+    run_bounded(lambda: _plan(planner, scenario, Budget(time_s=TIME_BUDGET_S)), TIME_BUDGET_S + TIME_TOLERANCE_S,
+                f"plan() with Budget(time_s={TIME_BUDGET_S}) on {scenario.id}", _failure(planner))
 
 
 # ------------------------------------------------------------------ failure modes
+@_bounded
 def check_unreachable_goal(planner: Planner, *, kind: str, budget: Budget = DEFAULT_BUDGET) -> None:
     """A walled-in goal gives ``NO_PATH`` or ``FAILED``, not an exception and never ``SOLVED``."""
     scenario = check_scenario(kind, reachable=False)
@@ -282,6 +333,7 @@ def check_unreachable_goal(planner: Planner, *, kind: str, budget: Budget = DEFA
         raise _fail(planner, f"returned status {result.status.value} on the unreachable {scenario.id}")
 
 
+@_bounded
 def check_unsupported_kinds(planner: Planner, *, budget: Budget = DEFAULT_BUDGET) -> None:
     """Every kind the planner does not declare raises :class:`UnsupportedScenarioError`."""
     for kind in SCENARIO_KINDS:
@@ -315,6 +367,7 @@ def _scenario_image(scenario: Scenario) -> dict[str, Any]:
     return {name: _snapshot(value) for name, value in vars(scenario).items()}
 
 
+@_bounded
 def check_scenario_unchanged(planner: Planner, *, kind: str, budget: Budget = DEFAULT_BUDGET) -> None:
     """``plan()`` changes neither the scenario's fields nor its cached geometry, and adds no attribute."""
     scenario = check_scenario(kind)
@@ -331,6 +384,7 @@ def check_scenario_unchanged(planner: Planner, *, kind: str, budget: Budget = DE
         raise _fail(planner, f"plan() changed the scenario's {', '.join(changed)} on {scenario.id}")
 
 
+@_bounded
 def check_picklable(planner: Planner, *, budget: Budget = DEFAULT_BUDGET) -> None:
     """The planner pickles, keeps no state across ``plan()`` and its copy gives the same answer."""
     scenario = check_scenario(_first_kind(planner))
@@ -347,6 +401,32 @@ def check_picklable(planner: Planner, *, budget: Budget = DEFAULT_BUDGET) -> Non
     _require_same(planner, scenario, first, _plan(copy, scenario, budget), "the unpickled planner")
 
 
+@_bounded
+def check_leaves_global_rng_alone(planner: Planner, *, kind: str, budget: Budget = DEFAULT_BUDGET) -> None:
+    """``plan()`` leaves the global ``random`` and ``numpy.random`` generators as it found them.
+
+    All randomness must come from the ``rng`` argument. A planner that draws
+    from a global generator changes its state (a library that needs one may
+    seed it from ``rng`` and restore it before returning).
+    """
+    scenario = check_scenario(kind)
+    random.seed(SEED)
+    np.random.seed(SEED % 2**32)
+    before = random.getstate(), np.random.get_state()
+    _plan(planner, scenario, budget)
+    used = [name for name, same in (("random", random.getstate() == before[0]),
+                                    ("numpy.random", _same_numpy_state(np.random.get_state(), before[1])))
+            if not same]
+    if used:
+        raise _fail(planner, f"plan() drew from the global generator(s) {' and '.join(used)} on {scenario.id}; "
+                             "draw from the rng argument")
+
+
+def _same_numpy_state(a: Any, b: Any) -> bool:
+    return all(np.array_equal(x, y) if isinstance(x, np.ndarray) else x == y for x, y in zip(a, b))
+
+
+@_bounded
 def check_history_improves(planner: Planner, *, kind: str, budget: Budget = DEFAULT_BUDGET) -> None:
     """Progress reports never increase the best cost, and a solving run reports at least once."""
     scenario = check_scenario(kind)

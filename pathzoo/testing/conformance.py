@@ -37,6 +37,7 @@ _PER_KIND = (
     _c.check_unreachable_goal,
     _c.check_scenario_unchanged,
     _c.check_history_improves,
+    _c.check_leaves_global_rng_alone,
 )
 _ON_FIRST_KIND = (_c.check_budget_iterations, _c.check_budget_evaluations, _c.check_budget_time, _c.check_picklable)
 

@@ -85,6 +85,7 @@ class OmplPlanner(Planner):
     kinds: ClassVar[frozenset[str]] = frozenset({"grid2d", "terrain"})
     path_model: ClassVar[str] = "anyangle"  # straight segments between sampled states (pathzoo.plugins.entries.PATH_MODELS)
     version: ClassVar[str] = "2"
+    requires: ClassVar[Mapping[str, str]] = {"ompl": "ompl"}
     ompl_class: ClassVar[str] = ""
     anytime: ClassVar[bool] = False
 

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import abc
 import math
-from typing import Any, ClassVar
+from typing import Any, ClassVar, Mapping
 
 import numpy as np
 
@@ -110,6 +110,7 @@ class RouteSearchPlanner(Planner, abc.ABC):
     """Base of the multi-objective route rivals (``grid2d`` and ``terrain``)."""
 
     kinds: ClassVar[frozenset[str]] = frozenset({"grid2d", "terrain"})
+    requires: ClassVar[Mapping[str, str]] = {"pymoo": "evo"}  # NSGA-II sorting and crowding (pathzoo_rivals.pareto)
     archive_size: ClassVar[int] = 50
     """Capacity of the Pareto archive reported in ``extras["front"]``."""
 

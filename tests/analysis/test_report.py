@@ -68,7 +68,9 @@ def test_report_from_frames_is_self_contained():
     assert "Figures for the first 1 of 2 scenarios" in doc
     imgs = re.findall(r'<img src="data:image/png;base64,', doc)
     # CD diagram, 4 box plots (length, planning_time, energy, turns), 1 convergence figure, ECDF
-    assert len(imgs) == 7 and page.files == {}
+    assert len(imgs) == 7  # embedded; only their SVG and PDF copies are files
+    assert sorted(page.files) == sorted(f"{i:02d}-{n}.{x}" for i, n in enumerate(
+        ["cd", "box-length", "box-planning_time", "box-energy", "box-turns", "conv-s1", "ecdf"]) for x in ("svg", "pdf"))
     assert "Leaderboard: length [m], lower is better" in doc and "w/t/l of a" in doc
 
 
@@ -115,3 +117,29 @@ def test_write_report_needs_an_experiment_name_when_several(small_db, tmp_path):
     pathzoo.run(["exact.dijkstra"], [sc], seeds=1, db=db, executor="inline", progress=False, experiment="other")
     with pytest.raises(InvalidParameterError, match="holds 2 experiments"):
         write_report(db, tmp_path / "x")
+
+
+def test_every_figure_is_also_written_as_svg_and_pdf_beside_the_report(tmp_path):
+    db = tmp_path / "r.sqlite"
+    pathzoo.run(["exact.astar", "exact.dijkstra"], ["gant.fig7"], seeds=2, db=db, executor="inline", progress=False)
+    index = write_report(db, tmp_path / "rep")
+    doc = index.read_text()
+    links = re.findall(r'href="(figures/[^"]+)"', doc)
+    svgs = [link for link in links if link.endswith(".svg")]
+    pdfs = [link for link in links if link.endswith(".pdf")]
+    n_figures = doc.count("<figure>")
+    assert n_figures >= 3 and len(svgs) == len(pdfs) == n_figures
+    for svg, pdf in zip(svgs, pdfs):
+        assert (tmp_path / "rep" / svg).read_text().lstrip().startswith(("<?xml", "<svg"))
+        assert (tmp_path / "rep" / pdf).read_bytes().startswith(b"%PDF")
+    assert "exact.astar" in (tmp_path / "rep" / svgs[0]).read_text()  # text kept as text, not paths
+
+
+def test_untestable_comparisons_show_bare_numbers():
+    from pathzoo.analysis.comparison_table import format_paper_table, paper_table
+
+    runs = random_runs(("a", "b", "c"), ("s1", "s2"), n_seeds=3, seed=5)  # 3 runs: nothing can reach alpha
+    text = format_paper_table(paper_table(runs, "a", ["length"]))
+    rows = [line for line in text.splitlines() if line.startswith(("s1", "s2"))]
+    assert rows and not any("n/s" in line for line in rows)
+    assert "no mark: not testable with this many runs" in text

@@ -42,17 +42,6 @@ def test_top_level_help_lists_subcommands(capsys):
         assert command in out
 
 
-@pytest.mark.parametrize(
-    "argv",
-    [[], ["list"], ["list", "bogus"], ["show", "x"], ["run", "--jobs", "0"], ["run", "--seeds", "x"],
-     ["leaderboard"], ["leaderboard", "db", "--format", "xml"], ["run", "--executor", "threads"]],
-)
-def test_usage_errors_exit_2(argv, capsys):
-    assert main(argv) == 2
-    err = capsys.readouterr().err
-    assert "usage: pathzoo" in err and "error:" in err
-
-
 @pytest.mark.parametrize("kind", ["planners", "scenarios", "metrics"])
 def test_list_shows_each_entry_with_its_distribution_and_version(kind, capsys):
     assert main(["list", kind]) == 0

@@ -81,7 +81,24 @@ def test_panels_give_each_scenario_its_own_axis():
     assert [ax.get_title() for ax in shown] == ["large", "small"]
     (lo1, hi1), (lo2, hi2) = (ax.get_ylim() for ax in shown)
     assert lo1 > 300 and hi2 < 100  # no panel squashed under the other's range
-    assert [t.get_text() for t in fig.legends[0].get_texts()] == ["a", "b"]
+    for ax in shown:  # every panel names its planners and its axes
+        assert [t.get_text() for t in ax.get_xticklabels()] == ["a", "b"]
+        assert ax.get_xlabel() == "planner" and ax.get_ylabel() == "length [m]"
+
+
+def test_one_far_outlier_does_not_squash_the_boxes():
+    runs = make_runs({"s": {"a": [10.0, 10.5, 11.0, 11.5, 12.0, 1000.0], "b": [20.0, 20.5, 21.0, 21.5, 22.0, 22.5]}})
+    fig = plot_metric_panels(runs, "length")
+    ax = fig.axes[0]
+    lo, hi = ax.get_ylim()
+    assert 5 < lo < 10 and 22.5 < hi < 30  # the whiskers, with a margin; the outlier is off the axis
+    assert [t.get_text() for t in ax.texts] == ["1 at 1000"]
+
+
+def test_a_spread_without_far_outliers_keeps_every_point_in_view():
+    runs = make_runs({"s": {"a": [10.0, 12.0, 14.0, 30.0], "b": [20.0, 21.0, 22.0, 23.0]}})
+    ax = plot_metric_panels(runs, "length").axes[0]
+    assert ax.get_ylim()[1] > 30 and not ax.texts
 
 
 def test_a_panel_without_values_says_so_instead_of_crashing():
@@ -100,6 +117,27 @@ def test_palette_is_distinct_and_stable():
     colors = planner_colors(labels)
     assert len({tuple(np.round(c, 6)) for c in colors.values()}) == 30
     assert planner_colors(labels[:5]) == {k: colors[k] for k in labels[:5]}  # sorted-order assignment
+
+
+def _lab(rgb):
+    """CIELAB (D65) of an sRGB colour."""
+    c = np.asarray(rgb, float)
+    c = np.where(c > 0.04045, ((c + 0.055) / 1.055) ** 2.4, c / 12.92)
+    xyz = np.array([[0.4124, 0.3576, 0.1805], [0.2126, 0.7152, 0.0722], [0.0193, 0.1192, 0.9505]]) @ c
+    xyz = xyz / [0.95047, 1.0, 1.08883]
+    f = np.where(xyz > 216 / 24389, np.cbrt(xyz), (24389 / 27 * xyz + 16) / 116)
+    return np.array([116 * f[1] - 16, 500 * (f[0] - f[1]), 200 * (f[1] - f[2])])
+
+
+def test_the_default_experiments_planners_get_clearly_different_colours():
+    """The newcomer's report drew mmas and anyangle both orange, astar and pso both pink."""
+    import itertools
+
+    labels = ["aco.acs", "aco.as", "aco.dsaco", "aco.fgdaco", "aco.gant", "aco.ggaco", "aco.iaca", "aco.mmas",
+              "exact.astar", "exact.dijkstra", "exact.thetastar", "swarm.pso"]
+    lab = [_lab(c) for c in planner_colors(labels).values()]
+    closest = min(np.linalg.norm(a - b) for a, b in itertools.combinations(lab, 2))
+    assert closest >= 25  # CIELAB distance; the old palette had 20.7 (two pinks)
 
 
 def test_cd_diagram_labels_ranks_and_cd():

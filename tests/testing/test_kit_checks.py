@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import pickle
+import random
 import time
 
 import numpy as np
@@ -211,9 +212,69 @@ def test_same_seed_check_accepts_rng_driven_randomness():
 def test_time_check_uses_the_budget_and_tolerance(monkeypatch):
     monkeypatch.setattr(C, "TIME_BUDGET_S", 0.05)
     monkeypatch.setattr(C, "TIME_TOLERANCE_S", 0.1)
-    with pytest.raises(ConformanceError, match=r"took 0\.\d+ s with Budget\(time_s=0.05\)"):
+    with pytest.raises(ConformanceError, match=r"kit.slow: plan\(\) with Budget\(time_s=0.05\) on testing.grid2d "
+                                               r"had not returned after 0.15 s; its process was killed"):
         C.check_budget_time(_variant("Slow", _slow)())
     C.check_budget_time(Shortest())
+
+
+class IgnoresTime(Shortest):
+    """Honours iteration and evaluation limits but never looks at the clock: loops forever on a time-only budget."""
+
+    id = "kit.ignores_time"
+
+    def plan(self, scenario, *, budget, rng, progress=None):
+        res = super().plan(scenario, budget=budget, rng=rng, progress=progress)
+        limit = budget.iterations or budget.evaluations
+        i = 0
+        while limit is None or i < limit:
+            i += 1
+        return PlanResult(res.status, path=res.path, iterations=1, evaluations=1)
+
+
+def _hangs(self, scenario, *, budget, rng, progress=None):
+    while True:
+        pass
+
+
+def _tie_break_with_global_random(self, scenario, *, budget, rng, progress=None):
+    """A path that never depends on the draw: only the global generator's state shows it."""
+    random.random()
+    return Shortest.plan(self, scenario, budget=budget, rng=rng, progress=progress)
+
+
+def test_a_planner_ignoring_its_time_budget_fails_the_time_check_instead_of_hanging():
+    """The kit used to wait for such a planner forever (24 minutes before the newcomer stopped it)."""
+    with pytest.raises(ConformanceError) as info:
+        check_planner(IgnoresTime())
+    failed = [line.strip() for line in str(info.value).splitlines()[1:]]
+    assert failed == ["check_budget_time: ConformanceError: kit.ignores_time: plan() with Budget(time_s=0.3) on "
+                      "testing.grid2d had not returned after 1.3 s; its process was killed"]
+
+
+def test_a_planner_that_never_returns_fails_every_planning_check(monkeypatch):
+    monkeypatch.setattr(C, "WARM_UP_LIMIT_S", 0.3)
+    with pytest.raises(ConformanceError, match=r"kit.hangs: the untimed warm-up plan\(\) on grid2d with "
+                                               r"Budget\(.*\) had not returned after 0.3 s; its process was killed"):
+        C.check_solves(_variant("Hangs", _hangs)(), kind="grid2d")
+
+
+def test_a_check_that_outlives_its_limit_is_killed(monkeypatch):
+    planner = _variant("HangsAfterWarmUp", _hangs)()
+    monkeypatch.setattr(C, "CHECK_LIMIT_S", 0.3)
+    monkeypatch.setattr(C, "is_warm", lambda planner, kind: True)  # as if warmed up: the check itself hangs
+    with pytest.raises(ConformanceError, match=r"kit.hangsafterwarmup: check_solves had not returned after 0.3 s"):
+        C.check_solves(planner, kind="grid2d")
+
+
+def test_use_of_the_global_random_generator_is_reported():
+    planner = _variant("GlobalTieBreak", _tie_break_with_global_random)()
+    C.check_same_seed_same_path(planner, kind="grid2d")  # the path does not show it
+    with pytest.raises(ConformanceError, match=r"kit.globaltiebreak: plan\(\) drew from the global generator\(s\) "
+                                               r"random on testing.grid2d; draw from the rng argument"):
+        C.check_leaves_global_rng_alone(planner, kind="grid2d")
+    with pytest.raises(ConformanceError, match="check_leaves_global_rng_alone"):
+        check_planner(planner)
 
 
 def test_check_planner_reports_every_failed_check():

@@ -62,7 +62,8 @@ def colony_params(*, n_ants: int, iterations: int, alpha: float, beta: float, rh
         Default dead-end handling.
     """
     return {
-        "n_ants": Param(n_ants, "ants per iteration (m)", low=1, tune=(5, 100), tune_log=True),
+        "n_ants": Param(n_ants, "ants per iteration (m); at most 10,000, as every ant's walk is held in memory",
+                        low=1, high=10_000, tune=(5, 100), tune_log=True),
         "iterations": Param(iterations, "iterations run when the budget sets no limit", low=1),
         "alpha": Param(alpha, "weight of the pheromone trail (α)", low=0.0, tune=(0.0, 5.0)),
         "beta": Param(beta, "weight of the heuristic (β)", low=0.0, tune=(0.0, 10.0)),
