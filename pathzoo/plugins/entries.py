@@ -13,7 +13,10 @@ if TYPE_CHECKING:
     from pathzoo.core.scenario import Scenario
 
 __all__ = ["ScenarioEntry", "LazyClass", "LazyPlanner", "LazyMetric", "PluginEntry", "PluginFailure",
-           "PluginDeclarationError"]
+           "PluginDeclarationError", "HYBRID_MARK"]
+
+HYBRID_MARK = "[hybrid]"
+"""How ``pathzoo list``, leaderboards and reports mark a planner declared ``hybrid``."""
 
 
 class PluginDeclarationError(PathzooError):
@@ -126,12 +129,17 @@ class LazyPlanner(LazyClass):
         The class's ``requires`` (optional import name to the extra that
         installs it); what ``pathzoo list`` checks to mark the planner
         unavailable, without importing it.
+    hybrid : bool
+        The class's ``hybrid``: True for a metaheuristic that hands part of
+        its work to an exact search (e.g. A* routes between its waypoints).
+        ``pathzoo list``, the leaderboard and the report mark such planners.
     """
 
     kinds: frozenset[str] = frozenset()
     requires: Mapping[str, str] = field(default_factory=dict)
-    declared: ClassVar[tuple[str, ...]] = ("id", "summary", "kinds", "requires")
-    absent: ClassVar[Mapping[str, Any]] = {"requires": {}}
+    hybrid: bool = False
+    declared: ClassVar[tuple[str, ...]] = ("id", "summary", "kinds", "requires", "hybrid")
+    absent: ClassVar[Mapping[str, Any]] = {"requires": {}, "hybrid": False}
 
 
 @dataclass(frozen=True)

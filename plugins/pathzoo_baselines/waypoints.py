@@ -1,7 +1,11 @@
 """Continuous path encodings: K free waypoints, or K control points of a clamped cubic B-spline.
 
-A candidate is a vector of ``2K`` reals ``(x1, y1, ..., xK, yK)`` in world
-coordinates, bounded by the map (``0 <= x < width``, ``0 <= y < height``).
+A candidate is a vector of ``dK`` reals ``(x1, y1, ..., xK, yK)`` in world
+coordinates (``d = 3``, with ``z``, in air volumes), bounded by the map
+(``0 <= x < width``, ``0 <= y < height``, ``0 <= z < ceiling``).
+
+This encoding runs no graph search of any kind: it is the one the pure
+configurations of the metaheuristics use (``docs/planners/metaheuristics.md``).
 
 - ``waypoints``: the path is ``start, p1, ..., pK, goal`` joined by straight
   segments.
@@ -36,12 +40,12 @@ def spline_basis(n_control: int, n_samples: int) -> np.ndarray:
 
 
 class WaypointEncoding:
-    """Candidates as ``2K`` world coordinates; see the module docstring.
+    """Candidates as ``dK`` world coordinates; see the module docstring.
 
     Parameters
     ----------
     scenario : Scenario
-        The problem (``grid2d`` or ``terrain``).
+        The problem (any kind).
     waypoints : int
         K, the number of free points.
     spline : bool
@@ -57,7 +61,8 @@ class WaypointEncoding:
     def __init__(self, scenario: Scenario, *, waypoints: int, spline: bool, spline_samples: int, penalty: float):
         self.scenario = scenario
         self.k = int(waypoints)
-        self.n_genes = 2 * self.k
+        self.dim = scenario.dim
+        self.n_genes = self.dim * self.k
         inside = np.nextafter(scenario.extent, 0.0)  # points stay in [0, extent)
         self.low = np.zeros(self.n_genes)
         self.high = np.tile(inside, self.k)
@@ -65,15 +70,16 @@ class WaypointEncoding:
         self._cost = PathCost(scenario, penalty)
 
     def polylines(self, genes: np.ndarray) -> np.ndarray:
-        """Paths of shape (n, m, 2) for candidates of shape (n, 2K), clipped to the map."""
+        """Paths of shape (n, m, d) for candidates of shape (n, dK), clipped to the map."""
         x = np.clip(np.asarray(genes, dtype=np.float64).reshape(-1, self.n_genes), self.low, self.high)
         n = len(x)
         sc = self.scenario
-        ends = np.broadcast_to(sc.start, (n, 1, 2)), np.broadcast_to(sc.goal, (n, 1, 2))
-        control = np.concatenate([ends[0], x.reshape(n, self.k, 2), ends[1]], axis=1)
+        d = self.dim
+        ends = np.broadcast_to(sc.start, (n, 1, d)), np.broadcast_to(sc.goal, (n, 1, d))
+        control = np.concatenate([ends[0], x.reshape(n, self.k, d), ends[1]], axis=1)
         if self._basis is None:
             return control
-        pts = np.clip(np.einsum("mj,njd->nmd", self._basis, control), 0.0, self.high[:2])  # rounding at the border
+        pts = np.clip(np.einsum("mj,njd->nmd", self._basis, control), 0.0, self.high[:d])  # rounding at the border
         pts[:, 0] = sc.start
         pts[:, -1] = sc.goal
         return pts
@@ -81,13 +87,13 @@ class WaypointEncoding:
     def initial(self, rng: np.random.Generator, n: int) -> np.ndarray:
         """``n`` random candidates, points sorted along the start-goal axis."""
         sc = self.scenario
-        pts = rng.uniform(0.0, 1.0, size=(n, self.k, 2)) * self.high[:2]
+        pts = rng.uniform(0.0, 1.0, size=(n, self.k, self.dim)) * self.high[: self.dim]
         along = (pts - sc.start) @ (sc.goal - sc.start)
         order = np.argsort(along, axis=1, kind="stable")
         return np.take_along_axis(pts, order[..., None], axis=1).reshape(n, self.n_genes)
 
     def evaluate(self, genes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """``(cost, violation)`` of candidates of shape (n, 2K)."""
+        """``(cost, violation)`` of candidates of shape (n, dK)."""
         return self._cost(self.polylines(genes))
 
     def path(self, genes: np.ndarray) -> np.ndarray:
