@@ -101,4 +101,5 @@ def make_encoding(scenario: Scenario, params: Mapping[str, Any]) -> Encoding:
         spline=params["encoding"] == "spline",
         spline_samples=params["spline_samples"],
         penalty=params["penalty"],
+        repair_window=params.get("repair_window", 0),
     )

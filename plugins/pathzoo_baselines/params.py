@@ -30,6 +30,12 @@ ENCODING_PARAMS: Mapping[str, Param] = {
     ),
     "waypoints": Param(8, "K, the number of intermediate waypoints or spline control points", low=1, high=256),
     "spline_samples": Param(40, "points the spline is sampled at (encoding='spline')", low=4, high=4096),
+    "repair_window": Param(
+        8,
+        "local repair: a segment that touches a blocked cell between two points at most this many cells apart is "
+        "routed around it inside a small box (grid2d and dynamic maps; 0 turns the repair off)",
+        low=0, high=16,
+    ),
     "penalty": Param(
         1.0,
         "cost of one unit of constraint violation, in map diagonals (see docs/planners/swarm.pso.md)",
