@@ -45,7 +45,10 @@ Sections (each a function in :data:`SECTIONS`):
       with ``Budget(time_s=10)`` (target >= 95 %); without ``--quick`` also
       the CPU time each needs to its first solution, up to 8 M steps;
     - ``exact.anyangle`` against every valid path of six planners on the
-      32 x 32 maps (target: never longer).
+      32 x 32 maps (target: never longer);
+    - every ``ompl.*`` planner (``simplify=True``) on ``dsaco.simple/medium/complex``
+      (``air3d``) with ``Budget(time_s=2)``: every run valid or failed with a
+      stated reason (target: no crash).
 
 A success is a run whose planner returned ``SOLVED`` with a path that
 :func:`pathzoo.rules.validate_path` (the harness's judge) accepts; the length
@@ -357,6 +360,29 @@ def anyangle_lower_bound(per_map: int, time_s: float) -> pd.DataFrame:
     return pd.DataFrame(rows)
 
 
+OMPL_PLANNER_IDS = ("ompl.rrt", "ompl.rrtconnect", "ompl.rrtstar", "ompl.informed_rrtstar", "ompl.prmstar",
+                    "ompl.bitstar", "ompl.fmt")
+
+
+def ompl_air3d(time_s: float) -> pd.DataFrame:
+    """Every ``ompl.*`` planner (``simplify=True``, seed 0) on the DSACO air volumes: valid, or failed with a reason."""
+    rows = []
+    for pid in OMPL_PLANNER_IDS:
+        for sid in AIR_SCENARIOS:
+            scenario = pathzoo.load_scenario(sid)
+            started = time.process_time()
+            try:
+                result = pathzoo.make_planner(pid, simplify=True).plan(
+                    scenario, budget=pathzoo.Budget(time_s=time_s), rng=np.random.default_rng(0))
+                outcome = "valid" if result.solved and validate_path(scenario, result.path) else (
+                    "stated failure" if not result.solved and result.message else "NOT CLEAN")
+            except Exception as exc:  # recorded, as the harness records a crash
+                outcome = f"CRASH {type(exc).__name__}"
+            rows.append({"planner": pid, "scenario": sid, "outcome": outcome,
+                         "cpu (s)": round(time.process_time() - started, 2)})
+    return pd.DataFrame(rows)
+
+
 def ompl_section(quick: bool) -> bool:
     """The ``ompl`` section: motion checks/s, rrtconnect on 8room, the any-angle lower bound; True when all are met."""
     problems, time_s = (3, 10.0) if quick else (10, 10.0)
@@ -380,7 +406,12 @@ def ompl_section(quick: bool) -> bool:
     print(bounds.groupby("planner")["ratio"].agg(["count", "min", "median"]).to_string())
     broken = int(bounds["below"].sum())
     print(f"exact.anyangle never longer than a valid path: {'met' if broken == 0 else f'NOT met ({broken} shorter paths)'}")
-    return broken == 0 and rate >= OMPL_8ROOM_SUCCESS_TARGET and rates["as planners call it"] >= OMPL_MOTION_TARGET
+    air = ompl_air3d(time_s=2.0)
+    print(air.pivot(index="planner", columns="scenario", values="outcome").to_string())
+    clean = bool(air["outcome"].isin(["valid", "stated failure"]).all())
+    print(f"ompl.* on the DSACO air volumes (2 s): every run valid or stated: {'met' if clean else 'NOT met'}")
+    return (broken == 0 and rate >= OMPL_8ROOM_SUCCESS_TARGET and rates["as planners call it"] >= OMPL_MOTION_TARGET
+            and clean)
 
 
 SECTIONS: dict[str, Callable[[bool], bool]] = {"metaheuristics": metaheuristics, "ompl": ompl_section}
