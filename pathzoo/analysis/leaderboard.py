@@ -28,6 +28,7 @@ import pandas as pd
 
 from pathzoo.analysis.formatting import format_number, format_percent, render_table
 from pathzoo.analysis.frame import Direction, with_config
+from pathzoo.analysis.hybrid import HYBRID_MARK, HYBRID_NOTE, hybrid_planners
 from pathzoo.analysis.path_models import MODEL_RATIO, REFERENCE_COLUMN, with_model_ratio
 from pathzoo.analysis.summary import summarize
 
@@ -188,11 +189,16 @@ def format_leaderboard(table: pd.DataFrame, fmt: str = "text") -> str:
     """
     info = table.attrs.get("metric")
     label = info.label if info is not None else "metric"
+    hybrids = hybrid_planners(table["planner"].astype(str)) if "planner" in table.columns else set()
+    names = table["config"].astype(str)
+    if hybrids:
+        marked = table["planner"].astype(str).isin(hybrids)
+        names = names.where(~marked, names + f" {HYBRID_MARK}")
     display = pd.DataFrame(
         {
             "scenario": table["scenario"].astype(str),
             "rank": table["rank"].astype(str),
-            "planner": table["config"].astype(str),
+            "planner": names,
             "runs": table["n_runs"].astype(str),
             "success": table["success_rate"].map(format_percent),
             "median": table["median"].map(format_number),
@@ -204,6 +210,8 @@ def format_leaderboard(table: pd.DataFrame, fmt: str = "text") -> str:
     if "optimum" in table.columns:
         display["optimum"] = table["optimum"].fillna("").astype(str)
         notes.append(MODEL_RATIO_NOTE)
+    if hybrids:
+        notes.append(HYBRID_NOTE)
     if "vs_reference" in table.columns:
         display["vs ref"] = table["vs_reference"].fillna("–")
         display["p (Holm)"] = table["p_holm"].map(lambda x: format_number(x, 2))

@@ -11,7 +11,7 @@ import fnmatch
 import sys
 from typing import Any, Callable
 
-from pathzoo.plugins.entries import PluginEntry
+from pathzoo.plugins.entries import HYBRID_MARK, PluginEntry
 from pathzoo.text_table import aligned_text
 
 __all__ = ["add_parser", "list_table", "matches"]
@@ -40,7 +40,8 @@ _DETAIL: dict[str, tuple[str, Callable[[PluginEntry], str]]] = {
 
 def _summary(entry: PluginEntry, kind: str) -> str:
     unavailable = entry.unavailable if kind == "planners" else ""
-    return f"[unavailable, {unavailable}] {entry.summary}" if unavailable else entry.summary
+    summary = f"{HYBRID_MARK} {entry.summary}" if kind == "planners" and entry.declared("hybrid", False) else entry.summary
+    return f"[unavailable, {unavailable}] {summary}" if unavailable else summary
 
 
 def matches(entry_id: str, patterns: list[str]) -> bool:

@@ -13,11 +13,14 @@ if TYPE_CHECKING:
     from pathzoo.core.scenario import Scenario
 
 __all__ = ["ScenarioEntry", "LazyClass", "LazyPlanner", "LazyMetric", "PluginEntry", "PluginFailure",
-           "PluginDeclarationError", "PATH_MODELS"]
+           "PluginDeclarationError", "PATH_MODELS", "HYBRID_MARK"]
 
 PATH_MODELS: tuple[str, ...] = ("grid", "anyangle", "timed")
 """What a planner's paths may be: moves between neighbouring cells, straight segments in any direction, or
 timed moves with waits among moving obstacles. Each has its own reference optimum (``docs/metrics.md``)."""
+
+HYBRID_MARK = "[hybrid]"
+"""How ``pathzoo list``, leaderboards and reports mark a planner declared ``hybrid``."""
 
 
 class PluginDeclarationError(PathzooError):
@@ -135,18 +138,23 @@ class LazyPlanner(LazyClass):
         which picks the reference its length is compared with. A class
         registered without a declaration gives it as a ``path_model`` class
         attribute; ``"grid"`` when it has none.
+    hybrid : bool
+        The class's ``hybrid``: True for a metaheuristic that hands part of
+        its work to an exact search (e.g. A* routes between its waypoints).
+        ``pathzoo list``, the leaderboard and the report mark such planners.
     """
 
     kinds: frozenset[str] = frozenset()
     requires: Mapping[str, str] = field(default_factory=dict)
     path_model: str = "grid"
+    hybrid: bool = False
 
     def __post_init__(self) -> None:
         if self.path_model not in PATH_MODELS:
             raise PluginDeclarationError(
                 f"'{self.id}' declares path_model={self.path_model!r}; allowed: {', '.join(PATH_MODELS)}")
-    declared: ClassVar[tuple[str, ...]] = ("id", "summary", "kinds", "requires")
-    absent: ClassVar[Mapping[str, Any]] = {"requires": {}}
+    declared: ClassVar[tuple[str, ...]] = ("id", "summary", "kinds", "requires", "hybrid")
+    absent: ClassVar[Mapping[str, Any]] = {"requires": {}, "hybrid": False}
 
 
 @dataclass(frozen=True)

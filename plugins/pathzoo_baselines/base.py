@@ -1,4 +1,4 @@
-"""Base class of the metaheuristic baselines: shared scenario kinds, heavy imports done when a planner is built."""
+"""Base class of the metaheuristic baselines: scenario kinds, the hybrid flag, heavy imports done when a planner is built."""
 
 from __future__ import annotations
 
@@ -8,13 +8,19 @@ from typing import Any, ClassVar
 
 from pathzoo.core import Budget, Planner, ProgressCallback, Scenario
 from pathzoo_baselines.encodings import Encoding, make_encoding
+from pathzoo_baselines.params import ALL_KINDS
 from pathzoo_baselines.search import Search
 
 __all__ = ["BaselinePlanner"]
 
 
 class BaselinePlanner(Planner):
-    """A metaheuristic baseline over the shared encodings (``grid2d`` and ``terrain``).
+    """A metaheuristic baseline over the shared encodings.
+
+    The pure configurations (``hybrid = False``, every kind) search over
+    straight-segment encodings and run no graph search; the hybrids
+    (:mod:`pathzoo_baselines.hybrids`, ``hybrid = True``) decode with A*
+    routes and support ``grid2d`` and ``terrain`` only.
 
     Building a planner imports the libraries its ``plan()`` needs (listed in
     ``preload``) and the compiled kernels of the encodings, so that the
@@ -24,7 +30,8 @@ class BaselinePlanner(Planner):
     ``plan()`` raises the ImportError.
     """
 
-    kinds: ClassVar[frozenset[str]] = frozenset({"grid2d", "terrain"})
+    kinds: ClassVar[frozenset[str]] = ALL_KINDS
+    hybrid: ClassVar[bool] = False
     preload: ClassVar[tuple[str, ...]] = ()
 
     def __init__(self, **params: Any) -> None:

@@ -22,11 +22,22 @@ where ``diagonal`` is the map diagonal in metres and ``violation`` (unitless,
 - **turns**: the number of heading changes beyond ``vehicle.max_turn_deg``
   (only when that limit is below 180 degrees; zero-length segments are not
   skipped here as the validator skips them, which is why the final path is
-  still judged by :func:`~pathzoo.rules.validate_path`).
+  still judged by :func:`~pathzoo.rules.validate_path`);
+- **moving obstacles** (``dynamic``): the number of segments that come within
+  an obstacle's radius (plus :data:`~pathzoo_baselines.margin.MARGIN_CELLS`,
+  stricter than the judge's margin) while the vehicle drives
+  them at cruise speed from time 0, with the exact distance of
+  :meth:`pathzoo.core.MovingObstacle.min_distances`, the judge's own rule
+  (:mod:`pathzoo.rules.timing`); the paths do not wait;
+- **voxels and pitch** (``air3d``): the number of segments that touch a
+  blocked voxel or leave the volume (:func:`pathzoo.grid.segments.blocked_segments`,
+  the judge's rule) plus those that pitch beyond ``vehicle.max_pitch_deg``
+  (:func:`pathzoo.rules.slope.steep_segments`).
 
-``length`` is the horizontal length on ``grid2d`` maps and the 3-D length
-(sum of the pieces' lengths) on ``terrain``, i.e. the quantity the exact
-planners minimise on the same maps.
+``length`` is the horizontal length on ``grid2d`` and ``dynamic`` maps, the
+3-D length (sum of the pieces' lengths) on ``terrain`` and the Euclidean 3-D
+length in air volumes, i.e. the quantity the exact planners minimise on the
+same maps.
 """
 
 from __future__ import annotations
@@ -35,7 +46,7 @@ import numba
 import numpy as np
 
 from pathzoo.core import Scenario
-from pathzoo.grid.segments import count_blocked_cells_2d, to_cell_units
+from pathzoo.grid.segments import blocked_segments, count_blocked_cells_2d, to_cell_units
 from pathzoo.grid.terrain import MAX_PIECE_CELLS, bilinear_elevation, segments_slope_range, slope_exceeds
 from pathzoo_baselines.margin import MARGIN_CELLS, segment_clear
 
@@ -80,34 +91,64 @@ class PathCost:
     Parameters
     ----------
     scenario : Scenario
-        A ``grid2d`` or ``terrain`` scenario.
+        A scenario of any kind.
     penalty : float
         Cost of one unit of violation, in map diagonals.
     """
 
     def __init__(self, scenario: Scenario, penalty: float) -> None:
         self.scenario = scenario
-        self.weight = float(penalty) * float(np.hypot(*scenario.extent))
+        self.weight = float(penalty) * float(np.linalg.norm(scenario.extent))
         self._terrain = scenario.kind == "terrain"
         self._max_turn = float(scenario.vehicle.max_turn_deg)
 
     def __call__(self, paths: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """Return ``(cost, violation)`` for polylines of shape (n, m, 2) in world coordinates."""
+        """Return ``(cost, violation)`` for polylines of shape (n, m, d) in world coordinates."""
         sc = self.scenario
         n = paths.shape[0]
-        violation = collision_counts(sc.blocked, to_cell_units(paths, sc.cell_size), MARGIN_CELLS)
+        if sc.kind == "air3d":
+            violation = self._air_violation(paths)
+        else:
+            violation = collision_counts(sc.blocked, to_cell_units(paths, sc.cell_size), MARGIN_CELLS)
         if self._terrain:
             length, slope_excess = self._terrain_terms(paths)
             violation = violation + slope_excess
         else:
-            d = np.diff(paths, axis=1)
-            length = np.hypot(d[..., 0], d[..., 1]).sum(axis=1)
+            length = np.linalg.norm(np.diff(paths, axis=1), axis=-1).sum(axis=1)
+        if sc.moving_obstacles:
+            violation = violation + self._moving_hits(paths)
         if self._max_turn < 180.0 and paths.shape[1] > 2:
             d = np.diff(paths, axis=1)
             heading = np.arctan2(d[..., 1], d[..., 0])
             turn = np.degrees(np.abs((np.diff(heading, axis=1) + np.pi) % (2 * np.pi) - np.pi))
             violation = violation + (turn > self._max_turn).sum(axis=1)
         return length + self.weight * violation, violation.reshape(n)
+
+    def _air_violation(self, paths: np.ndarray) -> np.ndarray:
+        """Per polyline of an air volume: segments touching a blocked voxel plus segments beyond the pitch limit."""
+        from pathzoo.rules.slope import steep_segments
+
+        sc = self.scenario
+        cells = to_cell_units(paths, sc.cell_sizes)
+        return np.array(
+            [blocked_segments(sc.blocked, c).sum() + steep_segments(sc, p).sum() for c, p in zip(cells, paths)],
+            dtype=np.float64,
+        )
+
+    def _moving_hits(self, paths: np.ndarray) -> np.ndarray:
+        """Per polyline: segments that meet a moving obstacle when driven at cruise speed from time 0."""
+        sc = self.scenario
+        n, m = paths.shape[0], paths.shape[1]
+        step = np.linalg.norm(np.diff(paths, axis=1), axis=-1)
+        times = np.concatenate([np.zeros((n, 1)), np.cumsum(step, axis=1)], axis=1) / sc.vehicle.cruise_speed
+        p0 = paths[:, :-1, :2].reshape(-1, 2)
+        p1 = paths[:, 1:, :2].reshape(-1, 2)
+        t0, t1 = times[:, :-1].ravel(), times[:, 1:].ravel()
+        hit = np.zeros(len(p0), dtype=bool)
+        margin = MARGIN_CELLS * sc.cell_size  # stricter than the judge's margin (issue 15)
+        for ob in sc.moving_obstacles:
+            hit |= ob.min_distances(p0, p1, t0, t1) < ob.radius + margin
+        return hit.reshape(n, m - 1).sum(axis=1).astype(np.float64)
 
     def _terrain_terms(self, paths: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """3-D length (pieces as ``segment_profile`` cuts them) and slope violation (cells of bad segments)."""

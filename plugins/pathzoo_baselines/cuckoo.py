@@ -57,8 +57,8 @@ class CuckooPlanner(BaselinePlanner):
     """
 
     id: ClassVar[str] = "swarm.cuckoo"
-    version: ClassVar[str] = "2"
-    summary: ClassVar[str] = "Cuckoo search with Mantegna Lévy flights over K waypoints, decoded into a feasible path"
+    version: ClassVar[str] = "3"
+    summary: ClassVar[str] = "Cuckoo search (Yang & Deb) with Mantegna Lévy flights over K straight-segment waypoints"
     params: ClassVar[Mapping[str, Param]] = {
         **ENCODING_PARAMS,
         "nests": Param(25, "number of host nests n", low=2, high=100_000),

@@ -6,7 +6,7 @@ from typing import Any, Mapping, Protocol
 
 import numpy as np
 
-from pathzoo.core import Scenario
+from pathzoo.core import Scenario, UnsupportedScenarioError
 
 __all__ = ["Encoding", "FEASIBLE_ENCODINGS", "make_encoding"]
 
@@ -62,7 +62,20 @@ def make_encoding(scenario: Scenario, params: Mapping[str, Any]) -> Encoding:
     - ``grid``: :class:`~pathzoo_baselines.gridpath.MoveEncoding` (compass moves);
     - ``waypoints``, ``spline``: :class:`~pathzoo_baselines.waypoints.WaypointEncoding`
       (penalised straight or spline paths).
+
+    ``cells``, ``routed`` and ``grid`` walk the static 2-D neighbourhood
+    graph, so they refuse ``dynamic`` and ``air3d`` scenarios.
+
+    Raises
+    ------
+    UnsupportedScenarioError
+        A graph encoding on a ``dynamic`` or ``air3d`` scenario.
     """
+    if params["encoding"] in ("cells", "routed", "grid") and scenario.kind not in ("grid2d", "terrain"):
+        raise UnsupportedScenarioError(
+            f"encoding '{params['encoding']}' walks the static 2-D grid graph and does not support scenario kind "
+            f"'{scenario.kind}'; use 'waypoints' or 'spline'"
+        )
     if params["encoding"] == "cells":
         from pathzoo_baselines.cellpath import CellPathEncoding
 
@@ -88,4 +101,5 @@ def make_encoding(scenario: Scenario, params: Mapping[str, Any]) -> Encoding:
         spline=params["encoding"] == "spline",
         spline_samples=params["spline_samples"],
         penalty=params["penalty"],
+        repair_window=params.get("repair_window", 0),
     )

@@ -10,10 +10,10 @@ import numpy as np
 from pathzoo.core import Budget, InvalidParameterError, Param, PlanResult, ProgressCallback, Scenario
 from pathzoo_baselines.base import BaselinePlanner
 from pathzoo_baselines.encodings import Encoding
-from pathzoo_baselines.params import CONTINUOUS_ENCODINGS, ENCODING_PARAMS
+from pathzoo_baselines.params import ENCODING_PARAMS, PURE_ENCODINGS
 from pathzoo_baselines.search import seeded_global_random
 
-__all__ = ["GaPlanner", "RateControl", "GA_PARAMS"]
+__all__ = ["GaPlanner", "RateControl", "GA_PARAMS", "CELLS_PARAMS"]
 
 RateControl = Callable[[list, float], tuple[float, float]]
 """``rates(population, best_cost) -> (cxpb, mutpb)``, asked before every generation."""
@@ -21,19 +21,11 @@ RateControl = Callable[[list, float], tuple[float, float]]
 GA_PARAMS: Mapping[str, Param] = {
     **ENCODING_PARAMS,
     "encoding": Param(
-        "cells",
-        "candidate encoding: 'cells' (a variable-length feasible chain of free cells with crossover at a shared "
-        "cell and a reroute mutation, see docs/planners/evo.ga.md), 'routed', 'waypoints', 'spline' (see "
-        "swarm.pso) or 'grid' (a string of compass moves walked on the neighbourhood graph)",
-        choices=("cells", *CONTINUOUS_ENCODINGS, "grid"),
-    ),
-    "reroute_fraction": Param(
-        0.3, "cells encoding: longest piece a mutation reroutes, as a share of the chain", low=0.0, low_open=True,
-        high=1.0,
-    ),
-    "shortcut_rate": Param(
-        0.5, "cells encoding: probability that a mutation replaces the piece by the shortest route between its "
-        "ends (a local step) rather than by a detour through a random nearby cell", low=0.0, high=1.0,
+        "waypoints",
+        "candidate encoding: 'waypoints', 'spline' (see swarm.pso) or 'grid' (a string of compass moves walked on "
+        "the neighbourhood graph, grid2d and terrain only); none runs a graph search (the A*-routed encodings are "
+        "evo.ga_astar's)",
+        choices=(*PURE_ENCODINGS, "grid"),
     ),
     "moves_factor": Param(2.0, "grid encoding: moves per chromosome, as a multiple of H + W", low=0.05, high=100.0),
     "population": Param(50, "population size", low=2, high=100_000),
@@ -46,7 +38,19 @@ GA_PARAMS: Mapping[str, Param] = {
     "eta_cx": Param(15.0, "distribution index of simulated binary crossover (real genes)", low=0.0, high=1000.0),
     "eta_mut": Param(20.0, "distribution index of polynomial mutation (real genes)", low=0.0, high=1000.0),
 }
-"""Parameters shared by ``evo.ga`` and ``evo.fuzzy_ga``."""
+"""Parameters shared by ``evo.ga`` and ``evo.fuzzy_rate_ga`` (the hybrids add the ``cells`` encoding's)."""
+
+CELLS_PARAMS: Mapping[str, Param] = {
+    "reroute_fraction": Param(
+        0.3, "cells encoding: longest piece a mutation reroutes, as a share of the chain", low=0.0, low_open=True,
+        high=1.0,
+    ),
+    "shortcut_rate": Param(
+        0.5, "cells encoding: probability that a mutation replaces the piece by the shortest route between its "
+        "ends (a local step) rather than by a detour through a random nearby cell", low=0.0, high=1.0,
+    ),
+}
+"""Parameters of the ``cells`` encoding (the hybrids ``evo.ga_astar`` and ``evo.fuzzy_rate_ga_astar``)."""
 
 
 @functools.lru_cache(maxsize=1)
@@ -92,11 +96,12 @@ class GaPlanner(BaselinePlanner):
     mate each pair with probability ``cxpb``; mutate each child with
     probability ``mutpb`` (``deap.algorithms.varAnd``).
 
-    - Chains of cells (``cells``, the default): crossover at a shared cell
-      and the reroute mutation of :mod:`pathzoo_baselines.cellpath`; every
-      individual stays feasible.
-    - Real genes (``routed``, ``waypoints``, ``spline``): simulated binary crossover and
-      polynomial mutation, both bounded to the map (``eta_cx``, ``eta_mut``).
+    - Real genes (``waypoints``, the default, and ``spline``; the hybrid's
+      ``routed``): simulated binary crossover and polynomial mutation, both
+      bounded to the map (``eta_cx``, ``eta_mut``).
+    - Chains of cells (``cells``, the hybrid ``evo.ga_astar`` only):
+      crossover at a shared cell and the A*-rerouting mutation of
+      :mod:`pathzoo_baselines.cellpath`; every individual stays feasible.
     - Grid genes (``grid``): two-point crossover and uniform integer
       mutation of the moves.
 
@@ -109,8 +114,8 @@ class GaPlanner(BaselinePlanner):
     """
 
     id: ClassVar[str] = "evo.ga"
-    version: ClassVar[str] = "2"
-    summary: ClassVar[str] = "Genetic algorithm (DEAP) over feasible variable-length cell paths (or waypoint/move encodings)"
+    version: ClassVar[str] = "3"
+    summary: ClassVar[str] = "Genetic algorithm (DEAP) over K straight-segment waypoints (or grid moves), no graph search"
     preload: ClassVar[tuple[str, ...]] = ("deap.algorithms", "deap.base", "deap.tools")
     requires: ClassVar[Mapping[str, str]] = {"deap": "evo"}  # optional dependency -> extra
     params: ClassVar[Mapping[str, Param]] = {

@@ -34,8 +34,8 @@ class PsoPlanner(BaselinePlanner):
     """
 
     id: ClassVar[str] = "swarm.pso"
-    version: ClassVar[str] = "2"
-    summary: ClassVar[str] = "Particle swarm optimisation (pyswarms) of K waypoints, decoded into a feasible path"
+    version: ClassVar[str] = "3"
+    summary: ClassVar[str] = "Particle swarm optimisation (pyswarms) of K straight-segment waypoints, no graph search"
     preload: ClassVar[tuple[str, ...]] = ("pathzoo_baselines.pyswarms_backend",)
     requires: ClassVar[Mapping[str, str]] = {"pyswarms": "evo"}  # optional dependency -> extra
     params: ClassVar[Mapping[str, Param]] = {

@@ -201,7 +201,14 @@ class Search:
         return PlanResult(Status.SOLVED, path=path, **common)
 
     def _segments_within_margin(self, path: np.ndarray) -> int:
-        """Segments of a 2-D path closer than :data:`~pathzoo_baselines.margin.MARGIN_CELLS` to a blocked square."""
+        """Segments of a 2-D path closer than :data:`~pathzoo_baselines.margin.MARGIN_CELLS` to a blocked square.
+
+        In air volumes the judge's voxel rule already counts a segment within
+        its margin of a blocked voxel as touching it, and the cost has
+        rejected those, so there is nothing more to count.
+        """
         sc = self.scenario
+        if sc.dim == 3:
+            return 0
         cells = to_cell_units(path, sc.cell_size)[None]
         return int(polylines_clear(sc.blocked, cells, MARGIN_CELLS)[0])

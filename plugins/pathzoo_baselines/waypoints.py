@@ -1,7 +1,15 @@
 """Continuous path encodings: K free waypoints, or K control points of a clamped cubic B-spline.
 
-A candidate is a vector of ``2K`` reals ``(x1, y1, ..., xK, yK)`` in world
-coordinates, bounded by the map (``0 <= x < width``, ``0 <= y < height``).
+A candidate is a vector of ``dK`` reals ``(x1, y1, ..., xK, yK)`` in world
+coordinates (``d = 3``, with ``z``, in air volumes), bounded by the map
+(``0 <= x < width``, ``0 <= y < height``, ``0 <= z < ceiling``).
+
+This encoding runs no global search of any kind: it is the one the pure
+configurations of the metaheuristics use (``docs/planners/metaheuristics.md``).
+On the 2-D occupancy grids (``grid2d``, ``dynamic``) a segment that touches a
+blocked cell between two points at most ``repair_window`` cells apart is
+routed around it inside a small box (:mod:`pathzoo_baselines.local_repair`);
+``repair_window = 0`` turns this off.
 
 - ``waypoints``: the path is ``start, p1, ..., pK, goal`` joined by straight
   segments.
@@ -23,7 +31,10 @@ import numpy as np
 from scipy.interpolate import BSpline
 
 from pathzoo.core import Scenario
+from pathzoo.grid.segments import to_cell_units
 from pathzoo_baselines.cost import PathCost
+from pathzoo_baselines.local_repair import repair_polylines
+from pathzoo_baselines.margin import MARGIN_CELLS
 
 __all__ = ["WaypointEncoding", "spline_basis"]
 
@@ -36,12 +47,12 @@ def spline_basis(n_control: int, n_samples: int) -> np.ndarray:
 
 
 class WaypointEncoding:
-    """Candidates as ``2K`` world coordinates; see the module docstring.
+    """Candidates as ``dK`` world coordinates; see the module docstring.
 
     Parameters
     ----------
     scenario : Scenario
-        The problem (``grid2d`` or ``terrain``).
+        The problem (any kind).
     waypoints : int
         K, the number of free points.
     spline : bool
@@ -50,30 +61,61 @@ class WaypointEncoding:
         Polyline resolution of the spline.
     penalty : float
         Penalty weight of :class:`~pathzoo_baselines.cost.PathCost`.
+    repair_window : int
+        Largest distance in cells between the ends of a blocked segment that
+        the local repair routes around (0: no repair). Used on ``grid2d``
+        and ``dynamic`` maps only.
     """
 
     integer = False
 
-    def __init__(self, scenario: Scenario, *, waypoints: int, spline: bool, spline_samples: int, penalty: float):
+    def __init__(
+        self, scenario: Scenario, *, waypoints: int, spline: bool, spline_samples: int, penalty: float,
+        repair_window: int = 0,
+    ):
         self.scenario = scenario
         self.k = int(waypoints)
-        self.n_genes = 2 * self.k
+        self.dim = scenario.dim
+        self.n_genes = self.dim * self.k
         inside = np.nextafter(scenario.extent, 0.0)  # points stay in [0, extent)
         self.low = np.zeros(self.n_genes)
         self.high = np.tile(inside, self.k)
         self._basis = spline_basis(self.k + 2, spline_samples) if spline else None
         self._cost = PathCost(scenario, penalty)
+        self._repair = int(repair_window) if scenario.kind in ("grid2d", "dynamic") else 0
 
     def polylines(self, genes: np.ndarray) -> np.ndarray:
-        """Paths of shape (n, m, 2) for candidates of shape (n, 2K), clipped to the map."""
+        """Paths of shape (n, m, d) for candidates of shape (n, dK), clipped to the map and repaired.
+
+        Repaired paths have different numbers of points; each row repeats
+        its last point up to the longest (see :func:`decode`).
+        """
+        return self.decode(genes)[0]
+
+    def decode(self, genes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """``(paths, lengths)``: :meth:`polylines` and the number of real points of each path."""
+        pts = self._points(genes)
+        if self._repair <= 0:
+            return pts, np.full(len(pts), pts.shape[1], dtype=np.int64)
+        cs = self.scenario.cell_size
+        out, lengths = repair_polylines(self.scenario.blocked, to_cell_units(pts, cs), self._repair, MARGIN_CELLS)
+        out *= cs
+        out[:, 0] = pts[:, 0]  # the exact start and goal, not their round trip through cell units
+        tail = np.arange(out.shape[1])[None, :] >= lengths[:, None] - 1
+        out[tail] = np.repeat(pts[:, -1], out.shape[1] - lengths + 1, axis=0)
+        return out, lengths
+
+    def _points(self, genes: np.ndarray) -> np.ndarray:
+        """The unrepaired paths (n, m, d): start, the K points (or the sampled spline), goal."""
         x = np.clip(np.asarray(genes, dtype=np.float64).reshape(-1, self.n_genes), self.low, self.high)
         n = len(x)
         sc = self.scenario
-        ends = np.broadcast_to(sc.start, (n, 1, 2)), np.broadcast_to(sc.goal, (n, 1, 2))
-        control = np.concatenate([ends[0], x.reshape(n, self.k, 2), ends[1]], axis=1)
+        d = self.dim
+        ends = np.broadcast_to(sc.start, (n, 1, d)), np.broadcast_to(sc.goal, (n, 1, d))
+        control = np.concatenate([ends[0], x.reshape(n, self.k, d), ends[1]], axis=1)
         if self._basis is None:
             return control
-        pts = np.clip(np.einsum("mj,njd->nmd", self._basis, control), 0.0, self.high[:2])  # rounding at the border
+        pts = np.clip(np.einsum("mj,njd->nmd", self._basis, control), 0.0, self.high[:d])  # rounding at the border
         pts[:, 0] = sc.start
         pts[:, -1] = sc.goal
         return pts
@@ -81,15 +123,16 @@ class WaypointEncoding:
     def initial(self, rng: np.random.Generator, n: int) -> np.ndarray:
         """``n`` random candidates, points sorted along the start-goal axis."""
         sc = self.scenario
-        pts = rng.uniform(0.0, 1.0, size=(n, self.k, 2)) * self.high[:2]
+        pts = rng.uniform(0.0, 1.0, size=(n, self.k, self.dim)) * self.high[: self.dim]
         along = (pts - sc.start) @ (sc.goal - sc.start)
         order = np.argsort(along, axis=1, kind="stable")
         return np.take_along_axis(pts, order[..., None], axis=1).reshape(n, self.n_genes)
 
     def evaluate(self, genes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """``(cost, violation)`` of candidates of shape (n, 2K)."""
+        """``(cost, violation)`` of candidates of shape (n, dK)."""
         return self._cost(self.polylines(genes))
 
     def path(self, genes: np.ndarray) -> np.ndarray:
-        """World path of one candidate."""
-        return self.polylines(genes)[0]
+        """World path of one candidate (without the repeated tail)."""
+        paths, lengths = self.decode(genes)
+        return paths[0, : lengths[0]]

@@ -15,6 +15,11 @@ here, in one compiled call:
   the judge uses. It is conservative: a segment is refused when its slope
   comes within :data:`SLOPE_MARGIN_DEG` of a limit, so rounding can only make
   OMPL stricter than the judge, never laxer.
+- in air volumes, :func:`point_free_3d` and :func:`motion_clear_3d`: the
+  state lies in a free voxel; the motion touches no blocked voxel
+  (:func:`pathzoo.grid.segments.segment_blocked_3d`, the judge's voxel rule,
+  margin included) and pitches at most the vehicle's limit minus
+  :data:`SLOPE_MARGIN_DEG`.
 
 Why addresses and entry points
 ------------------------------
@@ -44,7 +49,7 @@ import numpy as np
 from numba import types
 from numba.extending import intrinsic
 
-from pathzoo.grid.segments import segment_blocked_2d
+from pathzoo.grid.segments import segment_blocked_2d, segment_blocked_3d
 from pathzoo.grid.terrain import segment_slope_range
 
 __all__ = [
@@ -52,7 +57,9 @@ __all__ = [
     "CompiledChecks",
     "entry_point",
     "motion_clear",
+    "motion_clear_3d",
     "point_free",
+    "point_free_3d",
     "segment_clear",
     "slopes_within",
 ]
@@ -81,12 +88,14 @@ _float_pointer = _pointer_from_address(types.float64)
 _int_pointer = _pointer_from_address(types.int64)
 
 # The int64 parameter block a callback passes by address: slot indices.
-_MOTIONS, _MOTION_LIMIT, _BLOCKED, _ELEVATION, _ROWS, _COLS, _REALS = range(7)
+_MOTIONS, _MOTION_LIMIT, _BLOCKED, _ELEVATION, _ROWS, _COLS, _REALS, _LAYERS = range(8)
 # The float64 block at address ``block[_REALS]``: slot indices.
-_CELL_SIZE, _MAX_CLIMB, _MAX_DESCENT = range(3)
+_CELL_SIZE, _MAX_CLIMB, _MAX_DESCENT, _VERTICAL_CELL_SIZE, _MAX_PITCH = range(5)
 
 _POINT = "boolean(intp, float64, float64)"
 _MOTION = "boolean(intp, float64, float64, float64, float64)"
+_POINT_3D = "boolean(intp, float64, float64, float64)"
+_MOTION_3D = "boolean(intp, float64, float64, float64, float64, float64, float64)"
 
 
 @numba.njit(_POINT, cache=True)
@@ -148,6 +157,41 @@ def motion_clear(block_address: int, x0: float, y0: float, x1: float, y1: float)
     return slopes_within(elevation, cell_size, reals[_MAX_CLIMB], reals[_MAX_DESCENT], x0, y0, x1, y1)
 
 
+@numba.njit(_POINT_3D, cache=True)
+def point_free_3d(block_address: int, x: float, y: float, z: float) -> bool:
+    """True when world point ``(x, y, z)`` lies in a free voxel of the volume described at ``block_address``."""
+    block = _int_pointer(block_address)
+    reals = _float_pointer(block[_REALS])
+    layers, rows, cols = block[_LAYERS], block[_ROWS], block[_COLS]
+    col, row = math.floor(x / reals[_CELL_SIZE]), math.floor(y / reals[_CELL_SIZE])
+    layer = math.floor(z / reals[_VERTICAL_CELL_SIZE])
+    if row < 0 or row >= rows or col < 0 or col >= cols or layer < 0 or layer >= layers:
+        return False
+    return not numba.carray(_bool_pointer(block[_BLOCKED]), (layers, rows, cols))[layer, row, col]
+
+
+@numba.njit(_MOTION_3D, cache=True)
+def motion_clear_3d(block_address: int, x0: float, y0: float, z0: float, x1: float, y1: float, z1: float) -> bool:
+    """Count one motion in an air volume and check it: the voxel rule, then the pitch limit (conservatively).
+
+    Once the block's motion count has reached its limit, the motion is
+    refused unchecked and not counted.
+    """
+    block = _int_pointer(block_address)
+    if block[_MOTIONS] >= block[_MOTION_LIMIT]:
+        return False
+    block[_MOTIONS] += 1
+    reals = _float_pointer(block[_REALS])
+    horizontal = math.hypot(x1 - x0, y1 - y0)
+    if math.degrees(math.atan2(abs(z1 - z0), horizontal)) > reals[_MAX_PITCH] - SLOPE_MARGIN_DEG:
+        return False
+    cs, vcs = reals[_CELL_SIZE], reals[_VERTICAL_CELL_SIZE]
+    p0 = np.array([x0 / cs, y0 / cs, z0 / vcs])
+    p1 = np.array([x1 / cs, y1 / cs, z1 / vcs])
+    blocked = numba.carray(_bool_pointer(block[_BLOCKED]), (block[_LAYERS], block[_ROWS], block[_COLS]))
+    return not segment_blocked_3d(blocked, p0, p1)
+
+
 def entry_point(dispatcher: Any) -> Callable[..., bool]:
     """The compiled function behind an eagerly compiled ``dispatcher``'s only signature, called without type dispatch.
 
@@ -160,6 +204,8 @@ def entry_point(dispatcher: Any) -> Callable[..., bool]:
 
 _POINT_FREE = entry_point(point_free)
 _MOTION_CLEAR = entry_point(motion_clear)
+_POINT_FREE_3D = entry_point(point_free_3d)
+_MOTION_CLEAR_3D = entry_point(motion_clear_3d)
 
 _NO_LIMIT = np.iinfo(np.int64).max
 
@@ -178,7 +224,8 @@ class CompiledChecks:
     Parameters
     ----------
     blocked : numpy.ndarray
-        Blocked cells, shape ``(rows, cols)``; stored as a contiguous bool array.
+        Blocked cells, shape ``(rows, cols)``, or voxels, shape ``(layers,
+        rows, cols)``; stored as a contiguous bool array.
     cell_size : float
         Side of a cell, metres.
     elevation : numpy.ndarray, optional
@@ -188,6 +235,8 @@ class CompiledChecks:
         Slope limits (used only with ``elevation``).
     motion_limit : int, optional
         Motions checked at most; every later motion is refused unchecked. None: no limit.
+    vertical_cell_size, max_pitch_deg : float
+        Voxel height and pitch limit (air volumes only).
     """
 
     def __init__(
@@ -198,17 +247,22 @@ class CompiledChecks:
         max_climb_deg: float = 90.0,
         max_descent_deg: float = 90.0,
         motion_limit: int | None = None,
+        vertical_cell_size: float = 1.0,
+        max_pitch_deg: float = 90.0,
     ) -> None:
         self.blocked = np.ascontiguousarray(blocked, dtype=np.bool_)
+        self.dim = self.blocked.ndim
         self.elevation = None if elevation is None else np.ascontiguousarray(elevation, dtype=np.float64)
         if self.elevation is not None and self.elevation.shape != self.blocked.shape:
             raise ValueError(f"elevation shape {self.elevation.shape} differs from the map's {self.blocked.shape}")
-        self.reals = np.array([cell_size, max_climb_deg, max_descent_deg], dtype=np.float64)
-        self.block = np.zeros(7, dtype=np.int64)
+        self.reals = np.array([cell_size, max_climb_deg, max_descent_deg, vertical_cell_size, max_pitch_deg],
+                              dtype=np.float64)
+        self.block = np.zeros(8, dtype=np.int64)
         self.block[_MOTION_LIMIT] = _NO_LIMIT if motion_limit is None else motion_limit
         self.block[_BLOCKED] = self.blocked.ctypes.data
         self.block[_ELEVATION] = 0 if self.elevation is None else self.elevation.ctypes.data
-        self.block[_ROWS], self.block[_COLS] = self.blocked.shape
+        self.block[_ROWS], self.block[_COLS] = self.blocked.shape[-2:]
+        self.block[_LAYERS] = self.blocked.shape[0] if self.dim == 3 else 1
         self.block[_REALS] = self.reals.ctypes.data
         self.address: int = int(self.block.ctypes.data)
 
@@ -228,3 +282,11 @@ class CompiledChecks:
     def motion(self, x0: float, y0: float, x1: float, y1: float) -> bool:
         """:func:`motion_clear` for the world segment ``(x0, y0) -> (x1, y1)`` (counted)."""
         return _MOTION_CLEAR(self.address, x0, y0, x1, y1)
+
+    def point_3d(self, x: float, y: float, z: float) -> bool:
+        """:func:`point_free_3d` at world point ``(x, y, z)`` (air volumes)."""
+        return _POINT_FREE_3D(self.address, x, y, z)
+
+    def motion_3d(self, x0: float, y0: float, z0: float, x1: float, y1: float, z1: float) -> bool:
+        """:func:`motion_clear_3d` for the world segment ``p0 -> p1`` (counted; air volumes)."""
+        return _MOTION_CLEAR_3D(self.address, x0, y0, z0, x1, y1, z1)

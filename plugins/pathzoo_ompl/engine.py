@@ -3,15 +3,16 @@
 Problem
 -------
 The state space is ``RealVectorStateSpace(2)`` bounded by the map's extent
-(x along columns, y along rows, metres). A state is valid when it lies in a
-free cell of :attr:`Scenario.blocked` (obstacles, missing elevation and weak
-soil). Motions are checked by :func:`segment_validator`, an OMPL
+(x along columns, y along rows, metres), or ``RealVectorStateSpace(3)`` in
+air volumes (z up). A state is valid when it lies in a free cell (voxel) of
+:attr:`Scenario.blocked` (obstacles, missing elevation and weak soil). Motions are checked by :func:`segment_validator`, an OMPL
 ``MotionValidator`` making one compiled call per motion
 (:mod:`pathzoo_ompl.checks`): the validator's closed-cell collision rule
 and, on terrain, its slope limits (conservatively), so a motion OMPL accepts
 is a segment the validator accepts, instead of OMPL's sampled discrete
-check. The objective is path length in the plane; on terrain the harness
-measures 3-D length. Turn limits are not modelled; a path breaking one is
+check; in air volumes the check is the judge's voxel rule and the pitch limit
+(:func:`~pathzoo_ompl.checks.motion_clear_3d`). The objective is path length
+in the state space; on terrain the harness measures 3-D length. Turn limits are not modelled; a path breaking one is
 rejected by the final check. ``range = 0`` means
 :func:`pathzoo_ompl.planners.default_range`.
 
@@ -86,7 +87,7 @@ from scipy.sparse.csgraph import dijkstra
 
 from pathzoo.core import Budget, BudgetClock, PlanResult, ProgressCallback, Scenario, Status
 from pathzoo.rules import validate_path
-from pathzoo_ompl.checks import CompiledChecks, entry_point, motion_clear, point_free
+from pathzoo_ompl.checks import CompiledChecks, entry_point, motion_clear, motion_clear_3d, point_free, point_free_3d
 
 if TYPE_CHECKING:
     from pathzoo_ompl.planners import OmplPlanner
@@ -96,6 +97,8 @@ __all__ = ["DEFAULT_TIME_S", "compiled_checks", "segment_validator", "solve", "s
 _now = time.perf_counter
 _MOTION_CLEAR = entry_point(motion_clear)
 _POINT_FREE = entry_point(point_free)
+_MOTION_CLEAR_3D = entry_point(motion_clear_3d)
+_POINT_FREE_3D = entry_point(point_free_3d)
 
 DEFAULT_TIME_S = 1.0
 """Planning time when the budget sets no limit (OMPL's default for ``SimpleSetup.solve``)."""
@@ -167,6 +170,12 @@ class _Run:
 
 def compiled_checks(scenario: Scenario, motion_limit: int | None = None) -> CompiledChecks:
     """The scenario's map (and, on terrain, elevation and slope limits) prepared for the compiled checks."""
+    if scenario.kind == "air3d":
+        return CompiledChecks(
+            scenario.blocked, scenario.cell_size, motion_limit=motion_limit,
+            vertical_cell_size=float(scenario.vertical_cell_size or 1.0),
+            max_pitch_deg=scenario.vehicle.max_pitch_deg,
+        )
     if scenario.kind != "terrain":
         return CompiledChecks(scenario.blocked, scenario.cell_size, motion_limit=motion_limit)
     v = scenario.vehicle
@@ -203,7 +212,14 @@ def segment_validator(si: Any, checks: CompiledChecks) -> Any:
             """True when the straight segment ``s1 -> s2`` passes the validator's segment rule."""
             return _MOTION_CLEAR(address, s1[0], s1[1], s2[0], s2[1])
 
-    validator = SegmentValidator(si)
+    class VoxelValidator(ob.MotionValidator):
+        """Motion validator calling :func:`~pathzoo_ompl.checks.motion_clear_3d` on one volume."""
+
+        def checkMotion(self, s1: Any, s2: Any) -> bool:  # noqa: N802 (OMPL's name)
+            """True when the straight segment ``s1 -> s2`` passes the voxel rule and the pitch limit."""
+            return _MOTION_CLEAR_3D(address, s1[0], s1[1], s1[2], s2[0], s2[1], s2[2])
+
+    validator = (VoxelValidator if checks.dim == 3 else SegmentValidator)(si)
     validator.checks = checks  # keeps the arrays whose addresses the check reads alive
     return validator
 
@@ -215,35 +231,48 @@ def state_checker(checks: CompiledChecks) -> Callable[[Any], bool]:
     def valid(state: Any) -> bool:
         return _POINT_FREE(address, state[0], state[1])
 
+    def valid_3d(state: Any) -> bool:
+        return _POINT_FREE_3D(address, state[0], state[1], state[2])
+
+    if checks.dim == 3:
+        valid_3d.checks = checks  # type: ignore[attr-defined]  # keeps the arrays alive
+        return valid_3d
+
     valid.checks = checks  # type: ignore[attr-defined]  # keeps the arrays whose addresses the check reads alive
     return valid
 
 
-def _states(si: Any, xy: np.ndarray) -> list[Any]:
+def _states(si: Any, points: np.ndarray) -> list[Any]:
     out = []
-    for x, y in xy:
+    for p in points:
         s = si.allocState()
-        s[0], s[1] = float(x), float(y)
+        for axis, value in enumerate(p):
+            s[axis] = float(value)
         out.append(s)
     return out
 
 
-def _array(path: Any) -> np.ndarray:
-    return np.array([(s[0], s[1]) for s in (path.getState(i) for i in range(path.getStateCount()))], dtype=np.float64)
+def _coords(state: Any, dim: int) -> tuple[float, ...]:
+    return tuple(state[axis] for axis in range(dim))
 
 
-def _length(xy: np.ndarray) -> float:
-    return float(np.hypot(*np.diff(xy, axis=0).T).sum()) if len(xy) > 1 else 0.0
+def _array(path: Any, dim: int) -> np.ndarray:
+    states = (path.getState(i) for i in range(path.getStateCount()))
+    return np.array([_coords(s, dim) for s in states], dtype=np.float64).reshape(-1, dim)
 
 
-def _roadmap_path(planner: Any, si: Any) -> np.ndarray | None:
+def _length(points: np.ndarray) -> float:
+    return float(np.linalg.norm(np.diff(points, axis=0), axis=1).sum()) if len(points) > 1 else 0.0
+
+
+def _roadmap_path(planner: Any, si: Any, dim: int) -> np.ndarray | None:
     """Shortest start-goal path in a PRM roadmap, or None when they are not connected."""
     data = ob.PlannerData(si)
     planner.getPlannerData(data)
     if data.numStartVertices() == 0 or data.numGoalVertices() == 0:
         return None
     n = data.numVertices()
-    xy = np.array([(v[0], v[1]) for v in (data.getVertex(i).getState() for i in range(n))], dtype=np.float64)
+    xy = np.array([_coords(data.getVertex(i).getState(), dim) for i in range(n)], dtype=np.float64)
     src, dst = [], []
     for i in range(n):
         targets = data.getEdges(i)
@@ -252,7 +281,7 @@ def _roadmap_path(planner: Any, si: Any) -> np.ndarray | None:
     if not src:
         return None
     src_a, dst_a = np.array(src), np.array(dst)
-    weights = np.hypot(*(xy[dst_a] - xy[src_a]).T)
+    weights = np.linalg.norm(xy[dst_a] - xy[src_a], axis=1)
     graph = csr_matrix((weights, (src_a, dst_a)), shape=(n, n))
     start, goal = data.getStartIndex(0), data.getGoalIndex(0)
     dist, pred = dijkstra(graph, indices=start, return_predecessors=True)
@@ -264,7 +293,7 @@ def _roadmap_path(planner: Any, si: Any) -> np.ndarray | None:
     return xy[nodes[::-1]]
 
 
-def _plan_prm(planner: Any, si: Any, run: _Run) -> np.ndarray | None:
+def _plan_prm(planner: Any, si: Any, run: _Run, dim: int) -> np.ndarray | None:
     """Grow a PRM* roadmap in this thread until the budget is spent, searching it at checkpoints."""
     planner.solve(ob.plannerAlwaysTerminatingCondition())  # only inserts start and goal milestones
     best: np.ndarray | None = None
@@ -277,7 +306,7 @@ def _plan_prm(planner: Any, si: Any, run: _Run) -> np.ndarray | None:
 
         planner.growRoadmapPtc(ob.PlannerTerminationCondition(stop))
         searched = run.clock.elapsed
-        found = _roadmap_path(planner, si)
+        found = _roadmap_path(planner, si, dim)
         run.reserve_s = 2.0 * (run.clock.elapsed - searched)  # keep time for the last, larger search
         if found is not None and _length(found) < run.best:
             best = found
@@ -287,7 +316,7 @@ def _plan_prm(planner: Any, si: Any, run: _Run) -> np.ndarray | None:
         checkpoint *= 2
 
 
-def _plan_tree(spec: "OmplPlanner", planner: Any, pdef: Any, run: _Run) -> np.ndarray | None:
+def _plan_tree(spec: "OmplPlanner", planner: Any, pdef: Any, run: _Run, dim: int) -> np.ndarray | None:
     """Run a tree or batch planner once until it finishes or the budget is spent."""
 
     def stop_anytime() -> bool:
@@ -302,7 +331,7 @@ def _plan_tree(spec: "OmplPlanner", planner: Any, pdef: Any, run: _Run) -> np.nd
         raise run.error
     if not pdef.hasExactSolution():
         return None
-    return _array(pdef.getSolutionPath())
+    return _array(pdef.getSolutionPath(), dim)
 
 
 def solve(
@@ -331,8 +360,9 @@ def solve(
 
 def _solve(spec: "OmplPlanner", scenario: Scenario, seed: int, run: _Run) -> PlanResult:
     ou.RNG.setSeed(seed)
-    space = ob.RealVectorStateSpace(2)
-    bounds = ob.RealVectorBounds(2)
+    dim = scenario.dim
+    space = ob.RealVectorStateSpace(dim)
+    bounds = ob.RealVectorBounds(dim)
     for axis, size in enumerate(scenario.extent):
         bounds.setLow(axis, 0.0)
         bounds.setHigh(axis, float(size))
@@ -351,7 +381,10 @@ def _solve(spec: "OmplPlanner", scenario: Scenario, seed: int, run: _Run) -> Pla
     planner.setProblemDefinition(pdef)
     planner.setup()
 
-    raw = _plan_prm(planner, si, run) if spec.ompl_class == "PRMstar" else _plan_tree(spec, planner, pdef, run)
+    if spec.ompl_class == "PRMstar":
+        raw = _plan_prm(planner, si, run, dim)
+    else:
+        raw = _plan_tree(spec, planner, pdef, run, dim)
     extras: dict[str, Any] = {"ompl_planner": planner.getName(), "steps": run.steps, "motion_checks": run.motions}
     counts: dict[str, Any] = dict(iterations=run.iteration, evaluations=run.motions)
     if raw is None:
@@ -377,7 +410,7 @@ def _simplified(si: Any, raw: np.ndarray, scenario: Scenario, run: _Run) -> tupl
     """OMPL's PathSimplifier on ``raw``; the raw path is kept if the result fails the validator."""
     geometric = og.PathGeometric(si, _states(si, raw))
     og.PathSimplifier(si).simplify(geometric, ob.PlannerTerminationCondition(lambda: _now() >= run.deadline))
-    shorter = _array(geometric)
+    shorter = _array(geometric, scenario.dim)
     if validate_path(scenario, shorter):
         return shorter, True
     return raw, False

@@ -71,7 +71,7 @@ _REWIRE = Param(
 
 
 class OmplPlanner(Planner):
-    """Base of the ``ompl.*`` planners: an OMPL geometric planner in the continuous x-y plane.
+    """Base of the ``ompl.*`` planners: an OMPL geometric planner in the continuous plane or air volume.
 
     Subclasses name the OMPL class (``ompl_class``), whether it improves its
     solution over time (``anytime``) and map their own parameters onto the
@@ -82,7 +82,7 @@ class OmplPlanner(Planner):
     (listing plugins does not), so timed ``plan()`` calls do not pay for it.
     """
 
-    kinds: ClassVar[frozenset[str]] = frozenset({"grid2d", "terrain"})
+    kinds: ClassVar[frozenset[str]] = frozenset({"grid2d", "terrain", "air3d"})
     path_model: ClassVar[str] = "anyangle"  # straight segments between sampled states (pathzoo.plugins.entries.PATH_MODELS)
     version: ClassVar[str] = "2"
     requires: ClassVar[Mapping[str, str]] = {"ompl": "ompl"}

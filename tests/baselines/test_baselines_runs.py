@@ -1,4 +1,4 @@
-"""Runs of the four baselines: determinism under foreign global RNG state, budgets, failures, progress."""
+"""Runs of the metaheuristic baselines, pure and hybrid: determinism under foreign global RNG state, budgets, failures, progress."""
 
 import random
 
@@ -10,15 +10,14 @@ from pathzoo.rules import validate_path
 from pathzoo.testing import check_scenario
 from pathzoo_baselines.search import DEFAULT_ITERATIONS, Search
 
-BASELINES = ["swarm.pso", "swarm.cuckoo", "evo.ga", "evo.fuzzy_ga"]
-CONFIGS = [(pid, {}) for pid in BASELINES] + [
+BASELINES = ["swarm.pso", "swarm.cuckoo", "swarm.coa", "evo.ga", "evo.fuzzy_rate_ga"]
+HYBRIDS = ["swarm.pso_astar", "swarm.cuckoo_astar", "evo.ga_astar", "evo.fuzzy_rate_ga_astar"]
+CONFIGS = [(pid, {}) for pid in BASELINES + HYBRIDS] + [
     ("swarm.pso", {"encoding": "spline"}),
-    ("swarm.pso", {"encoding": "waypoints"}),
-    ("swarm.cuckoo", {"encoding": "waypoints"}),
+    ("swarm.pso", {"repair_window": 0}),
     ("evo.ga", {"encoding": "grid"}),
-    ("evo.ga", {"encoding": "routed"}),
-    ("evo.ga", {"encoding": "waypoints"}),
-    ("evo.fuzzy_ga", {"encoding": "grid"}),
+    ("evo.ga_astar", {"encoding": "routed"}),
+    ("evo.fuzzy_rate_ga", {"encoding": "grid"}),
 ]
 
 
@@ -129,6 +128,6 @@ def test_ga_rates_are_fixed_and_fuzzy_rates_adapt():
     scenario = check_scenario("grid2d")
     plain = _plan(make_planner("evo.ga", cxpb=0.7, mutpb=0.1), scenario, Budget(iterations=20))
     assert plain.extras["mean_cxpb"] == pytest.approx(0.7) and plain.extras["mean_mutpb"] == pytest.approx(0.1)
-    fuzzy = _plan(make_planner("evo.fuzzy_ga"), scenario, Budget(iterations=20))
+    fuzzy = _plan(make_planner("evo.fuzzy_rate_ga"), scenario, Budget(iterations=20))
     assert 0.5 <= fuzzy.extras["mean_cxpb"] <= 1.0 and 0.05 <= fuzzy.extras["mean_mutpb"] <= 0.5
     assert fuzzy.extras["mean_cxpb"] != pytest.approx(0.75)  # not just the middle of the range

@@ -136,9 +136,9 @@ def test_routed_decoder_uses_graph_edges_only_on_terrain():
         assert validate_path(sc, enc.path(x))
 
 
-@pytest.mark.parametrize("pid", ["swarm.pso", "evo.ga", "swarm.cuckoo", "evo.fuzzy_ga"])
-def test_default_encodings_solve_small_movingai_maps_with_tiny_budgets(pid):
-    """Ten generations on three 32 x 32 maps: solved, clean and within 15 % of the 8-connected optimum."""
+@pytest.mark.parametrize("pid", ["swarm.pso_astar", "evo.ga_astar", "swarm.cuckoo_astar", "evo.fuzzy_rate_ga_astar"])
+def test_hybrids_solve_small_movingai_maps_with_tiny_budgets(pid):
+    """The A*-routed hybrids, ten generations on three 32 x 32 maps: solved, clean, within 15 % of the optimum."""
     planner = make_planner(pid)
     for sid in SMALL:
         sc = pathzoo.load_scenario(sid)
@@ -155,15 +155,18 @@ def test_same_seed_same_path_on_a_movingai_map(pid):
     np.testing.assert_array_equal(runs[0].path, runs[1].path)
 
 
-@pytest.mark.parametrize(("encoding", "iterations", "min_solved"), [("routed", 25, 2), ("waypoints", 400, 1)])
-def test_issue_15_pso_paths_keep_clear_of_walls_exactly(encoding, iterations, min_solved):
+@pytest.mark.parametrize(
+    ("pid", "params", "iterations", "min_solved"),
+    [("swarm.pso_astar", {}, 25, 2), ("swarm.pso", {"repair_window": 0}, 400, 1), ("swarm.pso", {}, 100, 1)],
+)
+def test_issue_15_pso_paths_keep_clear_of_walls_exactly(pid, params, iterations, min_solved):
     """random-32-32-20 problem 136: every path PSO returns misses every blocked closed square, exactly.
 
-    ``waypoints`` is the penalised encoding that slid along the wall inside the judge's tolerance; its
-    cost now counts a segment within the margin as a collision.
+    ``waypoints`` without repair is the penalised encoding that slid along the wall inside the judge's
+    tolerance; its cost now counts a segment within the margin as a collision.
     """
     sc = pathzoo.load_scenario("movingai.random-32-32-20.b2.136")
-    planner = make_planner("swarm.pso", encoding=encoding)
+    planner = make_planner(pid, **params)
     solved = 0
     for seed in range(2):
         result = planner.plan(sc, budget=Budget(iterations=iterations), rng=np.random.default_rng(seed))
@@ -175,7 +178,7 @@ def test_issue_15_pso_paths_keep_clear_of_walls_exactly(encoding, iterations, mi
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("pid", ["swarm.pso", "evo.ga"])
+@pytest.mark.parametrize("pid", ["swarm.pso_astar", "evo.ga_astar"])
 def test_a_tight_time_limit_is_kept_on_a_512_map(pid):
     """The costly encodings look at the clock while drawing and evaluating, not only between generations.
 

@@ -170,3 +170,40 @@ def test_compiled_checks_cannot_be_copied_or_pickled():
     for clone in (copy.copy, copy.deepcopy, pickle.dumps):
         with pytest.raises(TypeError, match="memory addresses"):
             clone(checks)
+
+
+@pytest.mark.parametrize("sid", ["testing.air3d", "dsaco.simple"])
+def test_compiled_voxel_rule_agrees_with_the_judge(sid):
+    """In air volumes the compiled state and motion checks say what the judge says (voxels, pitch)."""
+    import pathzoo
+
+    sc = check_scenario("air3d") if sid == "testing.air3d" else pathzoo.load_scenario(sid)
+    checks = compiled_checks(sc)
+    rng = np.random.default_rng(3)
+    a = rng.uniform(0, 1, (400, 3)) * sc.extent
+    b = np.clip(a + rng.normal(0, 4, (400, 3)) * sc.cell_sizes, 0, np.nextafter(sc.extent, 0))
+    agree = accepted = 0
+    for p, q in zip(a, b):
+        free = not sc.blocked[tuple(sc.cell_of(p[None])[0])]
+        assert checks.point_3d(*p) == free
+        ok = checks.motion_3d(*p, *q)
+        judge = segment_problem(sc, p, q) is None
+        assert not ok or judge  # never laxer than the judge
+        agree += ok == judge
+        accepted += ok
+    assert agree >= 0.99 * len(a) and accepted > 20
+
+
+@pytest.mark.parametrize("pid", ["ompl.rrtconnect", "ompl.rrtstar", "ompl.prmstar"])
+def test_ompl_plans_in_air_volumes(pid):
+    """A 3-D solution on the kit's volume; on dsaco.simple (turn limit 60 deg, not modelled) valid or stated."""
+    import pathzoo
+    from pathzoo.rules import validate_path
+
+    planner = pathzoo.make_planner(pid)
+    sc = check_scenario("air3d")
+    result = planner.plan(sc, budget=pathzoo.Budget(iterations=50), rng=np.random.default_rng(0))
+    assert result.solved and result.path.shape[1] == 3 and validate_path(sc, result.path)
+    sc = pathzoo.load_scenario("dsaco.simple")
+    result = planner.plan(sc, budget=pathzoo.Budget(iterations=50), rng=np.random.default_rng(0))
+    assert (result.solved and validate_path(sc, result.path)) or (not result.solved and result.message)

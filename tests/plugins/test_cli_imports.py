@@ -45,5 +45,5 @@ def test_listing_keeps_unavailable_planners_with_their_install_hint(monkeypatch,
     rows = {line.split()[0]: line for line in capsys.readouterr().out.splitlines()[2:]}
     assert rows["swarm.pso"].endswith(
         '[unavailable, needs pyswarms: pip install "pathzoo[evo]"] Particle swarm optimisation (pyswarms) of K '
-        'waypoints, decoded into a feasible path')
+        'straight-segment waypoints, no graph search')
     assert "unavailable" not in rows["swarm.cuckoo"]

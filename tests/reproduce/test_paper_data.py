@@ -17,7 +17,7 @@ from pathzoo.plugins.manager import get_registry
 
 # every rival each paper compares against, by the id pathzoo gives it (written or still missing)
 EXPECTED_RIVALS = {
-    "fgdaco": {"swarm.cuckoo", "evo.fuzzy_ga", "aco.flaco"},
+    "fgdaco": {"swarm.coa", "evo.fuzzy_rate_ga", "aco.flaco"},
     "dsaco": {"aco.as", "aco.mmas", "aco.chen"},
     "ggaco": {"aco.aco_astar", "exact.zstar", "swarm.mopso", "evo.lro_ga", "swarm.mosfla", "search.movns"},
     "gant": {"evo.ga", "aco.as"},

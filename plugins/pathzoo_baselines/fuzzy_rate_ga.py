@@ -1,4 +1,4 @@
-"""``evo.fuzzy_ga``: ``evo.ga`` with crossover and mutation rates set each generation by a fuzzy controller."""
+"""``evo.fuzzy_rate_ga``: ``evo.ga`` with crossover and mutation rates set each generation by a fuzzy controller."""
 
 from __future__ import annotations
 
@@ -8,26 +8,27 @@ from pathzoo.core import InvalidParameterError, Param
 from pathzoo_baselines.encodings import Encoding
 from pathzoo_baselines.ga import GA_PARAMS, GaPlanner, RateControl
 
-__all__ = ["FuzzyGaPlanner"]
+__all__ = ["FuzzyRateGaPlanner"]
 
 
-class FuzzyGaPlanner(GaPlanner):
-    """Fuzzy-GA: ``evo.ga`` whose ``cxpb`` and ``mutpb`` follow a Mamdani controller.
+class FuzzyRateGaPlanner(GaPlanner):
+    """Fuzzy-rate GA: ``evo.ga`` whose ``cxpb`` and ``mutpb`` follow a Mamdani controller.
 
     Before every generation the controller of :mod:`pathzoo_baselines.fuzzy`
     reads the population's diversity and the recent progress of the best
     cost and returns the crossover and mutation probabilities of that
     generation. This is the family of fuzzy-adaptive GAs (Herrera & Lozano's
-    fuzzy logic controllers of GA parameters) that FGDACO's Table 7 compares
-    against as "Fuzzy-GA"; the paper gives no details of its Fuzzy-GA, so the
-    inputs, sets and rules are ours (see ``docs/planners/evo.fuzzy_ga.md``).
+    fuzzy logic controllers of GA parameters); the inputs, sets and rules are
+    ours, so it claims no published name. It is *not* Singh et al. 2018's
+    fuzzy-GA, FGDACO's Fuzzy-GA rival, which could not be reconstructed (see
+    ``docs/planners/evo.fuzzy_rate_ga.md``).
     Everything else (encodings, operators, elitism, budgets, seeding) is
     ``evo.ga``'s.
     """
 
-    id: ClassVar[str] = "evo.fuzzy_ga"
-    version: ClassVar[str] = "2"
-    summary: ClassVar[str] = "GA whose crossover/mutation rates a fuzzy controller sets (DEAP + scikit-fuzzy)"
+    id: ClassVar[str] = "evo.fuzzy_rate_ga"
+    version: ClassVar[str] = "3"
+    summary: ClassVar[str] = "GA whose crossover/mutation rates a fuzzy controller sets (our design; DEAP + scikit-fuzzy)"
     preload: ClassVar[tuple[str, ...]] = (*GaPlanner.preload, "skfuzzy", "pathzoo_baselines.fuzzy")
     params: ClassVar[Mapping[str, Param]] = {
         **GA_PARAMS,
