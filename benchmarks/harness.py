@@ -36,6 +36,11 @@ printed first, and the CPU figures are the ones to compare.
   process's and the judge's S, jobs=1 runs at about 1/max(W, S) on two
   cores and jobs=2 at most 2/(W + S), a ratio of 2 max(W, S)/(W + S), which
   reaches 1.8 only when S <= W/9.
+- *sandbox*: the per-run overhead above, measured again with the workers
+  in the OS sandbox (``docs/sandbox.md``) and without it: the difference
+  is the sandbox's fixed cost per run (target: under 20 CPU ms); the
+  sandboxed worker's start (a new interpreter in bubblewrap, once per
+  planner configuration and worker) is part of the start-up, not of it.
 - *short runs*: ``--short`` runs of ``aco.as`` (1000 iterations, about 0.15 CPU s each) on the same
   problem at jobs=1 and jobs=2, where the planner's time dominates: the
   throughput ratio the target is about.
@@ -64,15 +69,17 @@ DEFAULT_COLD_TARGET_S = 60.0
 JOBS_RATIO_TARGET = 1.8
 TINY_SCENARIO = "movingai.random-32-32-20.b10.13"
 SHORT_ITERATIONS = 1000
+SANDBOX_COST_TARGET_MS = 20.0
 
 _TINY_SCRIPT = """
 import sys, time
 from pathzoo import Budget
 from pathzoo.harness import Experiment, run_experiment
+from pathzoo.harness.executors import ProcessExecutor
 exp = Experiment.build(name="tiny", planners=[{planner!r}], scenarios=[{scenario!r}], seeds={n},
                        budget=Budget(iterations={iterations}, time_s=5.0))
 t0 = time.perf_counter()
-runs = run_experiment(exp, db={db!r}, jobs={jobs}, progress=False)
+runs = run_experiment(exp, db={db!r}, executor=ProcessExecutor({jobs}, sandbox={sandbox}), progress=False)
 wall = time.perf_counter() - t0
 assert len(runs) == {n} and (runs["status"] == "solved").all(), runs["status"].value_counts()
 import datetime, sqlite3
@@ -200,17 +207,41 @@ def default_cold(tmp: Path) -> TreeUsage:
     return usage
 
 
-def tiny(tmp: Path, jobs: int, n: int, planner: str = "exact.astar", iterations: int = 1, name: str = ""
-         ) -> tuple[TreeUsage, float, float]:
-    """``n`` runs at ``jobs``: the tree's usage, and the summed stored wall and CPU time of ``plan()``."""
+def tiny(tmp: Path, jobs: int, n: int, planner: str = "exact.astar", iterations: int = 1, name: str = "",
+         sandbox: bool | None = None) -> tuple[TreeUsage, float, float]:
+    """``n`` runs at ``jobs``: the tree's usage, and the summed stored wall and CPU time of ``plan()``.
+
+    ``sandbox`` as for :class:`~pathzoo.harness.executors.ProcessExecutor` (default: where the system can).
+    """
     db = tmp / f"{planner}-{jobs}{name}.sqlite"
     script = _TINY_SCRIPT.format(planner=planner, iterations=iterations, scenario=TINY_SCENARIO, n=n, db=str(db),
-                                 jobs=jobs)
+                                 jobs=jobs, sandbox=sandbox)
     usage = run_tree([sys.executable, "-c", script], cwd=str(tmp))
     steady, wall, plan_wall, plan_cpu = map(float, usage.stdout.split()[-4:])
     usage.wall_s = wall  # the harness's part only: imports and the experiment's construction excluded
     usage.steady_rate = steady
     return usage, plan_wall, plan_cpu
+
+
+def sandbox_cost(tmp: Path, n: int, few: int) -> None:
+    """Print the per-run overhead at jobs=1 with and without the sandbox, and their difference against the target."""
+    from pathzoo.harness.sandbox import sandbox_problem
+
+    if sandbox_problem():
+        print(f"sandbox: not measured, no sandbox here ({sandbox_problem()})")
+        return
+    per_run = {}
+    for sandbox in (False, True):
+        many, _, cpu_many = tiny(tmp, 1, n, name=f"sandbox-{sandbox}", sandbox=sandbox)
+        some, _, cpu_some = tiny(tmp, 1, few, name=f"sandbox-{sandbox}-few", sandbox=sandbox)
+        per_run[sandbox] = ((many.cpu_s - some.cpu_s - (cpu_many - cpu_some)) / (n - few) * 1e3,
+                            (many.wall_s - some.wall_s) / (n - few) * 1e3, some.cpu_s)
+    cost = per_run[True][0] - per_run[False][0]
+    print(f"sandbox: per-run overhead at jobs=1 {per_run[True][0]:.1f} CPU ms ({per_run[True][1]:.1f} ms wall) "
+          f"sandboxed, {per_run[False][0]:.1f} CPU ms ({per_run[False][1]:.1f} ms wall) not; the sandbox's fixed "
+          f"cost per run {cost:.1f} CPU ms   target < {SANDBOX_COST_TARGET_MS:g}: "
+          f"{verdict(cost < SANDBOX_COST_TARGET_MS)}")
+    print(f"  {few} runs, start-up included: {per_run[True][2]:.2f} CPU s sandboxed, {per_run[False][2]:.2f} not")
 
 
 def verdict(ok: bool) -> str:
@@ -231,7 +262,12 @@ def main() -> None:
     parser.add_argument("--quick", action="store_true", help="skip the cold default experiment")
     parser.add_argument("--tiny", type=positive_int, default=140, help="tiny runs per jobs setting (default 140)")
     parser.add_argument("--short", type=positive_int, default=40, help="short aco.as runs per jobs setting (default 40)")
+    parser.add_argument("--sandbox-only", action="store_true", help="only the sandbox's cost per run")
     args = parser.parse_args()
+    if args.sandbox_only:
+        with tempfile.TemporaryDirectory(prefix="pathzoo-harness-bench-") as name:
+            sandbox_cost(Path(name), args.tiny, max(1, args.tiny // 4))
+        return
     print(f"load average {os.getloadavg()[0]:.2f} {os.getloadavg()[1]:.2f} on {os.cpu_count()} cores; "
           "wall times are inflated by other load, CPU times (whole process tree) much less")
     with tempfile.TemporaryDirectory(prefix="pathzoo-harness-bench-") as name:
@@ -262,6 +298,7 @@ def main() -> None:
               f"{(one.wall_s - base.wall_s - (wall1 - wall0)) / extra * 1e3:.1f} ms wall, "
               f"{(one.cpu_s - base.cpu_s - (cpu1 - cpu0)) / extra * 1e3:.1f} ms CPU of the whole tree "
               f"(plan() itself {(cpu1 - cpu0) / extra * 1e3:.1f} CPU ms)")
+        sandbox_cost(tmp, args.tiny, few)
         s1, _, scpu = tiny(tmp, 1, args.short, "aco.as", SHORT_ITERATIONS)
         s2, _, _ = tiny(tmp, 2, args.short, "aco.as", SHORT_ITERATIONS)
         print(throughput_line(f"short runs ({args.short} x aco.as, {SHORT_ITERATIONS} iterations, plan() "

@@ -72,6 +72,20 @@ def cgroup_problem() -> str:
     return ""
 
 
+def _remove_stale(base: Path) -> None:
+    """Remove the empty groups left by harnesses that were killed (``pathzoo-<pid>`` of a pid that is gone)."""
+    try:
+        stale = [d for d in base.glob("pathzoo-*") if not Path(f"/proc/{d.name[8:]}").exists()]
+    except OSError:
+        return
+    for harness in stale:
+        for directory in [*harness.iterdir(), harness]:
+            try:
+                directory.rmdir()  # only an empty group can be removed: a live process keeps its own
+            except OSError:
+                pass
+
+
 class ProcessGroup:
     """One cgroup per controller of :data:`CONTROLLERS`, made now (see the module docstring).
 
@@ -88,6 +102,8 @@ class ProcessGroup:
 
     def __init__(self, name: str, *, memory_bytes: int, max_tasks: int) -> None:
         own = _own_groups()
+        for controller in CONTROLLERS:
+            _remove_stale(_base(controller, own))
         self.dirs = {c: _base(c, own) / f"pathzoo-{os.getpid()}" / name for c in CONTROLLERS}
         for path in self.dirs.values():
             path.mkdir(parents=True, exist_ok=True)

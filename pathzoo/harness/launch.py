@@ -162,7 +162,7 @@ def _main_left_out(sandbox_prefix: "list[str] | None" = None) -> Iterator[None]:
         if sandbox_prefix is not None:
             python, command_line = os.fsdecode(original[2]()), original[1]
             spawn.get_command_line = lambda **kwds: [*sandbox_prefix, python, *command_line(**kwds)[1:]]
-            spawn.get_executable = lambda: os.fsencode(sandbox_prefix[0])
+            spawn.get_executable = lambda: os.fsencode(sandbox_prefix[0])  # type: ignore[assignment, return-value]
         try:
             yield
         finally:
@@ -201,7 +201,7 @@ class _SandboxedPopen(popen_spawn_posix.Popen):
     def _launch(self, process_obj: Any) -> None:
         resource_tracker.ensure_running()  # before the command line is patched: it is spawned with the same calls
         with _main_left_out(process_obj.sandbox_prefix):
-            super()._launch(process_obj)
+            super()._launch(process_obj)  # type: ignore[misc]
 
 
 class SandboxedProcess(mp.context.SpawnProcess):

@@ -148,7 +148,9 @@ def sandboxed_command(command: Sequence[str], *, procs_files: Sequence[str], scr
         What to run inside (an absolute executable first).
     procs_files : sequence of str
         The ``cgroup.procs`` files of the worker's group
-        (:attr:`~pathzoo.harness.cgroup.ProcessGroup.procs_files`).
+        (:attr:`~pathzoo.harness.cgroup.ProcessGroup.procs_files`); none for
+        a short-lived child that needs no limits (its PID namespace dies
+        with it).
     scratch : Path
         The worker's writable working directory (made if missing).
     numba_cache : Path
@@ -169,10 +171,10 @@ def sandboxed_command(command: Sequence[str], *, procs_files: Sequence[str], scr
             args += ["--tmpfs", root]
     for path in _visible_again([*sys.path, *readable], hidden):
         args += ["--ro-bind", path, path]
-    for path in (scratch, numba_cache):
-        args += ["--bind", str(path), str(path)]
+    for writable in (scratch, numba_cache):
+        args += ["--bind", str(writable), str(writable)]
     args += ["--unshare-all", "--new-session", "--die-with-parent", "--chdir", str(scratch),
              "--setenv", "HOME", str(scratch), "--setenv", "TMPDIR", str(scratch),
              "--setenv", "NUMBA_CACHE_DIR", str(numba_cache), "--", *command]
-    join = "; ".join(f"echo $$ > {shlex.quote(p)}" for p in procs_files)
-    return ["/bin/sh", "-c", f"{join} || exit 97; exec \"$@\"", "sh", *args]
+    join = "".join(f"echo $$ > {shlex.quote(p)} && " for p in procs_files)
+    return ["/bin/sh", "-c", f"{join}exec \"$@\" || exit 97", "sh", *args]

@@ -44,6 +44,22 @@ def _pids() -> list[str]:
     return [p for p in os.listdir("/proc") if p.isdigit() and int(p) != os.getpid()]
 
 
+def _parent_of(pid: int) -> int:
+    try:
+        return int(Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[1])
+    except (OSError, ValueError, IndexError):
+        return 0
+
+
+def _ancestors() -> list[int]:
+    """The chain of parents this process can see (up to the harness when unsandboxed); never beyond them."""
+    out, pid = [], os.getppid()
+    while pid > 1 and len(out) < 8:
+        out.append(pid)
+        pid = _parent_of(pid)
+    return out
+
+
 class _Hostile(Planner):
     kinds = KINDS
     summary = "hostile test planner"
@@ -67,7 +83,7 @@ def _forge(db: str, run_key_part: str) -> str:
 
 
 class StoreWriter(_Hostile):
-    """Finds the result database among every process's open files (and by its path) and rewrites the rival's rows."""
+    """Finds the result database among its ancestors' open files (and by its path) and rewrites the rival's rows."""
 
     id = "sandbox.store"
     params = {"db": Param("", "the database path, as an attacker could guess it"),
@@ -75,7 +91,7 @@ class StoreWriter(_Hostile):
 
     def attack(self, scenario: Scenario) -> str:
         found = {self.db}
-        for pid in _pids():
+        for pid in _ancestors():
             try:
                 for fd in os.listdir(f"/proc/{pid}/fd"):
                     target = os.readlink(f"/proc/{pid}/fd/{fd}")
@@ -125,14 +141,14 @@ class RecursionLimit(_Hostile):
 
 
 class KillWorkers(_Hostile):
-    """Sends SIGKILL to every other multiprocessing child it can see (sibling workers, the judge, the server)."""
+    """Sends SIGKILL to its siblings (the other workers and the judge, when they share its parent)."""
 
     id = "sandbox.kill_workers"
 
     def attack(self, scenario: Scenario) -> str:
         killed = 0
         for pid in _pids():
-            if "multiprocessing" in _cmdline(pid) and int(pid) != os.getppid() and int(pid) > 1:
+            if _parent_of(int(pid)) == os.getppid() and os.getppid() > 1:
                 try:
                     os.kill(int(pid), signal.SIGKILL)
                     killed += 1

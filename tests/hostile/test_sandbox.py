@@ -61,6 +61,19 @@ def _hostile_rows(runs):
     return runs[runs.planner != RIVAL]
 
 
+def test_planner_module_is_imported_in_its_worker_only(hostile, tmp_path):  # noqa: F811
+    import sandbox_lazy_declaration
+
+    from pathzoo.harness import runner
+
+    store = runner._store
+    get_registry().add_plugin(sandbox_lazy_declaration, "sandbox-lazy-declaration")
+    runs = _run(["sandbox.import_time", RIVAL], tmp_path, "attacked")
+    assert "sandbox_import_payload" not in sys.modules and runner._store is store
+    assert set(_hostile_rows(runs).status) == {"invalid"}
+    _assert_rival_clean(tmp_path, runs)
+
+
 def test_store_rewritten_through_open_files_or_its_path(attackers, tmp_path):
     db = tmp_path / "attacked.sqlite"
     runs = _run([("sandbox.store", {"db": str(db)}), RIVAL], tmp_path, "attacked", jobs=2)
@@ -179,3 +192,17 @@ def test_workers_run_one_configuration_each(attackers, tmp_path):
         outcomes = [pool.submit(task).result() for task in tasks]
         assert [o.sandboxed for o in outcomes] == [True, True]
         assert len({w.config for w in pool._workers}) == 1  # the first one's worker was replaced
+
+
+def test_dask_runs_planners_in_the_sandbox_too(attackers, tmp_path):
+    pytest.importorskip("distributed")
+    from pathzoo.harness.executors import dask_executor
+
+    exp = experiment(["sandbox.grandchild", RIVAL], ["hostile.wall"], seeds=2, name="attacked")
+    runs = run_experiment(exp, db=tmp_path / "attacked.sqlite", executor=dask_executor(jobs=1, processes=False),
+                          progress=False)
+    assert runs.sandboxed.all()
+    left = [p.pid for p in psutil.process_iter(["cmdline"]) if sandbox_hostile.GRANDCHILD_ARG in (p.info["cmdline"] or [])]
+    assert left == []
+    assert set(_hostile_rows(runs).status) == {"invalid"}
+    _assert_rival_clean(tmp_path, runs)

@@ -18,8 +18,9 @@ code, so nothing they send is unpickled: they send short tagged byte strings
 - ``P`` (planning, after the warm-up): the planning clock starts. Wall time is
   the harness's ``time.perf_counter`` from ``P`` to the outcome, CPU time the
   worker process's CPU time read from the outside at the same two
-  moments (:func:`process_cpu_time`; for a sandboxed worker, its whole
-  cgroup's, children included), so a planner cannot change its own timings;
+  moments (:func:`process_cpu_time`; for a sandboxed worker, the larger of
+  that and its whole cgroup's, children included), so a planner cannot
+  change its own timings;
 - ``D`` + outcome: the future resolves;
 - a worker past its hard limit gets ``SIGKILL`` (``Process.kill``), the run
   resolves as ``timed_out`` and a fresh worker replaces it; one that dies
@@ -142,22 +143,6 @@ def process_cpu_time(pid: int) -> float:
         return math.nan
 
 
-def _thread_cpu_time(tid: int) -> float:
-    """CPU seconds of one thread (NaN when gone or not on Linux).
-
-    Reading a thread's CPU clock makes the kernel account the time it has
-    been running since the last scheduler tick, to its cgroup too; a
-    process's clock does not, so ``cpuacct.usage`` read after it can lag
-    by a tick.
-    """
-    if not _CPU_CLOCK_OF_PID:
-        return math.nan
-    try:
-        return _clock_gettime((~tid << 3) | 6)  # MAKE_THREAD_CPUCLOCK(tid, CPUCLOCK_SCHED)
-    except OSError:
-        return math.nan
-
-
 def _python_of(pids: frozenset[int], outer: int) -> int:
     """The worker's Python process among the first processes of its sandbox (the outer ``bwrap`` is ``outer``).
 
@@ -214,10 +199,16 @@ def _run(conn: Connection, task: "RunTask") -> bool:
     return True
 
 
-def describe_exit(exitcode: int | None) -> str:
-    """``"exit code 3"`` or ``"signal 9 (SIGKILL)"``."""
+def describe_exit(exitcode: int | None, *, sandboxed: bool = False) -> str:
+    """``"exit code 3"`` or ``"signal 9 (SIGKILL)"``.
+
+    ``bwrap`` exits with 128 + the signal that killed the sandboxed process,
+    so for a sandboxed worker codes 129-192 are read as that signal.
+    """
     if exitcode is None:
         return "unknown exit status"
+    if sandboxed and 128 < exitcode <= 128 + 64:
+        exitcode = 128 - exitcode
     if exitcode < 0:
         try:
             return f"signal {-exitcode} ({signal.Signals(-exitcode).name})"
@@ -240,7 +231,7 @@ class _Worker:
     deadline: float = math.inf
     in_setup: bool = False
     plan_t0: float = math.nan
-    plan_c0: float = math.nan
+    plan_c0: tuple[float, float] = (math.nan, math.nan)
     held: HeldScenarios = field(default_factory=HeldScenarios)
     config: "tuple[str, str] | None" = None
     group: ProcessGroup | None = None
@@ -458,7 +449,7 @@ class ProcessExecutor(RunExecutor):
                 continue
             worker.task, worker.future, worker.idle, worker.started_once = task, future, False, False
             worker.sent_at, worker.started_at = _clock(), utc_now()
-            worker.plan_t0 = worker.plan_c0 = math.nan
+            worker.plan_t0, worker.plan_c0 = math.nan, (math.nan, math.nan)
             worker.deadline = worker.sent_at + max(task.timeout_s, SETUP_TIMEOUT_S)
             worker.in_setup = True
             try:
@@ -481,18 +472,27 @@ class ProcessExecutor(RunExecutor):
                                                f"{self.limits.memory_bytes / 2**20:.0f} MiB)")
         worker.finish(replace(outcome, sandboxed=worker.group is not None))
 
-    def _cpu(self, worker: _Worker) -> float:
-        """CPU seconds used so far: of the worker's whole cgroup when sandboxed, else of its process."""
-        if worker.group is not None:
-            if worker.inner_pid:
-                _thread_cpu_time(worker.inner_pid)  # charges its time on the CPU so far to the cgroup now
-            return worker.group.cpu_seconds()
-        return process_cpu_time(worker.process.pid)
+    def _cpu(self, worker: _Worker) -> tuple[float, float]:
+        """CPU seconds used so far by the worker's whole cgroup (NaN unsandboxed) and by its Python process."""
+        if worker.group is None:
+            return math.nan, process_cpu_time(worker.process.pid or 0)
+        return worker.group.cpu_seconds(), process_cpu_time(worker.inner_pid) if worker.inner_pid else math.nan
+
+    def _cpu_since(self, worker: _Worker) -> float:
+        """CPU seconds since ``plan_c0``: the larger of the cgroup's and the process's (NaN when neither is known).
+
+        The cgroup's count includes the planner's children but is charged
+        at scheduler ticks, so for a run of a few milliseconds it can miss
+        the worker's own time, which the process's clock has.
+        """
+        now = self._cpu(worker)
+        spans = [b - a for a, b in zip(worker.plan_c0, now) if not (math.isnan(a) or math.isnan(b))]
+        return max(spans) if spans else math.nan
 
     def _timed(self, worker: _Worker, outcome: RunOutcome) -> RunOutcome:
         """The outcome with the harness's own wall and CPU times of ``plan()`` (NaN when it never started)."""
         wall = _clock() - worker.plan_t0
-        cpu = self._cpu(worker) - worker.plan_c0
+        cpu = self._cpu_since(worker)
         return replace(outcome, wall_time_s=wall, cpu_time_s=cpu, started_at=worker.started_at)
 
     def _violation(self, worker: _Worker, what: str) -> None:
@@ -519,7 +519,7 @@ class ProcessExecutor(RunExecutor):
                 self._start_failures = 0
                 if worker.group is not None:
                     worker.baseline = frozenset(worker.group.pids())
-                    worker.inner_pid = _python_of(worker.baseline, worker.process.pid)
+                    worker.inner_pid = _python_of(worker.baseline, worker.process.pid or 0)
             elif tag == b"I" and worker.task is None:
                 worker.idle, worker.deadline = True, math.inf
                 if self._left_behind(worker):  # nothing of a run outlives it: the whole tree goes
@@ -547,10 +547,11 @@ class ProcessExecutor(RunExecutor):
         worker.process.join()
         if worker.task is not None:
             elapsed = _clock() - worker.sent_at
-            cpu = self._cpu(worker) - worker.plan_c0
+            cpu = self._cpu_since(worker)
+            how = describe_exit(worker.process.exitcode, sandboxed=worker.group is not None)
             self._finish(worker, RunOutcome(
                 worker.task.run_key, crash=True, wall_time_s=elapsed, cpu_time_s=cpu, started_at=worker.started_at,
-                message=f"worker process died ({describe_exit(worker.process.exitcode)}) after {elapsed:.3g} s",
+                message=f"worker process died ({how}) after {elapsed:.3g} s",
             ))
         elif not worker.was_ready:
             self._start_failures += 1
@@ -562,7 +563,7 @@ class ProcessExecutor(RunExecutor):
     def _kill(self, worker: _Worker) -> None:
         assert worker.task is not None
         elapsed = _clock() - worker.sent_at
-        cpu = self._cpu(worker) - worker.plan_c0
+        cpu = self._cpu_since(worker)
         self._kill_tree(worker)
         if worker.in_setup:  # not the planner's time: its plan() never started
             outcome = RunOutcome(worker.task.run_key, crash=True, started_at=worker.started_at,
