@@ -1,4 +1,4 @@
-"""What the harness needs to know of a planner configuration, learnt in a sandboxed child: the harness imports no planner.
+"""What the harness knows of a planner configuration, learnt in a sandboxed child: the harness imports no planner.
 
 A planner declared lazily (:class:`~pathzoo.plugins.entries.LazyPlanner`) is
 known to the harness by its declaration: id, summary, kinds, requires. Its

@@ -15,8 +15,8 @@ anything else runs, and ``bwrap`` (bubblewrap, as in Flatpak) then gives it:
   resource tracker is reachable), and two writable directories: the
   worker's scratch directory (its working directory, ``HOME`` and
   ``TMPDIR``) and the numba cache of its planner (``NUMBA_CACHE_DIR``); the
-  directories of ``sys.path`` and the scenario files under the hidden ones
-  are mounted back, read-only;
+  directories of ``sys.path`` and of the scenario files under the hidden
+  ones are mounted back, read-only;
 - a PID namespace (it sees and can signal only its own processes: not the
   harness, the judge or other workers), a network namespace without any
   interface but loopback, and new IPC, UTS and cgroup namespaces;
@@ -156,8 +156,9 @@ def sandboxed_command(command: Sequence[str], *, procs_files: Sequence[str], scr
     numba_cache : Path
         The writable numba cache of its planner (:func:`worker_numba_cache`; made if missing).
     readable : iterable of str
-        Paths the worker must read besides ``sys.path`` (scenario files);
-        only those under a hidden directory need naming.
+        Paths the worker must read besides ``sys.path`` (the directories of
+        the scenario files, with the maps they name); only those under a
+        hidden directory need naming.
     """
     bwrap = shutil.which("bwrap")
     if bwrap is None:

@@ -136,7 +136,7 @@ class PlannerSpec:
 
     @property
     def info(self) -> PlannerInfo:
-        """Version, kinds and default name, learnt without importing the planner here (:mod:`~pathzoo.harness.planner_info`)."""
+        """Version, kinds and default name, not importing the planner here (:mod:`~pathzoo.harness.planner_info`)."""
         return info_of(self.id, self.params)
 
     @property

@@ -140,21 +140,26 @@ class RecursionLimit(_Hostile):
         return "limit 40"
 
 
+def _kill(pids: list[int]) -> int:
+    """SIGKILL each pid; how many signals were delivered."""
+    killed = 0
+    for pid in pids:
+        try:
+            os.kill(pid, signal.SIGKILL)
+            killed += 1
+        except OSError:
+            pass
+    return killed
+
+
 class KillWorkers(_Hostile):
     """Sends SIGKILL to its siblings (the other workers and the judge, when they share its parent)."""
 
     id = "sandbox.kill_workers"
 
     def attack(self, scenario: Scenario) -> str:
-        killed = 0
-        for pid in _pids():
-            if _parent_of(int(pid)) == os.getppid() and os.getppid() > 1:
-                try:
-                    os.kill(int(pid), signal.SIGKILL)
-                    killed += 1
-                except OSError:
-                    pass
-        return f"killed {killed}"
+        siblings = [int(p) for p in _pids() if _parent_of(int(p)) == os.getppid() and os.getppid() > 1]
+        return f"killed {_kill(siblings)}"
 
 
 class KillHarness(_Hostile):
@@ -163,18 +168,9 @@ class KillHarness(_Hostile):
     id = "sandbox.kill_harness"
 
     def attack(self, scenario: Scenario) -> str:
-        killed = 0
-        for pid in _pids():
-            if HARNESS_MARKER in _cmdline(pid) and "multiprocessing" not in _cmdline(pid):
-                try:
-                    os.kill(int(pid), signal.SIGKILL)
-                    killed += 1
-                except OSError:
-                    pass
-        try:
-            os.kill(os.getppid(), signal.SIGKILL)
-        except OSError:
-            pass
+        harness = [int(p) for p in _pids() if HARNESS_MARKER in _cmdline(p) and "multiprocessing" not in _cmdline(p)]
+        killed = _kill(harness)
+        _kill([os.getppid()])
         return f"killed {killed}"
 
 

@@ -57,6 +57,11 @@ def _assert_rival_clean(tmp_path: Path, attacked, seeds: int = 2) -> None:
     assert _rival(attacked).equals(_rival(clean))
 
 
+def _grandchildren() -> list[int]:
+    mark = sandbox_hostile.GRANDCHILD_ARG
+    return [p.pid for p in psutil.process_iter(["cmdline"]) if mark in (p.info["cmdline"] or [])]
+
+
 def _hostile_rows(runs):
     return runs[runs.planner != RIVAL]
 
@@ -98,8 +103,7 @@ def test_killing_other_workers_and_the_judge_reaches_nothing(attackers, tmp_path
 
 def test_a_grandchild_does_not_outlive_its_run(attackers, tmp_path):
     runs = _run(["sandbox.grandchild", RIVAL], tmp_path, "attacked", jobs=1)
-    left = [p.pid for p in psutil.process_iter(["cmdline"]) if sandbox_hostile.GRANDCHILD_ARG in (p.info["cmdline"] or [])]
-    assert left == []
+    assert _grandchildren() == []
     assert set(_hostile_rows(runs).status) == {"invalid"}
     _assert_rival_clean(tmp_path, runs)
 
@@ -202,7 +206,6 @@ def test_dask_runs_planners_in_the_sandbox_too(attackers, tmp_path):
     runs = run_experiment(exp, db=tmp_path / "attacked.sqlite", executor=dask_executor(jobs=1, processes=False),
                           progress=False)
     assert runs.sandboxed.all()
-    left = [p.pid for p in psutil.process_iter(["cmdline"]) if sandbox_hostile.GRANDCHILD_ARG in (p.info["cmdline"] or [])]
-    assert left == []
+    assert _grandchildren() == []
     assert set(_hostile_rows(runs).status) == {"invalid"}
     _assert_rival_clean(tmp_path, runs)

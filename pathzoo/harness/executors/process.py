@@ -296,6 +296,7 @@ class ProcessExecutor(RunExecutor):
             start_server(start_method)  # from this thread, not the monitor: the server dies with its starting thread
         self._scratch_root = tempfile.mkdtemp(prefix="pathzoo-sandbox-") if self.sandboxed else ""
         self._serial = 0
+        self._scenario_dirs: set[str] = set()
         self._start_failures = 0
         self._lock = threading.Lock()
         self._pending: deque[tuple[RunTask, Future[RunOutcome]]] = deque()
@@ -317,6 +318,11 @@ class ProcessExecutor(RunExecutor):
             self._pending.append((task, future))
         self._wake_w.send(None)
         return future
+
+    def prepare(self, tasks: "list[RunTask]") -> None:
+        """Note where the experiment's scenario files are (a sandboxed worker sees only those directories)."""
+        with self._lock:
+            self._see_files(tasks)
 
     def shutdown(self) -> None:
         """Stop the monitor, ask idle workers to exit, kill busy ones, cancel queued runs."""
@@ -350,7 +356,7 @@ class ProcessExecutor(RunExecutor):
             shutil.rmtree(self._scratch_root, ignore_errors=True)
 
     # ------------------------------------------------------------- internals
-    def _spawn(self, config: "tuple[str, str] | None", readable: tuple[str, ...] = ()) -> _Worker:
+    def _spawn(self, config: "tuple[str, str] | None") -> _Worker:
         """A new worker, for ``config`` (sandboxed: in its own cgroup and bubblewrap sandbox)."""
         parent, child = self._ctx.Pipe(duplex=True)
         group, scratch = None, ""
@@ -364,7 +370,7 @@ class ProcessExecutor(RunExecutor):
                                             name="pathzoo-worker")
             process.sandbox_prefix = sandboxed_command(
                 (), procs_files=group.procs_files, scratch=Path(scratch), numba_cache=worker_numba_cache(config[0]),
-                readable=readable)
+                readable=self._visible_dirs())
         else:
             process = self._ctx.Process(target=_worker_main, args=(child, harness_alive()), name="pathzoo-worker")
         try:
@@ -377,6 +383,10 @@ class ProcessExecutor(RunExecutor):
         worker = _Worker(process, parent, config=config, group=group, scratch=scratch)
         self._workers.append(worker)
         return worker
+
+    def _visible_dirs(self) -> list[str]:
+        with self._lock:
+            return sorted(self._scenario_dirs)
 
     def _kill_tree(self, worker: _Worker) -> None:
         """``SIGKILL`` the worker and, when sandboxed, every process of its cgroup."""
@@ -399,8 +409,10 @@ class ProcessExecutor(RunExecutor):
         self._release(worker)
         self._workers.remove(worker)
 
-    def _readable(self, task: "RunTask") -> tuple[str, ...]:
-        return (task.scenario.location,) if task.scenario.source == "file" else ()
+    def _see_files(self, tasks: "list[RunTask]") -> None:
+        """Note the directories of the tasks' scenario files: sandboxed workers started from now on can read them."""
+        self._scenario_dirs.update(os.path.dirname(os.path.abspath(t.scenario.location)) for t in tasks
+                                   if t.scenario.source == "file")
 
     def _start_workers(self) -> None:
         """Start workers for the queued runs that no idle or starting worker of their configuration will take."""
@@ -420,7 +432,9 @@ class ProcessExecutor(RunExecutor):
                 if spare is None:
                     return
                 self._retire(spare)
-            self._spawn(config, self._readable(task))
+            with self._lock:
+                self._see_files([task])
+            self._spawn(config)
 
     def _take(self) -> "tuple[_Worker, RunTask, Future[RunOutcome]] | None":
         """The first queued run with an idle worker of its configuration (or, unsandboxed, one not yet used)."""
