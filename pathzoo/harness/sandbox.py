@@ -20,6 +20,9 @@ anything else runs, and ``bwrap`` (bubblewrap, as in Flatpak) then gives it:
 - a PID namespace (it sees and can signal only its own processes: not the
   harness, the judge or other workers), a network namespace without any
   interface but loopback, and new IPC, UTS and cgroup namespaces;
+- no capabilities (``--cap-drop ALL``): run by root, bubblewrap would keep
+  them, and a planner could remount the file system read-write
+  (``mount -o remount,bind,rw /``) or create device nodes;
 - its own session (``--new-session``: no ``TIOCSTI`` into the terminal), and
   death with the harness (``--die-with-parent``).
 
@@ -174,7 +177,7 @@ def sandboxed_command(command: Sequence[str], *, procs_files: Sequence[str], scr
         args += ["--ro-bind", path, path]
     for writable in (scratch, numba_cache):
         args += ["--bind", str(writable), str(writable)]
-    args += ["--unshare-all", "--new-session", "--die-with-parent", "--chdir", str(scratch),
+    args += ["--unshare-all", "--cap-drop", "ALL", "--new-session", "--die-with-parent", "--chdir", str(scratch),
              "--setenv", "HOME", str(scratch), "--setenv", "TMPDIR", str(scratch),
              "--setenv", "NUMBA_CACHE_DIR", str(numba_cache), "--", *command]
     join = "".join(f"echo $$ > {shlex.quote(p)} && " for p in procs_files)

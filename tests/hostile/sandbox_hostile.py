@@ -12,6 +12,7 @@ import os
 import signal
 import socket
 import sqlite3
+import subprocess
 import sys
 import time
 from pathlib import Path
@@ -198,11 +199,17 @@ def numba_index_files() -> list[Path]:
 
 
 class PoisonCache(_Hostile):
-    """Writes a numba cache index (read with pickle by the judge) into the installed package."""
+    """Writes a numba cache index (read with pickle by the judge) into the installed package.
+
+    First it tries to make the file system writable again (``mount -o
+    remount,bind,rw /``), which root with its capabilities could do inside
+    a mount namespace.
+    """
 
     id = "sandbox.poison_cache"
 
     def attack(self, scenario: Scenario) -> str:
+        subprocess.run(["mount", "-o", "remount,bind,rw", "/"], capture_output=True, check=False)
         written = 0
         for path in numba_index_files():
             try:
