@@ -238,6 +238,7 @@ class _Worker:
     scratch: str = ""
     baseline: frozenset[int] = frozenset()
     inner_pid: int = 0
+    visible: frozenset[str] = frozenset()
 
     @property
     def listening(self) -> bool:
@@ -359,7 +360,7 @@ class ProcessExecutor(RunExecutor):
     def _spawn(self, config: "tuple[str, str] | None") -> _Worker:
         """A new worker, for ``config`` (sandboxed: in its own cgroup and bubblewrap sandbox)."""
         parent, child = self._ctx.Pipe(duplex=True)
-        group, scratch = None, ""
+        group, scratch, visible = None, "", frozenset(self._visible_dirs())
         if self.sandboxed:
             assert config is not None
             self._serial += 1
@@ -370,7 +371,7 @@ class ProcessExecutor(RunExecutor):
                                             name="pathzoo-worker")
             process.sandbox_prefix = sandboxed_command(
                 (), procs_files=group.procs_files, scratch=Path(scratch), numba_cache=worker_numba_cache(config[0]),
-                readable=self._visible_dirs())
+                readable=visible)
         else:
             process = self._ctx.Process(target=_worker_main, args=(child, harness_alive()), name="pathzoo-worker")
         try:
@@ -380,7 +381,7 @@ class ProcessExecutor(RunExecutor):
                 group.remove()
             raise
         child.close()
-        worker = _Worker(process, parent, config=config, group=group, scratch=scratch)
+        worker = _Worker(process, parent, config=config, group=group, scratch=scratch, visible=visible)
         self._workers.append(worker)
         return worker
 
@@ -436,12 +437,19 @@ class ProcessExecutor(RunExecutor):
                 self._see_files([task])
             self._spawn(config)
 
+    def _sees(self, worker: _Worker, task: "RunTask") -> bool:
+        """Whether the worker can read the task's scenario (a sandboxed one sees the files known when it started)."""
+        spec = task.scenario
+        return (worker.group is None or spec.source != "file"
+                or os.path.dirname(os.path.abspath(spec.location)) in worker.visible)
+
     def _take(self) -> "tuple[_Worker, RunTask, Future[RunOutcome]] | None":
         """The first queued run with an idle worker of its configuration (or, unsandboxed, one not yet used)."""
         with self._lock:
             for i, (task, future) in enumerate(self._pending):
                 config = configuration(task)
-                worker = next((w for w in self._workers if w.idle and w.task is None and w.config == config), None)
+                worker = next((w for w in self._workers if w.idle and w.task is None and w.config == config
+                               and self._sees(w, task)), None)
                 if worker is None and not self.sandboxed:
                     worker = next((w for w in self._workers if w.idle and w.task is None and w.config is None), None)
                 if worker is not None:
