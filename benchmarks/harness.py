@@ -44,6 +44,11 @@ printed first, and the CPU figures are the ones to compare.
   an Octave function file (one Octave process, started in the warm-up).
   The medians' differences from the reference are the protocol's cost per
   run; the largest Octave run shows that Octave's start-up is in no run.
+- *sandbox*: the per-run overhead above, measured again with the workers
+  in the OS sandbox (``docs/sandbox.md``) and without it: the difference
+  is the sandbox's fixed cost per run (target: under 20 CPU ms); the
+  sandboxed worker's start (a new interpreter in bubblewrap, once per
+  planner configuration and worker) is part of the start-up, not of it.
 - *short runs*: ``--short`` runs of ``aco.as`` (1000 iterations, about 0.15 CPU s each) on the same
   problem at jobs=1 and jobs=2, where the planner's time dominates: the
   throughput ratio the target is about.
@@ -76,15 +81,17 @@ DEFAULT_COLD_TARGET_S = 60.0
 JOBS_RATIO_TARGET = 1.8
 TINY_SCENARIO = "movingai.random-32-32-20.b10.13"
 SHORT_ITERATIONS = 1000
+SANDBOX_COST_TARGET_MS = 20.0
 
 _TINY_SCRIPT = """
 import sys, time
 from pathzoo import Budget
 from pathzoo.harness import Experiment, run_experiment
+from pathzoo.harness.executors import ProcessExecutor
 exp = Experiment.build(name="tiny", planners=[{planner!r}], scenarios=[{scenario!r}], seeds={n},
                        budget=Budget(iterations={iterations}, time_s=5.0))
 t0 = time.perf_counter()
-runs = run_experiment(exp, db={db!r}, jobs={jobs}, progress=False)
+runs = run_experiment(exp, db={db!r}, executor=ProcessExecutor({jobs}, sandbox={sandbox}), progress=False)
 wall = time.perf_counter() - t0
 assert len(runs) == {n} and (runs["status"] == "solved").all(), runs["status"].value_counts()
 import datetime, sqlite3
@@ -212,12 +219,15 @@ def default_cold(tmp: Path) -> TreeUsage:
     return usage
 
 
-def tiny(tmp: Path, jobs: int, n: int, planner: str = "exact.astar", iterations: int = 1, name: str = ""
-         ) -> tuple[TreeUsage, float, float]:
-    """``n`` runs at ``jobs``: the tree's usage, and the summed stored wall and CPU time of ``plan()``."""
+def tiny(tmp: Path, jobs: int, n: int, planner: str = "exact.astar", iterations: int = 1, name: str = "",
+         sandbox: bool | None = None) -> tuple[TreeUsage, float, float]:
+    """``n`` runs at ``jobs``: the tree's usage, and the summed stored wall and CPU time of ``plan()``.
+
+    ``sandbox`` as for :class:`~pathzoo.harness.executors.ProcessExecutor` (default: where the system can).
+    """
     db = tmp / f"{planner}-{jobs}{name}.sqlite"
     script = _TINY_SCRIPT.format(planner=planner, iterations=iterations, scenario=TINY_SCENARIO, n=n, db=str(db),
-                                 jobs=jobs)
+                                 jobs=jobs, sandbox=sandbox)
     usage = run_tree([sys.executable, "-c", script], cwd=str(tmp))
     steady, wall, plan_wall, plan_cpu = map(float, usage.stdout.split()[-4:])
     usage.wall_s = wall  # the harness's part only: imports and the experiment's construction excluded
@@ -303,6 +313,26 @@ def external_overhead(tmp: Path, n: int) -> dict[str, tuple[int, float, float]]:
     return out
 
 
+def sandbox_cost(tmp: Path, n: int, few: int) -> None:
+    """Print the per-run overhead at jobs=1 with and without the sandbox, and their difference against the target."""
+    from pathzoo.harness.sandbox import sandbox_problem
+
+    if sandbox_problem():
+        print(f"| the sandbox's fixed cost per run | not measured, no sandbox here ({sandbox_problem()}) | - | - |")
+        return
+    per_run = {}
+    for sandbox in (False, True):
+        many, _, cpu_many = tiny(tmp, 1, n, name=f"sandbox-{sandbox}", sandbox=sandbox)
+        some, _, cpu_some = tiny(tmp, 1, few, name=f"sandbox-{sandbox}-few", sandbox=sandbox)
+        per_run[sandbox] = ((many.cpu_s - some.cpu_s - (cpu_many - cpu_some)) / (n - few) * 1e3,
+                            (many.wall_s - some.wall_s) / (n - few) * 1e3, some.cpu_s)
+    cost = per_run[True][0] - per_run[False][0]
+    print(f"| the sandbox's fixed cost per run (per-run overhead at jobs=1: {per_run[True][0]:.1f} CPU ms, "
+          f"{per_run[True][1]:.1f} ms wall sandboxed; {per_run[False][0]:.1f} CPU ms, {per_run[False][1]:.1f} ms wall "
+          f"not; {few} runs with start-up: {per_run[True][2]:.2f} CPU s sandboxed, {per_run[False][2]:.2f} not) "
+          f"| {cost:.1f} CPU ms | < {SANDBOX_COST_TARGET_MS:g} ms | {verdict(cost < SANDBOX_COST_TARGET_MS)} |")
+
+
 def verdict(ok: bool) -> str:
     return "met" if ok else "not met"
 
@@ -323,8 +353,13 @@ def main() -> None:
     parser.add_argument("--short", type=positive_int, default=40, help="short aco.as runs per jobs setting (default 40)")
     parser.add_argument("--external", type=positive_int, default=40,
                         help="runs of each 1 ms planner behind the external protocol (default 40)")
+    parser.add_argument("--sandbox-only", action="store_true", help="only the sandbox's cost per run")
     add_write_docs_option(parser, "harness.md")
     args = parser.parse_args()
+    if args.sandbox_only:
+        with tempfile.TemporaryDirectory(prefix="pathzoo-harness-bench-") as name:
+            sandbox_cost(Path(name), args.tiny, max(1, args.tiny // 4))
+        return
     print(f"load average {os.getloadavg()[0]:.2f} {os.getloadavg()[1]:.2f} on {os.cpu_count()} cores; "
           "wall times are inflated by other load, CPU times (whole process tree) much less", file=sys.stderr)
     with tempfile.TemporaryDirectory(prefix="pathzoo-harness-bench-") as name, \
@@ -368,6 +403,7 @@ def main() -> None:
                       f"| {verdict(cost <= target)} |")
         else:
             print("| external protocol cost per run | skipped: needs cc and octave-cli | - | - |")
+        sandbox_cost(tmp, args.tiny, few)
         s1, _, scpu = tiny(tmp, 1, args.short, "aco.as", SHORT_ITERATIONS)
         s2, _, _ = tiny(tmp, 2, args.short, "aco.as", SHORT_ITERATIONS)
         print(throughput_row(f"{args.short} short runs (`aco.as`, {SHORT_ITERATIONS} iterations, `plan()` "

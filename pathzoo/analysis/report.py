@@ -272,6 +272,11 @@ def render_report(
         page.note(f"{n} of {len(df)} runs ran inline, in the harness's own process: not isolated from each other "
                   "or from the harness (for debugging only); rerun with the process or Dask executor for results.",
                   "warn")
+    if "sandboxed" in df.columns:
+        n = int((~df["sandboxed"].astype(bool)).sum())
+        page.note(f"{len(df) - n} of {len(df)} runs ran in the OS sandbox" + (
+            f"; {n} did not, so those planners could have reached other runs' results (see docs/sandbox.md)."
+            if n else "."), "warn" if n else "pz-note")
     page.table(render_table(_outcomes(df), "html", title="Run outcomes per planner"))
     planners = df.drop_duplicates("config")[["config", "planner", "planner_version", "params"]].sort_values("config")
     page.begin("details", "Planner parameters")

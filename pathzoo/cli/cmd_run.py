@@ -101,7 +101,7 @@ def _run(args: argparse.Namespace) -> int:
     try:
         with _harness_info_on_stderr() if args.verbose else nullcontext():
             runs = run_experiment(exp, db=db, jobs=args.jobs, executor=executor, progress=not args.no_progress,
-                                  retry=args.retry)
+                                  retry=args.retry, require_sandbox=args.require_sandbox)
     except KeyboardInterrupt:
         raise CommandError(f"interrupted; finished runs are stored in {db}, run the same command again to resume") from None
     skipped = len(exp.skipped())
@@ -137,6 +137,8 @@ def add_parser(subparsers: Any) -> None:
         "each new result replaces the old row",
     )
     parser.add_argument("--seeds", type=positive_int, metavar="N", help="override the experiment's number of seeds")
+    parser.add_argument("--require-sandbox", action="store_true",
+                        help="refuse to run planners outside the OS sandbox (bubblewrap + cgroups; docs/sandbox.md)")
     parser.add_argument("-v", "--verbose", action="store_true",
                         help="also list the unsupported planner x scenario pairs that are not run")
     add_table_options(parser)

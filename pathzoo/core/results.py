@@ -95,6 +95,8 @@ class RunRecord:
     started_at: str
     isolated: bool = True
     """False when the planner ran in the harness's own process (the ``inline`` executor), for debugging only."""
+    sandboxed: bool = False
+    """True when the planner ran in an OS sandbox (``docs/sandbox.md``)."""
 
     @property
     def success(self) -> bool:

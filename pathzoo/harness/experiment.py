@@ -51,7 +51,8 @@ from pathzoo.core.budget import Budget
 from pathzoo.core.errors import InvalidExperimentError, PathzooError
 from pathzoo.core.scenario import Scenario
 from pathzoo.io.paths import looks_like_path
-from pathzoo.harness.specs import PlannerSpec, RunTask, ScenarioSpec, run_key, run_seed, planner_by_value
+from pathzoo.harness.planner_info import prefetch
+from pathzoo.harness.specs import PlannerSpec, RunTask, ScenarioSpec, run_key, run_seed
 
 if TYPE_CHECKING:
     from pathzoo.core.planner import Planner
@@ -370,6 +371,10 @@ class Experiment:
         _check_jobs(jobs)
         if isinstance(planners, str):
             planners = [planners]
+        prefetch([(p, {}) if isinstance(p, str) else (p.id, p.params) if isinstance(p, PlannerSpec) else (p[0], p[1])
+                  for p in planners if isinstance(p, (str, PlannerSpec)) or (isinstance(p, tuple) and len(p) >= 2
+                                                                             and isinstance(p[0], str)
+                                                                             and isinstance(p[1], Mapping))])
         specs = [PlannerSpec.of(p) for p in planners]
         if not specs:
             raise InvalidExperimentError("no planners given")
@@ -525,12 +530,12 @@ class Experiment:
     # ------------------------------------------------------------------ runs
     def pairs(self) -> list[tuple[PlannerSpec, ScenarioSpec]]:
         """Supported (planner, scenario) pairs, scenario-major so workers reuse loaded scenarios."""
-        return [(p, s) for s in self.scenarios for p in self.planners if s.kind in p.planner_class.kinds]
+        return [(p, s) for s in self.scenarios for p in self.planners if s.kind in p.kinds]
 
     def skipped(self) -> list[tuple[str, str, str]]:
         """``(planner id, scenario id, scenario kind)`` of every unsupported pair (not run)."""
         return [
-            (p.id, s.id, s.kind) for s in self.scenarios for p in self.planners if s.kind not in p.planner_class.kinds
+            (p.id, s.id, s.kind) for s in self.scenarios for p in self.planners if s.kind not in p.kinds
         ]
 
     def tasks(self, plugin_modules: tuple[tuple[str, str], ...] = ()) -> list[RunTask]:
@@ -550,7 +555,7 @@ class Experiment:
         out = []
         for planner, scenario in pairs:
             version, phash = planner.version, planner.params_hash
-            by_value = planner_by_value(planner.planner_class)
+            by_value = planner.by_value
             for index in self.seeds:
                 key = run_key(planner.id, phash, scenario.id, index)
                 out.append(

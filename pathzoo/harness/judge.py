@@ -104,6 +104,7 @@ def _record(task: "RunTask", outcome: "RunOutcome", status: RunStatus, valid: bo
         versions=dict(outcome.versions),
         started_at=outcome.started_at,
         isolated=isolated,
+        sandboxed=outcome.sandboxed,
     )
 
 

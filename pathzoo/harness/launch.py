@@ -35,7 +35,7 @@ import os
 import signal
 import sys
 import threading
-from multiprocessing import popen_forkserver, popen_spawn_posix, spawn
+from multiprocessing import popen_forkserver, popen_spawn_posix, resource_tracker, spawn
 from multiprocessing.connection import Connection
 from typing import Any, Iterator
 
@@ -45,6 +45,7 @@ __all__ = [
     "NoMainContext",
     "ForkServerNoMainProcess",
     "SpawnNoMainProcess",
+    "SandboxedProcess",
     "default_start_method",
     "start_server",
     "harness_alive",
@@ -124,25 +125,37 @@ def die_with_harness(alive: Connection) -> None:
     threading.Thread(target=watch, name="pathzoo-harness-watch", daemon=True).start()
 
 
-def _without_main(prepare: Any) -> Any:
+def _without_main(prepare: Any, sandboxed: bool) -> Any:
     def prepared(name: str) -> dict[str, Any]:
         data = prepare(name)
         data.pop("init_main_from_name", None)
         data.pop("init_main_from_path", None)
+        if sandboxed:  # it stays in its scratch directory; "" on sys.path still means the harness's directory
+            cwd = data.pop("dir", os.getcwd())
+            data["sys_path"] = [p or cwd for p in data.get("sys_path", [])]
         return data
     return prepared
 
 
 @contextlib.contextmanager
-def _main_left_out() -> Iterator[None]:
-    """Launches made inside get preparation data without the parent's main module (one launch at a time)."""
+def _main_left_out(sandbox_prefix: "list[str] | None" = None) -> Iterator[None]:
+    """Launches made inside get preparation data without the parent's main module (one launch at a time).
+
+    With ``sandbox_prefix`` (a ``spawn`` launch only) the child's command
+    line is that prefix followed by the usual ``python -c ...``
+    (:func:`pathzoo.harness.sandbox.sandboxed_command`).
+    """
     with _launch_lock:
-        original = spawn.get_preparation_data
-        spawn.get_preparation_data = _without_main(original)
+        original = spawn.get_preparation_data, spawn.get_command_line, spawn.get_executable
+        spawn.get_preparation_data = _without_main(original[0], sandbox_prefix is not None)
+        if sandbox_prefix is not None:
+            python, command_line = os.fsdecode(original[2]()), original[1]
+            spawn.get_command_line = lambda **kwds: [*sandbox_prefix, python, *command_line(**kwds)[1:]]
+            spawn.get_executable = lambda: os.fsencode(sandbox_prefix[0])  # type: ignore[assignment, return-value]
         try:
             yield
         finally:
-            spawn.get_preparation_data = original
+            spawn.get_preparation_data, spawn.get_command_line, spawn.get_executable = original
 
 
 def _no_main_popen(base: Any) -> Any:
@@ -169,6 +182,31 @@ class SpawnNoMainProcess(mp.context.SpawnProcess):
     @staticmethod
     def _Popen(process_obj: Any) -> Any:
         return _SPAWN_POPEN(process_obj)
+
+
+class _SandboxedPopen(popen_spawn_posix.Popen):
+    """A ``spawn`` launch through the process's :attr:`SandboxedProcess.sandbox_prefix`."""
+
+    def _launch(self, process_obj: Any) -> None:
+        resource_tracker.ensure_running()  # before the command line is patched: it is spawned with the same calls
+        with _main_left_out(process_obj.sandbox_prefix):
+            super()._launch(process_obj)  # type: ignore[misc]
+
+
+class SandboxedProcess(mp.context.SpawnProcess):
+    """A ``spawn`` process started inside the sandbox given by ``sandbox_prefix`` (set it before ``start``).
+
+    ``sandbox_prefix`` is the command that runs the rest of its command line
+    in the sandbox (:func:`pathzoo.harness.sandbox.sandboxed_command` of no
+    command); the child is launched without the parent's main module and
+    stays in the sandbox's working directory.
+    """
+
+    sandbox_prefix: list[str] = []
+
+    @staticmethod
+    def _Popen(process_obj: Any) -> Any:
+        return _SandboxedPopen(process_obj)
 
 
 _FORKSERVER_POPEN = _no_main_popen(popen_forkserver.Popen)

@@ -190,6 +190,7 @@ def run_experiment(
     progress: bool = True,
     retry: "tuple[str, ...] | list[str]" = (),
     judge_timeout_s: float = JUDGE_TIMEOUT_S,
+    require_sandbox: bool = False,
 ) -> "pd.DataFrame":
     """Run every run of ``experiment`` not yet stored in ``db``; return exactly the experiment's runs.
 
@@ -212,6 +213,11 @@ def run_experiment(
         run again; each new result replaces the old row when it is stored.
     judge_timeout_s : float
         Limit on judging one run; a run past it is stored as ``invalid``.
+    require_sandbox : bool
+        Refuse to run planners outside the OS sandbox
+        (:class:`~pathzoo.harness.sandbox.SandboxUnavailableError`, before any
+        run); without it an unsandboxed executor is named in one warning of
+        the ``pathzoo.harness`` logger (``docs/sandbox.md``).
 
     Returns
     -------
@@ -255,7 +261,11 @@ def run_experiment(
             bar = _progress_bar(len(tasks), experiment.name, progress)
             try:
                 # the judge first: it starts while the executor starts its workers
-                with JudgeWorker(judge_timeout_s) as judge, make_executor(executor, n_jobs) as pool:
+                with JudgeWorker(judge_timeout_s) as judge, \
+                        make_executor(executor, n_jobs, require_sandbox=require_sandbox) as pool:
+                    if pool.sandbox_problem:
+                        log.warning("pathzoo: planners run without an OS sandbox (%s); see docs/sandbox.md",
+                                    pool.sandbox_problem)
                     _execute(pool, tasks, store, judge, registry, bar, retry_statuses)
             finally:
                 if bar is not None:

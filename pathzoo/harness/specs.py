@@ -24,7 +24,8 @@ from typing import TYPE_CHECKING, Any, Literal, Mapping
 
 from pathzoo.core.budget import Budget
 from pathzoo.core.errors import InvalidExperimentError
-from pathzoo.core.planner import Planner, config_name, params_hash
+from pathzoo.core.planner import Planner, params_hash
+from pathzoo.harness.planner_info import PlannerInfo, info_of
 
 if TYPE_CHECKING:
     from pathzoo.core.scenario import Scenario
@@ -113,7 +114,6 @@ class PlannerSpec:
             not the one registered under its id (workers rebuild planners by
             id), or the planner needs an optional package that is not installed.
         """
-        from pathzoo.plugins.lookup import make_planner
         from pathzoo.plugins.manager import get_registry
 
         label = ""
@@ -145,24 +145,49 @@ class PlannerSpec:
         unavailable = get_registry().get("planners", planner_id).unavailable
         if unavailable:
             raise InvalidExperimentError(f"planner '{planner_id}' is not available here: it {unavailable}")
-        return cls(planner_id, make_planner(planner_id, **params).get_params(), label)
+        return cls(planner_id, info_of(planner_id, params).params, label)
+
+    @property
+    def info(self) -> PlannerInfo:
+        """Version, kinds and default name, not importing the planner here (:mod:`~pathzoo.harness.planner_info`)."""
+        return info_of(self.id, self.params)
 
     @property
     def name(self) -> str:
         """The label, else ``id(param=value, ...)`` for the parameters off their defaults."""
-        return self.label or config_name(self.id, self.params, self.planner_class.params)
+        return self.label or self.info.name
+
+    @property
+    def kinds(self) -> frozenset[str]:
+        """The scenario kinds the planner supports."""
+        return self.info.kinds
 
     @property
     def planner_class(self) -> type[Planner]:
-        """The registered class."""
+        """The registered class (imports the planner's module: the harness itself never calls it)."""
         from pathzoo.plugins.manager import get_registry
 
         return get_registry().get("planners", self.id).obj
 
     @property
+    def by_value(self) -> bytes:
+        """The class pickled by value when it lives in ``__main__`` (:func:`planner_by_value`), else ``b""``.
+
+        A planner declared lazily and never imported here is not in
+        ``__main__``: it is not imported to find out.
+        """
+        from pathzoo.plugins.entries import LazyClass
+        from pathzoo.plugins.manager import get_registry
+
+        provided = get_registry().get("planners", self.id).provided
+        if isinstance(provided, LazyClass) and "_loaded" not in provided.__dict__:
+            return b""
+        return planner_by_value(self.planner_class)
+
+    @property
     def version(self) -> str:
-        """The registered class's version."""
-        return self.planner_class.version
+        """The planner's version."""
+        return self.info.version
 
     @property
     def params_hash(self) -> str:

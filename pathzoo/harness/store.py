@@ -15,8 +15,11 @@ Layout (schema version 1; ``sqlite3 results.sqlite .schema`` shows it):
   fine), ``label``, the configuration's name in tables and plots (runs of
   databases written before it existed read with an empty label, so analysis
   falls back to ``id`` / ``id@hash``), and ``isolated`` (0 for runs of the
-  ``inline`` executor, whose planner shared the harness's process); both are
-  added to older files when they are opened for writing;
+  ``inline`` executor, whose planner shared the harness's process), and
+  ``sandboxed`` (1 when the planner ran in the OS sandbox,
+  :mod:`pathzoo.harness.sandbox`); all three are added to older files when
+  they are opened for writing (``sandboxed`` as 0: no run was sandboxed then),
+  and read as their defaults from files not opened for writing since;
 - ``history``: the convergence points of every run (experiment, run_key,
   iteration, evaluations, best_cost, time_s).
 
@@ -70,6 +73,7 @@ RUN_COLUMNS: tuple[str, ...] = (
     "seed", "status", "valid", "invalid_reason", "message", "wall_time_s", "cpu_time_s", "iterations", "evaluations",
     "label",
     "isolated",
+    "sandboxed",
 )
 """The leading columns of :func:`read_runs`; one column per metric id follows."""
 
@@ -113,6 +117,7 @@ CREATE TABLE IF NOT EXISTS runs (
     metrics TEXT NOT NULL,
     label TEXT NOT NULL DEFAULT '',
     isolated INTEGER NOT NULL DEFAULT 1,
+    sandboxed INTEGER NOT NULL DEFAULT 0,
     UNIQUE (experiment, run_key)
 );
 CREATE TABLE IF NOT EXISTS history (
@@ -213,6 +218,8 @@ class ResultStore:
             self._add_column("label TEXT NOT NULL DEFAULT ''")
         if "isolated" not in self._run_columns:  # a file written before the column existed
             self._add_column("isolated INTEGER NOT NULL DEFAULT 1")
+        if "sandboxed" not in self._run_columns:  # a file written before the sandbox existed
+            self._add_column("sandboxed INTEGER NOT NULL DEFAULT 0")
 
     def _columns(self) -> set[str]:
         return {str(r[1]) for r in self.conn.execute("PRAGMA table_info(runs)")}
@@ -322,6 +329,7 @@ class ResultStore:
             "metrics": json.dumps({k: float(v) for k, v in record.metrics.items()}),
             "label": label,
             "isolated": int(bool(record.isolated)),
+            "sandboxed": int(bool(record.sandboxed)),
         }
         for mid in metric_ids:
             values[f"metric:{mid}"] = _real(record.metrics[mid])
@@ -364,7 +372,7 @@ def read_runs(db: str | Path, experiment: str | None = None, run_keys: "Collecti
               ) -> "pd.DataFrame":
     """One row per run, in the order they were stored (only ``run_keys``, when given).
 
-    Columns: :data:`RUN_COLUMNS` (``params`` as dicts, ``valid`` and ``isolated`` as bool,
+    Columns: :data:`RUN_COLUMNS` (``params`` as dicts, ``valid``, ``isolated`` and ``sandboxed`` as bool,
     ``status`` as the :class:`~pathzoo.core.status.RunStatus` value), then one
     float column per metric id. ``iterations`` and ``evaluations`` are NaN
     for crashed and timed-out runs, like the metrics of the same names.
@@ -381,7 +389,7 @@ def read_runs(db: str | Path, experiment: str | None = None, run_keys: "Collecti
     try:
         where, args = _experiment_filter(conn, path, experiment)
         present = {str(r[1]) for r in conn.execute("PRAGMA table_info(runs)")}
-        defaults = {"label": "''", "isolated": "1"}
+        defaults = {"label": "''", "isolated": "1", "sandboxed": "0"}
         base = ", ".join(f'"{c}"' if c in present else f'{defaults.get(c, "NULL")} AS "{c}"' for c in RUN_COLUMNS)
         rows = conn.execute(f"SELECT {base}, metrics FROM runs{where} ORDER BY id", args).fetchall()
     finally:
@@ -393,6 +401,7 @@ def read_runs(db: str | Path, experiment: str | None = None, run_keys: "Collecti
     frame["params"] = [json.loads(p) for p in frame["params"]]
     frame["valid"] = frame["valid"].astype(bool)
     frame["isolated"] = frame["isolated"].astype(bool)
+    frame["sandboxed"] = frame["sandboxed"].astype(bool)
     for col in ("wall_time_s", "cpu_time_s", "iterations", "evaluations"):
         frame[col] = pd.to_numeric(frame[col], errors="coerce").astype(float)
     metrics = [json.loads(r[-1]) for r in rows]
@@ -497,6 +506,7 @@ def read_record(db: str | Path, experiment: str, run_key: str) -> RunRecord:
         versions=json.loads(row["versions"]),
         started_at=row["started_at"],
         isolated=bool(row.get("isolated", 1)),
+        sandboxed=bool(row.get("sandboxed", 0)),
     )
 
 

@@ -61,8 +61,6 @@ __all__ = [
     "SCENARIO_CACHE_SIZE",
     "SETUP_TIMEOUT_S",
     "Report",
-    "warm_up_pairs",
-    "warm_up_tasks",
 ]
 
 SCENARIO_CACHE_SIZE = 4
@@ -119,6 +117,9 @@ class RunOutcome:
     bounds_error : str
         Why a planner-chosen value is out of bounds (:mod:`pathzoo.harness.bounds`);
         the run is judged ``invalid`` with this reason.
+    sandboxed : bool
+        The planner ran in an OS sandbox (:mod:`pathzoo.harness.sandbox`); set
+        by the executor that supervised it, never by the planner's process.
     """
 
     run_key: str
@@ -139,6 +140,7 @@ class RunOutcome:
     started_at: str = ""
     tainted: bool = False
     bounds_error: str = ""
+    sandboxed: bool = False
 
 
 def utc_now() -> str:
@@ -275,42 +277,6 @@ def evict(spec: "ScenarioSpec") -> None:
         _scenarios.pop(spec.cache_key, None)
 
 
-# ------------------------------------------------------------------ warm-up
-def warm_up_pairs(tasks: "list[RunTask]", shares: int) -> "list[list[RunTask]]":
-    """One run per (planner, scenario kind) pair in order of first appearance, dealt round-robin into ``shares`` lists.
-
-    The first task's pair is left out: the worker that runs the first task
-    warms it up then. The other workers each warm a share
-    (:func:`warm_up_tasks`) while that one serves the queue, so the numba
-    compilations of an experiment (about 17 CPU s with an empty cache for the
-    default experiment) are spread over the workers instead of being repeated
-    by each, and the first result is not delayed; a worker that later runs a
-    planner another one warmed loads the compiled code from numba's on-disk
-    cache.
-    """
-    firsts: dict[tuple[str, str], RunTask] = {}
-    for task in tasks:
-        firsts.setdefault((task.planner.id, task.scenario.kind), task)
-    pairs = list(firsts.values())[1:]
-    return [pairs[i::shares] for i in range(shares)]
-
-
-def warm_up_tasks(tasks: "list[RunTask]") -> None:
-    """Warm up (:func:`pathzoo.core.warmup.warm_up`) the planner of each task on its scenario kind; never raises.
-
-    Nothing here is timed or stored; a planner that fails to build or to warm
-    up fails again in its measured run, where that is recorded.
-    """
-    from pathzoo.core.warmup import warm_up  # not at the top: the harness imports this module before it needs numba
-
-    for task in tasks:
-        try:
-            ensure_plugins(task.plugin_modules)
-            warm_up(task.build_planner(), task.scenario.kind)
-        except BaseException:  # noqa: BLE001 - SystemExit from a planner included; see the docstring
-            continue
-
-
 # --------------------------------------------------------------------- runs
 def _versions(task: "RunTask") -> dict[str, str]:
     from pathzoo.plugins.manager import get_registry
@@ -375,7 +341,7 @@ def execute_task(task: "RunTask", report: Report | None = None, *, interruptible
 
 
 def _execute(task: "RunTask", report: Report) -> RunOutcome:
-    from pathzoo.core.warmup import warm_up  # see warm_up_tasks; the workers' server has imported it
+    from pathzoo.core.warmup import warm_up  # not at the top: the harness imports this module before numba
 
     started_at = utc_now()
     try:

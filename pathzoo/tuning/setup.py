@@ -144,7 +144,7 @@ def load_tuning(path: str | Path, *, trials: int | None = None) -> TuningSetup:
     experiment = dataclasses.replace(train_exp, scenarios=train_specs + test_specs)
     for i, spec in enumerate(experiment.planners):
         for stage, specs in (("train", train_specs), ("test", test_specs)):
-            if not any(s.kind in spec.planner_class.kinds for s in specs):
+            if not any(s.kind in spec.kinds for s in specs):
                 raise InvalidExperimentError(
                     f"{src}: field 'planner[{i}]': {spec.id} supports none of the {stage} scenarios' kinds"
                 )

@@ -167,20 +167,29 @@ def test_bad_experiment_files_are_one_line(tmp_path, capsys, body, message):
 def test_executor_options_reach_the_runner(experiment, tmp_path, capsys, monkeypatch):
     seen = {}
 
-    def fake_run_experiment(exp, *, db, jobs, executor, progress, retry=()):
-        seen.update(db=db, jobs=jobs, executor=executor, progress=progress, seeds=exp.seeds)
+    def fake_run_experiment(exp, *, db, jobs, executor, progress, retry=(), require_sandbox=False):
+        seen.update(db=db, jobs=jobs, executor=executor, progress=progress, seeds=exp.seeds,
+                    require_sandbox=require_sandbox)
         raise KeyboardInterrupt
 
     monkeypatch.setattr(runner, "run_experiment", fake_run_experiment)
     db = tmp_path / "r.sqlite"
     argv = ["run", str(experiment), "--db", str(db), "--executor", "dask", "--dask-address", "tcp://10.0.0.1:8786",
-            "--jobs", "3", "--seeds", "4", "--no-progress"]
+            "--jobs", "3", "--seeds", "4", "--no-progress", "--require-sandbox"]
     assert main(argv) == 2
     assert seen == {"db": str(db), "jobs": 3, "executor": "dask:tcp://10.0.0.1:8786", "progress": False,
-                    "seeds": (0, 1, 2, 3)}
+                    "seeds": (0, 1, 2, 3), "require_sandbox": True}
     assert one_error(capsys) == (
         f"interrupted; finished runs are stored in {db}, run the same command again to resume"
     )
+
+
+def test_require_sandbox_refuses_the_inline_executor_in_one_line(experiment, tmp_path, capsys):
+    argv = ["run", str(experiment), "--db", str(tmp_path / "r.sqlite"), "--executor", "inline", "--no-progress",
+            "--require-sandbox"]
+    assert main(argv) == 2
+    assert one_error(capsys) == "the inline executor runs planners in the harness's own process, never sandboxed"
+    assert not (tmp_path / "r.sqlite").exists() or not read_runs(tmp_path / "r.sqlite").shape[0]
 
 
 def test_report_and_ompl_export_and_html_leaderboard(experiment, tmp_path, capsys):

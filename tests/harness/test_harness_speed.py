@@ -14,7 +14,7 @@ from pathzoo.harness import Experiment
 from pathzoo.harness.executors import InlineExecutor, ProcessExecutor
 from pathzoo.harness.judge_worker import JudgeWorker
 from pathzoo.harness.tamper import ModuleFingerprint
-from pathzoo.harness.worker import execute_task, warm_up_pairs
+from pathzoo.harness.worker import execute_task
 
 
 class _LooksEqual:
@@ -100,21 +100,6 @@ def test_the_quick_check_sees_writes_that_keep_keys_and_size(quick_path: bool):
         assert fingerprint.changed() == ["pathzoo_tamper_probe3.f"]  # and again: a tainted state is never accepted
     finally:
         del sys.modules["pathzoo_tamper_probe3"]
-
-
-def test_warm_up_shares_cover_each_pair_once_in_order():
-    exp = Experiment.build(planners=["exact.astar", "exact.dijkstra", ("exact.astar", {"cost": "energy"}, "energy")],
-                           scenarios=["gant.fig7", "iaca.offroad", "movingai.arena.b0.1"], seeds=3,
-                           budget=pathzoo.Budget(iterations=1))
-    tasks = exp.tasks()
-    shares = warm_up_pairs(tasks, 2)
-    pairs = [(t.planner.id, t.scenario.kind) for share in shares for t in share]
-    # every pair once, but the first run's own pair: the worker serving the queue warms that one
-    assert sorted(pairs) == sorted({(t.planner.id, t.scenario.kind) for t in tasks} - {("exact.astar", "grid2d")})
-    assert len(pairs) == len(set(pairs))
-    first = [(t.planner.id, t.scenario.kind) for t in shares[0]]
-    assert first == [("exact.dijkstra", "grid2d"), ("exact.dijkstra", "terrain")]
-    assert warm_up_pairs(tasks, 4)[3] == []
 
 
 def test_only_the_process_executor_queues_ahead():

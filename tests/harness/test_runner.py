@@ -20,6 +20,7 @@ from pathzoo import Budget
 from pathzoo.harness.executors import dask_executor
 from pathzoo.harness.experiment import Experiment
 from pathzoo.harness.runner import run_experiment
+from pathzoo.harness.sandbox import sandbox_problem
 from pathzoo.harness.store import read_history, read_path
 from pathzoo.plugins.manager import get_registry
 
@@ -60,7 +61,9 @@ def test_same_results_inline_process_and_dask(forged, small_scen, tmp_path):
         results[name] = comparable(db, frame)
     assert not results["inline"][0].isolated.any() and results["process"][0].isolated.all()
     assert results["dask"][0].isolated.all()  # Dask workers are threads here, but planners run in their children
-    results = {name: (frame.drop(columns="isolated"), rest) for name, (frame, rest) in results.items()}
+    sandboxed = not sandbox_problem()
+    assert [results[name][0].sandboxed.all() for name in results] == [False, sandboxed, sandboxed]
+    results = {name: (frame.drop(columns=["isolated", "sandboxed"]), rest) for name, (frame, rest) in results.items()}
     base, (paths, hist) = results["inline"]
     assert len(base) == 2 * 4 * 2 and (base.status == "solved").all()
     assert base.iterations.nunique() > 1  # the planner really draws from its rng

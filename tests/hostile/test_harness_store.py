@@ -14,6 +14,7 @@ from pathzoo.core.results import RunRecord
 from pathzoo.core.status import RunStatus
 from pathzoo.harness import read_history, run_experiment
 from pathzoo.harness.store import ResultStore, read_runs
+from pathzoo.harness.executors import ProcessExecutor
 
 
 def record(key: str, metrics: dict[str, float]) -> RunRecord:
@@ -38,12 +39,16 @@ def test_retry_reruns_stored_crashes_and_replaces_their_rows(hostile, tmp_path):
     marker.touch()
     exp = experiment([("hostile.flaky", {"marker": str(marker)})], ["hostile.wall"], seeds=2)
     db = tmp_path / "r.sqlite"
-    first = run_experiment(exp, db=db, jobs=1, executor="process", progress=False)
+    # unsandboxed: a sandboxed planner cannot see the marker under /tmp (tests/hostile/test_sandbox.py)
+    with ProcessExecutor(1, sandbox=False) as pool:
+        first = run_experiment(exp, db=db, executor=pool, progress=False)
     assert list(first.status) == ["crash", "crash"]
     marker.unlink()  # "pip install" the missing dependency
-    again = run_experiment(exp, db=db, jobs=1, executor="process", progress=False)
+    with ProcessExecutor(1, sandbox=False) as pool:
+        again = run_experiment(exp, db=db, executor=pool, progress=False)
     assert list(again.status) == ["crash", "crash"]  # without --retry, stored runs are kept
-    retried = run_experiment(exp, db=db, jobs=1, executor="process", progress=False, retry=("crash", "timeout"))
+    with ProcessExecutor(1, sandbox=False) as pool:
+        retried = run_experiment(exp, db=db, executor=pool, progress=False, retry=("crash", "timeout"))
     assert list(retried.status) == ["solved", "solved"]
     assert len(read_runs(db, "hostile")) == 2 and read_history(db, "hostile").empty
 

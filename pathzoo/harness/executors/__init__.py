@@ -8,6 +8,7 @@ from pathzoo.core.errors import InvalidExperimentError
 from pathzoo.harness.executors.base import RunExecutor
 from pathzoo.harness.executors.inline import InlineExecutor
 from pathzoo.harness.executors.process import ProcessExecutor
+from pathzoo.harness.sandbox import SandboxUnavailableError, sandbox_problem
 
 __all__ = ["RunExecutor", "InlineExecutor", "ProcessExecutor", "dask_executor", "make_executor", "EXECUTORS"]
 
@@ -32,7 +33,7 @@ def dask_executor(address: str | None = None, jobs: int | None = None, **kwargs:
     return DaskExecutor(jobs, address=address, **kwargs)
 
 
-def make_executor(spec: "str | RunExecutor", jobs: int) -> RunExecutor:
+def make_executor(spec: "str | RunExecutor", jobs: int, *, require_sandbox: bool = False) -> RunExecutor:
     """Build an executor from its name, or pass an instance through.
 
     Parameters
@@ -42,16 +43,28 @@ def make_executor(spec: "str | RunExecutor", jobs: int) -> RunExecutor:
         ``"dask:tcp://host:8786"`` (an existing scheduler).
     jobs : int
         Worker count for ``process`` and the local Dask cluster.
+    require_sandbox : bool
+        Refuse to build an executor whose planners would run unsandboxed here
+        (``docs/sandbox.md``).
 
     Raises
     ------
     InvalidExperimentError
         Unknown executor name.
+    SandboxUnavailableError
+        ``require_sandbox`` and no sandbox: the inline executor, or a system
+        without one (process executor and local Dask cluster).
     """
+    if require_sandbox and (spec == "inline" or isinstance(spec, InlineExecutor)):
+        raise SandboxUnavailableError("the inline executor runs planners in the harness's own process, never sandboxed")
+    if require_sandbox and (spec == "dask" or (isinstance(spec, RunExecutor) and spec.sandbox_problem)):
+        problem = sandbox_problem() if spec == "dask" else spec.sandbox_problem  # type: ignore[union-attr]
+        if problem:
+            raise SandboxUnavailableError(f"planner processes cannot be sandboxed here: {problem}")
     if isinstance(spec, RunExecutor):
         return spec
     if spec == "process":
-        return ProcessExecutor(jobs)
+        return ProcessExecutor(jobs, sandbox=True if require_sandbox else None)
     if spec == "inline":
         return InlineExecutor()
     if spec == "dask" or (isinstance(spec, str) and spec.startswith("dask:")):

@@ -35,6 +35,10 @@ class RunExecutor(abc.ABC):
     """Whether every run executes in a process of its own that no other planner's code can have changed
     (stored with each run; an executor that does not say so is taken as not isolated)."""
 
+    sandbox_problem: str = "this executor runs no planner in an OS sandbox"
+    """Why this executor's runs are not sandboxed (``""`` when they are, or when each run's outcome says it:
+    ``RunOutcome.sandboxed`` is the truth stored with every run; see ``docs/sandbox.md``)."""
+
     @abc.abstractmethod
     def submit(self, task: "RunTask") -> "Future[RunOutcome]":
         """Schedule one run."""

@@ -60,6 +60,7 @@ from typing import TYPE_CHECKING, Any
 from pathzoo.core.errors import PathzooError
 from pathzoo.harness.executors.base import RunExecutor
 from pathzoo.harness.executors.process import ProcessExecutor
+from pathzoo.harness.sandbox import sandbox_problem
 from pathzoo.harness.wire import decode_outcome, encode_outcome
 from pathzoo.harness.worker import SETUP_TIMEOUT_S, RunOutcome, utc_now
 
@@ -84,7 +85,7 @@ def _supervisor(token: str) -> ProcessExecutor:
     with _supervisors_lock:
         executor = _supervisors.get(key)
         if executor is None:
-            executor = _supervisors[key] = ProcessExecutor(1)
+            executor = _supervisors[key] = ProcessExecutor(1)  # sandboxed where the Dask worker's host can
     return executor
 
 
@@ -154,6 +155,8 @@ class DaskExecutor(RunExecutor):
     """
 
     isolated = True
+    sandbox_problem = ""
+    """A local cluster's workers are sandboxed where this host can; each run's outcome says whether it was."""
 
     def __init__(self, jobs: int | None = None, *, address: str | None = None, processes: bool = True) -> None:
         try:
@@ -180,6 +183,7 @@ class DaskExecutor(RunExecutor):
                 dashboard_address=":0",  # Dask always serves HTTP; a free port, never a clash on 8787
             )
             self._client = Client(self._cluster)
+            self.sandbox_problem = sandbox_problem()
         self.capacity = max(1, sum(self._client.nthreads().values()))
         self._token = uuid.uuid4().hex
         self._lock = threading.Lock()

@@ -40,6 +40,7 @@ class InlineExecutor(RunExecutor):
 
     capacity = 1
     isolated = False
+    sandbox_problem = "the inline executor runs planners in the harness's own process"
 
     def submit(self, task: "RunTask") -> "Future[RunOutcome]":
         """Run the task now and return a completed future."""

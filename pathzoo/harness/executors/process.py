@@ -7,8 +7,7 @@ code, so nothing they send is unpickled: they send short tagged byte strings
 (read with a size limit) and the outcome in the format of
 :mod:`pathzoo.harness.wire`:
 
-- ``R`` (ready) once started, ``I`` (idle) after each run (or warm-up share,
-  :meth:`ProcessExecutor.prepare`) when the process
+- ``R`` (ready) once started, ``I`` (idle) after each run when the process
   is still clean, ``T`` (tainted) when the run rebound module attributes
   (:mod:`pathzoo.harness.tamper`): that worker is retired and a fresh one
   started, so no planner's patch reaches another run;
@@ -19,7 +18,9 @@ code, so nothing they send is unpickled: they send short tagged byte strings
 - ``P`` (planning, after the warm-up): the planning clock starts. Wall time is
   the harness's ``time.perf_counter`` from ``P`` to the outcome, CPU time the
   worker process's CPU time read from the outside at the same two
-  moments (:func:`process_cpu_time`), so a planner cannot change its own timings;
+  moments (:func:`process_cpu_time`; for a sandboxed worker, the larger of
+  that and its whole cgroup's, children included), so a planner cannot
+  change its own timings;
 - ``D`` + outcome: the future resolves;
 - a worker past its hard limit gets ``SIGKILL`` (``Process.kill``), the run
   resolves as ``timed_out`` and a fresh worker replaces it; one that dies
@@ -27,7 +28,22 @@ code, so nothing they send is unpickled: they send short tagged byte strings
   or signal; one that sends anything else, or more than
   :data:`~pathzoo.harness.wire.MAX_OUTCOME_BYTES`, is killed and its run is a ``crash``.
 
-Workers start with the ``forkserver`` method where available (``spawn``
+Each worker runs one planner configuration (planner id and parameter
+hash, :func:`configuration`) for as many runs as the experiment has of it;
+a queued run goes to an idle worker of its configuration, else to a new
+worker (an idle worker that no queued run can use is retired to make room),
+so no interpreter state (a recursion limit, a replaced cached scenario)
+passes from one planner to another.
+
+Where the system allows (:func:`~pathzoo.harness.sandbox.sandbox_problem`),
+workers are sandboxed: each is spawned through bubblewrap in a cgroup of its
+own (:mod:`pathzoo.harness.sandbox`, :mod:`pathzoo.harness.cgroup`, and
+``docs/sandbox.md``). When a sandboxed worker reports idle, its cgroup must
+hold only the processes it held when it became ready; anything else (a
+child, a daemon) gets the whole cgroup killed and the worker replaced, and a
+killed or timed-out worker's cgroup is emptied the same way.
+
+Unsandboxed workers start with the ``forkserver`` method where available (``spawn``
 elsewhere), without the main module: the preparation data that would make
 them re-import ``__main__`` is left out (:class:`~pathzoo.harness.launch.NoMainContext`), so a
 script without an ``if __name__ == "__main__":`` guard (or ``python - <
@@ -44,12 +60,11 @@ A scenario object (:meth:`~pathzoo.harness.specs.ScenarioSpec.of_object`)
 is sent to each worker once; later tasks on it refer to it by digest
 (:func:`~pathzoo.harness.worker.keep_payload`).
 
-All workers start when the executor is built; with two or more, each first
-warms up its share of the experiment's planners (:meth:`ProcessExecutor.prepare`),
-and the runner keeps one run per worker queued here (:attr:`lookahead`), so a
-worker goes from one run to the next without waiting for the harness. The
-very first run goes alone, though: the other workers get nothing (neither a
-run nor a warm-up share) until it starts planning or ends, so that its setup
+Unsandboxed workers all start when the executor is built (sandboxed ones when
+a run of their configuration is queued), and the runner keeps one run per
+worker queued here (:attr:`lookahead`), so a worker goes from one run to
+the next without waiting for the harness. The very first run goes alone,
+though: the other workers get nothing until it starts planning or ends, so that its setup
 (plugins, planner class, scenario, warm-up) shares the cores with the judge's
 start only, and the first result comes sooner.
 """
@@ -58,31 +73,38 @@ from __future__ import annotations
 
 import math
 import os
+import shutil
 import signal
 import sys
 import threading
 import time
-from collections import deque
+import tempfile
+from collections import Counter, deque
 from concurrent.futures import Future
 from dataclasses import dataclass, field, replace
+from pathlib import Path
 from multiprocessing.connection import Connection, wait
 from typing import TYPE_CHECKING, Any
 
 from pathzoo.core.errors import PathzooError
 from pathzoo.harness.executors.base import RunExecutor
-from pathzoo.harness.launch import NoMainContext, default_start_method, die_with_harness, harness_alive, start_server
+from pathzoo.harness.cgroup import ProcessGroup
+from pathzoo.harness.launch import (NoMainContext, SandboxedProcess, default_start_method, die_with_harness,
+                                    harness_alive, start_server)
+from pathzoo.harness.sandbox import SandboxLimits, SandboxUnavailableError, sandbox_problem, sandboxed_command, \
+    worker_numba_cache
 from pathzoo.harness.specs import HeldScenarios
 from pathzoo.harness.tamper import ModuleFingerprint
 from pathzoo.harness.wire import MAX_OUTCOME_BYTES, decode_outcome, encode_outcome
-from pathzoo.harness.worker import (SETUP_TIMEOUT_S, RunOutcome, execute_task, keep_payload, utc_now, warm_up_pairs,
-                                    warm_up_tasks)
+from pathzoo.harness.worker import SETUP_TIMEOUT_S, RunOutcome, execute_task, keep_payload, utc_now
 
 if TYPE_CHECKING:
     from multiprocessing.process import BaseProcess
 
     from pathzoo.harness.specs import RunTask
 
-__all__ = ["ProcessExecutor", "WorkerStartError", "default_start_method", "process_cpu_time"]
+__all__ = ["ProcessExecutor", "WorkerStartError", "default_start_method", "process_cpu_time", "configuration",
+           "MAX_START_FAILURES"]
 
 _clock = time.perf_counter  # bound at import: a later patch of time.perf_counter does not reach the harness
 
@@ -90,6 +112,9 @@ _clock = time.perf_counter  # bound at import: a later patch of time.perf_counte
 class WorkerStartError(PathzooError, RuntimeError):
     """A worker process died before it was ready: the harness cannot run anything."""
 
+
+MAX_START_FAILURES = 3
+"""Workers in a row that die before they are ready, after which the executor gives up (:class:`WorkerStartError`)."""
 
 _clock_gettime = getattr(time, "clock_gettime", None)  # bound at import, like _clock
 _CPU_CLOCK_OF_PID = sys.platform.startswith("linux") and _clock_gettime is not None
@@ -120,10 +145,28 @@ def process_cpu_time(pid: int | None) -> float:
         return math.nan
 
 
-def _worker_main(conn: Connection, alive: Connection) -> None:
+def _python_of(pids: frozenset[int], outer: int) -> int:
+    """The worker's Python process among the first processes of its sandbox (the outer ``bwrap`` is ``outer``).
+
+    ``bwrap`` (``outer``) starts the namespace's init, which starts Python:
+    the one whose parent is not ``outer``. 0 when it cannot be told.
+    """
+    for pid in pids - {outer}:
+        try:
+            stat = Path(f"/proc/{pid}/stat").read_text()
+        except OSError:
+            continue
+        if int(stat.rsplit(")", 1)[1].split()[1]) != outer:
+            return pid
+    return 0
+
+
+def _worker_main(conn: Connection, alive: Connection, sandboxed: bool = False) -> None:
     """Loop of one worker process: receive a task, run it, send the outcome and whether the process is clean."""
     die_with_harness(alive)
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    if sandboxed:  # spawned, not forked from the server that has done this already
+        import pathzoo.harness.executors.warmup  # noqa: F401
     fingerprint = ModuleFingerprint().update()
     conn.send_bytes(b"R")
     while True:
@@ -133,12 +176,9 @@ def _worker_main(conn: Connection, alive: Connection) -> None:
             return
         if task is None:
             return
-        if isinstance(task, list):  # the warm-up share of this worker (see ProcessExecutor.prepare)
-            warm_up_tasks(task)
-        else:
-            keep_payload(task.scenario)  # the executor counts it as held from now on
-            if not _run(conn, task):
-                return
+        keep_payload(task.scenario)  # the executor counts it as held from now on
+        if not _run(conn, task):
+            return
         changed = fingerprint.changed()
         if changed:
             conn.send_bytes(b"T" + ", ".join(changed).encode("utf-8", "replace")[:1000])
@@ -161,10 +201,16 @@ def _run(conn: Connection, task: "RunTask") -> bool:
     return True
 
 
-def describe_exit(exitcode: int | None) -> str:
-    """``"exit code 3"`` or ``"signal 9 (SIGKILL)"``."""
+def describe_exit(exitcode: int | None, *, sandboxed: bool = False) -> str:
+    """``"exit code 3"`` or ``"signal 9 (SIGKILL)"``.
+
+    ``bwrap`` exits with 128 + the signal that killed the sandboxed process,
+    so for a sandboxed worker codes 129-192 are read as that signal.
+    """
     if exitcode is None:
         return "unknown exit status"
+    if sandboxed and 128 < exitcode <= 128 + 64:
+        exitcode = 128 - exitcode
     if exitcode < 0:
         try:
             return f"signal {-exitcode} ({signal.Signals(-exitcode).name})"
@@ -187,9 +233,14 @@ class _Worker:
     deadline: float = math.inf
     in_setup: bool = False
     plan_t0: float = math.nan
-    plan_c0: float = math.nan
-    had_share: bool = False
+    plan_c0: tuple[float, float] = (math.nan, math.nan)
     held: HeldScenarios = field(default_factory=HeldScenarios)
+    config: "tuple[str, str] | None" = None
+    group: ProcessGroup | None = None
+    scratch: str = ""
+    baseline: frozenset[int] = frozenset()
+    inner_pid: int = 0
+    visible: frozenset[str] = frozenset()
 
     @property
     def listening(self) -> bool:
@@ -202,27 +253,57 @@ class _Worker:
         self.task, self.future, self.deadline = None, None, math.inf
 
 
+def configuration(task: "RunTask") -> tuple[str, str]:
+    """The planner configuration of a task, ``(planner id, parameter hash)``: a worker process runs one only."""
+    return task.planner.id, task.params_hash
+
+
 class ProcessExecutor(RunExecutor):
-    """A pool of ``jobs`` long-lived worker processes (see the module docstring).
+    """A pool of ``jobs`` long-lived worker processes, each for one planner configuration (see the module docstring).
 
     Parameters
     ----------
     jobs : int, optional
         Number of workers (default: ``os.cpu_count()``).
     start_method : str, optional
-        ``"forkserver"`` or ``"spawn"`` (default :func:`default_start_method`).
+        ``"forkserver"`` or ``"spawn"`` (default :func:`default_start_method`)
+        for unsandboxed workers; sandboxed ones are always spawned.
+    sandbox : bool, optional
+        ``None`` (default): sandbox the workers where the system can
+        (:func:`~pathzoo.harness.sandbox.sandbox_problem`), else run them
+        unsandboxed; ``True``: raise :class:`SandboxUnavailableError` where
+        it cannot; ``False``: never.
+    limits : SandboxLimits, optional
+        Memory and task limits of each sandboxed worker.
+
+    Attributes
+    ----------
+    sandboxed : bool
+        Whether the workers run sandboxed.
+    sandbox_problem : str
+        Why they do not (``""`` when they do).
     """
 
     isolated = True
 
-    def __init__(self, jobs: int | None = None, *, start_method: str | None = None) -> None:
+    def __init__(self, jobs: int | None = None, *, start_method: str | None = None, sandbox: bool | None = None,
+                 limits: SandboxLimits | None = None) -> None:
         self.capacity = int(jobs or os.cpu_count() or 1)
+        self.sandbox_problem = "switched off (sandbox=False)" if sandbox is False else sandbox_problem()
+        if sandbox and self.sandbox_problem:
+            raise SandboxUnavailableError(f"planner processes cannot be sandboxed here: {self.sandbox_problem}")
+        self.sandboxed = sandbox is not False and not self.sandbox_problem
+        self.limits = limits or SandboxLimits()
         self._ctx: Any = NoMainContext(start_method or default_start_method())
-        start_server(start_method)  # from this thread, not the monitor: the server dies with its starting thread
+        if not self.sandboxed:
+            start_server(start_method)  # from this thread, not the monitor: the server dies with its starting thread
+        self._scratch_root = tempfile.mkdtemp(prefix="pathzoo-sandbox-") if self.sandboxed else ""
+        self._serial = 0
+        self._scenario_dirs: set[str] = set()
+        self._start_failures = 0
         self._lock = threading.Lock()
         self._pending: deque[tuple[RunTask, Future[RunOutcome]]] = deque()
         self._workers: list[_Worker] = []
-        self._warm_shares: deque[list[RunTask]] = deque()
         self._first_alone = self.capacity > 1  # see _dispatch
         self._closing = False
         self._wake_r, self._wake_w = self._ctx.Pipe(duplex=False)
@@ -232,7 +313,7 @@ class ProcessExecutor(RunExecutor):
 
     # ------------------------------------------------------------ interface
     def submit(self, task: "RunTask") -> "Future[RunOutcome]":
-        """Queue a run for the next idle worker."""
+        """Queue a run for the next idle worker of its configuration."""
         future: Future[RunOutcome] = Future()
         with self._lock:
             if self._closing:
@@ -242,20 +323,9 @@ class ProcessExecutor(RunExecutor):
         return future
 
     def prepare(self, tasks: "list[RunTask]") -> None:
-        """Deal the warm-up of the experiment's (planner, scenario kind) pairs to all workers but one (jobs >= 2).
-
-        One worker serves the queue from the start; each other worker first
-        warms up its share (:func:`~pathzoo.harness.worker.warm_up_pairs`),
-        under the setup limit :data:`~pathzoo.harness.worker.SETUP_TIMEOUT_S`,
-        then serves the queue too. The compilations run in parallel with the
-        first runs instead of being repeated by every worker. With one worker
-        there is nothing to share.
-        """
-        if self.capacity < 2:
-            return
+        """Note where the experiment's scenario files are (a sandboxed worker sees only those directories)."""
         with self._lock:
-            self._warm_shares.extend(share for share in warm_up_pairs(tasks, self.capacity - 1) if share)
-        self._wake_w.send(None)
+            self._see_files(tasks)
 
     def shutdown(self) -> None:
         """Stop the monitor, ask idle workers to exit, kill busy ones, cancel queued runs."""
@@ -267,7 +337,7 @@ class ProcessExecutor(RunExecutor):
         self._thread.join()
         for worker in self._workers:
             if worker.task is not None or not worker.idle:
-                worker.process.kill()
+                self._kill_tree(worker)
             elif worker.process.is_alive():
                 try:
                     worker.conn.send(None)
@@ -276,10 +346,7 @@ class ProcessExecutor(RunExecutor):
         deadline = time.monotonic() + 2.0
         for worker in self._workers:
             worker.process.join(max(0.0, deadline - time.monotonic()))
-            if worker.process.is_alive():
-                worker.process.kill()
-                worker.process.join()
-            worker.conn.close()
+            self._release(worker)
             if worker.future is not None:
                 worker.future.cancel()
         self._workers.clear()
@@ -288,60 +355,125 @@ class ProcessExecutor(RunExecutor):
         self._pending.clear()
         self._wake_r.close()
         self._wake_w.close()
+        if self._scratch_root:
+            shutil.rmtree(self._scratch_root, ignore_errors=True)
 
     # ------------------------------------------------------------- internals
-    def _spawn(self) -> _Worker:
+    def _spawn(self, config: "tuple[str, str] | None") -> _Worker:
+        """A new worker, for ``config`` (sandboxed: in its own cgroup and bubblewrap sandbox)."""
         parent, child = self._ctx.Pipe(duplex=True)
-        process = self._ctx.Process(target=_worker_main, args=(child, harness_alive()), name="pathzoo-worker")
-        process.start()
+        group, scratch, visible = None, "", frozenset(self._visible_dirs())
+        if self.sandboxed:
+            assert config is not None
+            self._serial += 1
+            group = ProcessGroup(f"w{self._serial}", memory_bytes=self.limits.memory_bytes,
+                                 max_tasks=self.limits.max_tasks)
+            scratch = os.path.join(self._scratch_root, f"w{self._serial}")
+            process: Any = SandboxedProcess(target=_worker_main, args=(child, harness_alive(), True),
+                                            name="pathzoo-worker")
+            process.sandbox_prefix = sandboxed_command(
+                (), procs_files=group.procs_files, scratch=Path(scratch), numba_cache=worker_numba_cache(config[0]),
+                readable=visible)
+        else:
+            process = self._ctx.Process(target=_worker_main, args=(child, harness_alive()), name="pathzoo-worker")
+        try:
+            process.start()
+        except BaseException:
+            if group is not None:
+                group.remove()
+            raise
         child.close()
-        worker = _Worker(process, parent)
+        worker = _Worker(process, parent, config=config, group=group, scratch=scratch, visible=visible)
         self._workers.append(worker)
         return worker
 
-    def _retire(self, worker: _Worker) -> None:
+    def _visible_dirs(self) -> list[str]:
+        with self._lock:
+            return sorted(self._scenario_dirs)
+
+    def _kill_tree(self, worker: _Worker) -> None:
+        """``SIGKILL`` the worker and, when sandboxed, every process of its cgroup."""
+        if worker.group is not None:
+            worker.group.kill()
         if worker.process.is_alive():
             worker.process.kill()
+
+    def _release(self, worker: _Worker) -> None:
+        """Kill what is left of a worker, reap it, remove its cgroup and scratch directory, close its pipe."""
+        self._kill_tree(worker)
         worker.process.join()
+        if worker.group is not None:
+            worker.group.remove()
+        if worker.scratch:
+            shutil.rmtree(worker.scratch, ignore_errors=True)
         worker.conn.close()
+
+    def _retire(self, worker: _Worker) -> None:
+        self._release(worker)
         self._workers.remove(worker)
+
+    def _see_files(self, tasks: "list[RunTask]") -> None:
+        """Note the directories of the tasks' scenario files: sandboxed workers started from now on can read them."""
+        self._scenario_dirs.update(os.path.dirname(os.path.abspath(t.scenario.location)) for t in tasks
+                                   if t.scenario.source == "file")
+
+    def _start_workers(self) -> None:
+        """Start workers for the queued runs that no idle or starting worker of their configuration will take."""
+        starting = Counter(w.config for w in self._workers if not w.was_ready)
+        with self._lock:
+            queued = [task for task, _ in self._pending]
+        for task in queued:
+            config = configuration(task)
+            if starting[config] > 0:
+                starting[config] -= 1
+                continue
+            if starting[None] > 0 and not self.sandboxed:
+                starting[None] -= 1
+                continue
+            if len(self._workers) >= self.capacity:  # retire an idle worker that no queued run can use
+                spare = next((w for w in self._workers if w.idle and w.task is None), None)
+                if spare is None:
+                    return
+                self._retire(spare)
+            with self._lock:
+                self._see_files([task])
+            self._spawn(config)
+
+    def _sees(self, worker: _Worker, task: "RunTask") -> bool:
+        """Whether the worker can read the task's scenario (a sandboxed one sees the files known when it started)."""
+        spec = task.scenario
+        return (worker.group is None or spec.source != "file"
+                or os.path.dirname(os.path.abspath(spec.location)) in worker.visible)
+
+    def _take(self) -> "tuple[_Worker, RunTask, Future[RunOutcome]] | None":
+        """The first queued run with an idle worker of its configuration (or, unsandboxed, one not yet used)."""
+        with self._lock:
+            for i, (task, future) in enumerate(self._pending):
+                config = configuration(task)
+                worker = next((w for w in self._workers if w.idle and w.task is None and w.config == config
+                               and self._sees(w, task)), None)
+                if worker is None and not self.sandboxed:
+                    worker = next((w for w in self._workers if w.idle and w.task is None and w.config is None), None)
+                if worker is not None:
+                    del self._pending[i]
+                    worker.config = config
+                    return worker, task, future
+        return None
 
     def _dispatch(self) -> None:
         if self._first_alone and any(w.task is not None for w in self._workers):
             return  # the first run's setup shares the cores with the judge's only, until it plans or ends
-        while True:  # warm-up shares first, to ready workers that have had none, while another one serves the queue
-            with self._lock:
-                if not self._warm_shares or not any(w.task is not None for w in self._workers):
-                    break
-                fresh = next((w for w in self._workers if w.idle and w.task is None and not w.had_share), None)
-                if fresh is None:
-                    break
-                share = self._warm_shares.popleft()
-            fresh.idle, fresh.had_share = False, True
-            fresh.deadline = _clock() + SETUP_TIMEOUT_S
-            try:
-                fresh.conn.send(share)
-            except (OSError, EOFError):  # the worker died: its sentinel reports it
-                pass
-            except Exception:  # noqa: BLE001 - the share did not pickle: the runs will warm up as they come
-                fresh.idle, fresh.deadline = True, math.inf
         while True:
-            with self._lock:
-                if not self._pending:
-                    return
-                idle = next((w for w in self._workers if w.idle and w.task is None), None)
-                if idle is not None:
-                    task, future = self._pending.popleft()
-            if idle is None:  # start the missing workers; they say when they are ready
-                while len(self._workers) < self.capacity:
-                    self._spawn()
+            taken = self._take()
+            if taken is None:
+                self._start_workers()
                 return
+            worker, task, future = taken
             if not future.set_running_or_notify_cancel():
                 continue
-            worker = idle
             worker.task, worker.future, worker.idle, worker.started_once = task, future, False, False
             worker.sent_at, worker.started_at = _clock(), utc_now()
-            worker.plan_t0 = worker.plan_c0 = math.nan
+            worker.plan_t0, worker.plan_c0 = math.nan, (math.nan, math.nan)
             worker.deadline = worker.sent_at + max(task.timeout_s, SETUP_TIMEOUT_S)
             worker.in_setup = True
             try:
@@ -359,12 +491,32 @@ class ProcessExecutor(RunExecutor):
 
     def _finish(self, worker: _Worker, outcome: RunOutcome) -> None:
         self._first_alone = False
-        worker.finish(outcome)
+        if worker.group is not None and worker.group.out_of_memory() and outcome.crash:
+            outcome = replace(outcome, message=f"{outcome.message} (out of memory: over the sandbox's limit of "
+                                               f"{self.limits.memory_bytes / 2**20:.0f} MiB)")
+        worker.finish(replace(outcome, sandboxed=worker.group is not None))
+
+    def _cpu(self, worker: _Worker) -> tuple[float, float]:
+        """CPU seconds used so far by the worker's whole cgroup (NaN unsandboxed) and by its Python process."""
+        if worker.group is None:
+            return math.nan, process_cpu_time(worker.process.pid or 0)
+        return worker.group.cpu_seconds(), process_cpu_time(worker.inner_pid) if worker.inner_pid else math.nan
+
+    def _cpu_since(self, worker: _Worker) -> float:
+        """CPU seconds since ``plan_c0``: the larger of the cgroup's and the process's (NaN when neither is known).
+
+        The cgroup's count includes the planner's children but is charged
+        at scheduler ticks, so for a run of a few milliseconds it can miss
+        the worker's own time, which the process's clock has.
+        """
+        now = self._cpu(worker)
+        spans = [b - a for a, b in zip(worker.plan_c0, now) if not (math.isnan(a) or math.isnan(b))]
+        return max(spans) if spans else math.nan
 
     def _timed(self, worker: _Worker, outcome: RunOutcome) -> RunOutcome:
         """The outcome with the harness's own wall and CPU times of ``plan()`` (NaN when it never started)."""
         wall = _clock() - worker.plan_t0
-        cpu = process_cpu_time(worker.process.pid) - worker.plan_c0
+        cpu = self._cpu_since(worker)
         return replace(outcome, wall_time_s=wall, cpu_time_s=cpu, started_at=worker.started_at)
 
     def _violation(self, worker: _Worker, what: str) -> None:
@@ -372,6 +524,10 @@ class ProcessExecutor(RunExecutor):
             self._finish(worker, RunOutcome(worker.task.run_key, crash=True, started_at=worker.started_at,
                                             message=f"the worker broke the protocol ({what}) and was killed"))
         self._retire(worker)
+
+    def _left_behind(self, worker: _Worker) -> bool:
+        """Whether the worker's cgroup holds a process that was not there when it became ready (a planner's child)."""
+        return worker.group is not None and not set(worker.group.pids()) <= worker.baseline
 
     def _receive(self, worker: _Worker) -> None:
         while worker.listening and worker.conn.poll():
@@ -384,8 +540,15 @@ class ProcessExecutor(RunExecutor):
             tag, body = message[:1], message[1:]
             if tag == b"R" and not worker.was_ready:
                 worker.idle = worker.was_ready = True
+                self._start_failures = 0
+                if worker.group is not None:
+                    worker.baseline = frozenset(worker.group.pids())
+                    worker.inner_pid = _python_of(worker.baseline, worker.process.pid or 0)
             elif tag == b"I" and worker.task is None:
                 worker.idle, worker.deadline = True, math.inf
+                if self._left_behind(worker):  # nothing of a run outlives it: the whole tree goes
+                    self._retire(worker)
+                    return
             elif tag == b"T" and worker.task is None:
                 self._retire(worker)  # a planner patched modules in it: never reuse it
                 return
@@ -394,7 +557,7 @@ class ProcessExecutor(RunExecutor):
                 worker.sent_at = _clock()
                 worker.deadline = worker.sent_at + worker.task.timeout_s
             elif tag == b"P" and worker.task is not None and worker.started_once and math.isnan(worker.plan_t0):
-                worker.plan_t0, worker.plan_c0 = _clock(), process_cpu_time(worker.process.pid)
+                worker.plan_t0, worker.plan_c0 = _clock(), self._cpu(worker)
                 self._first_alone = False
             elif tag == b"D" and worker.task is not None:
                 self._finish(worker, self._timed(worker, decode_outcome(body, worker.task.run_key)))
@@ -406,35 +569,40 @@ class ProcessExecutor(RunExecutor):
 
     def _died(self, worker: _Worker) -> None:
         worker.process.join()
-        if not worker.was_ready:
-            raise WorkerStartError(
-                f"a pathzoo worker process failed to start ({describe_exit(worker.process.exitcode)})"
-            )
         if worker.task is not None:
             elapsed = _clock() - worker.sent_at
+            cpu = self._cpu_since(worker)
+            how = describe_exit(worker.process.exitcode, sandboxed=worker.group is not None)
             self._finish(worker, RunOutcome(
-                worker.task.run_key, crash=True, wall_time_s=elapsed, started_at=worker.started_at,
-                message=f"worker process died ({describe_exit(worker.process.exitcode)}) after {elapsed:.3g} s",
+                worker.task.run_key, crash=True, wall_time_s=elapsed, cpu_time_s=cpu, started_at=worker.started_at,
+                message=f"worker process died ({how}) after {elapsed:.3g} s",
             ))
+        elif not worker.was_ready:
+            self._start_failures += 1
+            if self._start_failures >= MAX_START_FAILURES:
+                raise WorkerStartError(f"{self._start_failures} pathzoo worker processes failed to start (the last: "
+                                       f"{describe_exit(worker.process.exitcode)})")
         self._retire(worker)
 
     def _kill(self, worker: _Worker) -> None:
         assert worker.task is not None
         elapsed = _clock() - worker.sent_at
-        worker.process.kill()
+        cpu = self._cpu_since(worker)
+        self._kill_tree(worker)
         if worker.in_setup:  # not the planner's time: its plan() never started
             outcome = RunOutcome(worker.task.run_key, crash=True, started_at=worker.started_at,
                                  message=f"run setup (planner, scenario and its graph) took over {elapsed:.3g} s")
         else:
-            outcome = RunOutcome(worker.task.run_key, timed_out=True, wall_time_s=elapsed,
+            outcome = RunOutcome(worker.task.run_key, timed_out=True, wall_time_s=elapsed, cpu_time_s=cpu,
                                  started_at=worker.started_at, message=f"worker killed after {elapsed:.3g} s")
         self._finish(worker, outcome)
         self._retire(worker)
 
     def _monitor(self) -> None:
         try:
-            while len(self._workers) < self.capacity:  # all at once: they start while the first task is prepared
-                self._spawn()
+            if not self.sandboxed:  # all at once: they start while the first task is prepared
+                while len(self._workers) < self.capacity:
+                    self._spawn(None)
             while True:
                 with self._lock:
                     if self._closing:
@@ -453,7 +621,7 @@ class ProcessExecutor(RunExecutor):
                     if worker.conn in ready and worker in self._workers:
                         self._receive(worker)
                 for worker in list(self._workers):
-                    if worker.process.sentinel in ready:
+                    if worker.process.sentinel in ready and worker in self._workers:
                         self._receive(worker)  # a result sent just before exiting still counts
                         if worker in self._workers:
                             self._died(worker)
@@ -461,8 +629,6 @@ class ProcessExecutor(RunExecutor):
                 for worker in list(self._workers):
                     if worker.task is not None and now >= worker.deadline:
                         self._kill(worker)
-                    elif worker.task is None and now >= worker.deadline:  # a warm-up over the setup limit
-                        self._retire(worker)
         except BaseException as exc:  # never leave the runner waiting on futures forever
             for worker in self._workers:
                 if worker.future is not None and not worker.future.done():

@@ -1,0 +1,184 @@
+"""The OS sandbox of a planner's worker process: bubblewrap namespaces inside a cgroup of its own.
+
+A sandboxed worker is started as::
+
+    sh -c 'echo $$ > <each cgroup.procs>; exec "$@"' sh  bwrap <options> -- python -c <multiprocessing spawn>
+
+so it joins its :class:`~pathzoo.harness.cgroup.ProcessGroup` before
+anything else runs, and ``bwrap`` (bubblewrap, as in Flatpak) then gives it:
+
+- a mount namespace in which the whole file system is mounted read-only
+  (``--ro-bind / /``: ``/usr``, the Python install, pathzoo, the result
+  database, the judge's and the harness's numba and graph caches), a fresh
+  ``/proc`` and ``/dev``, empty ``/tmp``, ``/var/tmp``, ``/run`` and
+  ``/dev/shm`` (so no socket of the harness, its ``forkserver`` or its
+  resource tracker is reachable), and two writable directories: the
+  worker's scratch directory (its working directory, ``HOME`` and
+  ``TMPDIR``) and the numba cache of its planner (``NUMBA_CACHE_DIR``); the
+  directories of ``sys.path`` and of the scenario files under the hidden
+  ones are mounted back, read-only;
+- a PID namespace (it sees and can signal only its own processes: not the
+  harness, the judge or other workers), a network namespace without any
+  interface but loopback, and new IPC, UTS and cgroup namespaces;
+- no capabilities (``--cap-drop ALL``): run by root, bubblewrap would keep
+  them, and a planner could remount the file system read-write
+  (``mount -o remount,bind,rw /``) or create device nodes;
+- its own session (``--new-session``: no ``TIOCSTI`` into the terminal), and
+  death with the harness (``--die-with-parent``).
+
+``/usr/bin`` and everything else stay readable and executable, so a planner
+may run GNU Octave or a compiled program as its child; the child is in the
+same namespaces and cgroup.
+
+:func:`sandbox_problem` says why workers cannot be sandboxed here (no
+``bwrap``, not Linux, no cgroup v1 controllers, or namespaces refused, as
+for unprivileged users where user namespaces are off); the harness then runs
+them unsandboxed and says so in one line (see ``docs/sandbox.md``).
+"""
+
+from __future__ import annotations
+
+import functools
+import hashlib
+import os
+import shlex
+import shutil
+import subprocess
+import sys
+import tempfile
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Iterable, Sequence
+
+from pathzoo.core.errors import PathzooError
+from pathzoo.harness.cgroup import cgroup_problem
+
+__all__ = ["SandboxUnavailableError", "SandboxLimits", "sandbox_problem", "sandboxed_command", "worker_numba_cache",
+           "HIDDEN_DIRS"]
+
+HIDDEN_DIRS = ("/tmp", "/var/tmp", "/run", "/dev/shm")
+"""Replaced by empty directories inside the sandbox (sockets and files of other processes live there)."""
+
+
+class SandboxUnavailableError(PathzooError, RuntimeError):
+    """A sandbox was required (``pathzoo run --require-sandbox``) but this system cannot provide one."""
+
+
+@dataclass(frozen=True)
+class SandboxLimits:
+    """Limits of one sandboxed worker's cgroup.
+
+    Attributes
+    ----------
+    memory_bytes : int
+        Memory of the worker and its children (default 4 GiB).
+    max_tasks : int
+        Processes and threads (default 512).
+    """
+
+    memory_bytes: int = 4 << 30
+    max_tasks: int = 512
+
+
+@functools.lru_cache(maxsize=1)
+def sandbox_problem() -> str:
+    """Why planner processes cannot be sandboxed here, in a few words (``""`` when they can); checked once."""
+    if not sys.platform.startswith("linux"):
+        return f"no Linux namespaces on {sys.platform}"
+    bwrap = shutil.which("bwrap")
+    if bwrap is None:
+        return "bubblewrap (bwrap) is not installed"
+    problem = cgroup_problem()
+    if problem:
+        return problem
+    probe = [bwrap, "--ro-bind", "/", "/", "--proc", "/proc", "--dev", "/dev", "--unshare-all", "--die-with-parent",
+             "--", "/bin/true"]
+    try:
+        done = subprocess.run(probe, capture_output=True, timeout=30)
+    except (OSError, subprocess.SubprocessError) as exc:
+        return f"bwrap could not run ({exc})"
+    if done.returncode:
+        err = done.stderr.decode("utf-8", "replace").strip().splitlines()
+        return f"bwrap cannot create namespaces here ({err[-1] if err else f'exit code {done.returncode}'})"
+    return ""
+
+
+def worker_numba_cache(planner_id: str) -> Path:
+    """The numba cache directory of one planner's sandboxed workers (the only cache they may write).
+
+    Under ``$PATHZOO_CACHE_DIR`` (else ``$XDG_CACHE_HOME/pathzoo``, else
+    ``~/.cache/pathzoo``) in ``sandbox-numba/<planner id>``: a planner can
+    poison only its own compiled code, never the judge's, the harness's or
+    another planner's.
+    """
+    root = os.environ.get("PATHZOO_CACHE_DIR")
+    if root:
+        base = Path(root)
+    else:
+        xdg = os.environ.get("XDG_CACHE_HOME")
+        base = (Path(xdg) if xdg else Path.home() / ".cache") / "pathzoo"
+    safe = "".join(c if c.isalnum() or c in "._-" else "_" for c in planner_id)[:80]
+    tag = hashlib.sha256(planner_id.encode()).hexdigest()[:8]
+    return base / "sandbox-numba" / f"{safe}-{tag}"
+
+
+def _under(path: str, roots: Sequence[str]) -> bool:
+    return any(path == root or path.startswith(root.rstrip("/") + "/") for root in roots)
+
+
+def _hidden_roots() -> list[str]:
+    roots = list(HIDDEN_DIRS)
+    tmp = os.path.realpath(tempfile.gettempdir())
+    if not _under(tmp, roots):
+        roots.append(tmp)
+    return roots
+
+
+def _visible_again(paths: Iterable[str], hidden: Sequence[str]) -> list[str]:
+    """The existing paths (e.g. ``sys.path`` entries, scenario files) under a hidden directory, outermost first."""
+    found = sorted({os.path.realpath(p) for p in paths if p and os.path.exists(p)})
+    found = [p for p in found if _under(p, hidden)]
+    return [p for i, p in enumerate(found) if not any(_under(p, [q]) for q in found[:i])]
+
+
+def sandboxed_command(command: Sequence[str], *, procs_files: Sequence[str], scratch: Path, numba_cache: Path,
+                      readable: Iterable[str] = ()) -> list[str]:
+    """``command`` wrapped to join the cgroup and run inside bubblewrap (see the module docstring).
+
+    Parameters
+    ----------
+    command : sequence of str
+        What to run inside (an absolute executable first).
+    procs_files : sequence of str
+        The ``cgroup.procs`` files of the worker's group
+        (:attr:`~pathzoo.harness.cgroup.ProcessGroup.procs_files`); none for
+        a short-lived child that needs no limits (its PID namespace dies
+        with it).
+    scratch : Path
+        The worker's writable working directory (made if missing).
+    numba_cache : Path
+        The writable numba cache of its planner (:func:`worker_numba_cache`; made if missing).
+    readable : iterable of str
+        Paths the worker must read besides ``sys.path`` (the directories of
+        the scenario files, with the maps they name); only those under a
+        hidden directory need naming.
+    """
+    bwrap = shutil.which("bwrap")
+    if bwrap is None:
+        raise SandboxUnavailableError("bubblewrap (bwrap) is not installed")
+    scratch.mkdir(parents=True, exist_ok=True)
+    numba_cache.mkdir(parents=True, exist_ok=True)
+    hidden = _hidden_roots()
+    args = [bwrap, "--ro-bind", "/", "/", "--dev", "/dev", "--proc", "/proc"]
+    for root in hidden:
+        if os.path.isdir(root):
+            args += ["--tmpfs", root]
+    for path in _visible_again([*sys.path, *readable], hidden):
+        args += ["--ro-bind", path, path]
+    for writable in (scratch, numba_cache):
+        args += ["--bind", str(writable), str(writable)]
+    args += ["--unshare-all", "--cap-drop", "ALL", "--new-session", "--die-with-parent", "--chdir", str(scratch),
+             "--setenv", "HOME", str(scratch), "--setenv", "TMPDIR", str(scratch),
+             "--setenv", "NUMBA_CACHE_DIR", str(numba_cache), "--", *command]
+    join = "".join(f"echo $$ > {shlex.quote(p)} && " for p in procs_files)
+    return ["/bin/sh", "-c", f"{join}exec \"$@\" || exit 97", "sh", *args]
