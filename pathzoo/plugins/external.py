@@ -17,6 +17,8 @@ The protocol is described in ``docs/external-planners.md``.
 
 from __future__ import annotations
 
+import os
+
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -99,6 +101,17 @@ class ExternalPlanner(LazyPlanner):
         object.__setattr__(self, "command", tuple(self.command))
         object.__setattr__(self, "kinds", frozenset(self.kinds))
         object.__setattr__(self, "params", dict(self.params))
+
+    @property
+    def folders(self) -> tuple[str, ...]:
+        """The folders of the program's files (the function file, every absolute file argument of the command).
+
+        A sandboxed worker is given read access to them
+        (:mod:`pathzoo.harness.sandbox` hides the temporary directories).
+        """
+        files = [self.octave] if self.octave else [arg for arg in self.command if os.path.isabs(arg)
+                                                   and os.path.isfile(arg)]
+        return tuple(sorted({os.path.dirname(f) for f in files}))
 
     def load(self) -> type:
         """The planner class (built by ``pathzoo_external.declared.planner_class`` on first use, then kept)."""

@@ -299,7 +299,7 @@ class ProcessExecutor(RunExecutor):
             start_server(start_method)  # from this thread, not the monitor: the server dies with its starting thread
         self._scratch_root = tempfile.mkdtemp(prefix="pathzoo-sandbox-") if self.sandboxed else ""
         self._serial = 0
-        self._scenario_dirs: set[str] = set()
+        self._readable_dirs: set[str] = set()
         self._start_failures = 0
         self._lock = threading.Lock()
         self._pending: deque[tuple[RunTask, Future[RunOutcome]]] = deque()
@@ -389,7 +389,7 @@ class ProcessExecutor(RunExecutor):
 
     def _visible_dirs(self) -> list[str]:
         with self._lock:
-            return sorted(self._scenario_dirs)
+            return sorted(self._readable_dirs)
 
     def _kill_tree(self, worker: _Worker) -> None:
         """``SIGKILL`` the worker and, when sandboxed, every process of its cgroup."""
@@ -413,9 +413,20 @@ class ProcessExecutor(RunExecutor):
         self._workers.remove(worker)
 
     def _see_files(self, tasks: "list[RunTask]") -> None:
-        """Note the directories of the tasks' scenario files: sandboxed workers started from now on can read them."""
-        self._scenario_dirs.update(os.path.dirname(os.path.abspath(t.scenario.location)) for t in tasks
+        """Note the directories of the tasks' scenario files and program planners' files (:mod:`~pathzoo.plugins.external`).
+
+        Sandboxed workers started from now on can read them.
+        """
+        from pathzoo.plugins.external import ExternalPlanner
+        from pathzoo.plugins.manager import get_registry
+
+        self._readable_dirs.update(os.path.dirname(os.path.abspath(t.scenario.location)) for t in tasks
                                    if t.scenario.source == "file")
+        registry = get_registry()
+        for planner_id in {t.planner.id for t in tasks}:
+            entry = registry.planners.get(planner_id)
+            if entry is not None and isinstance(entry.provided, ExternalPlanner):
+                self._readable_dirs.update(entry.provided.folders)
 
     def _start_workers(self) -> None:
         """Start workers for the queued runs that no idle or starting worker of their configuration will take."""
