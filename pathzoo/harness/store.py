@@ -15,8 +15,10 @@ Layout (schema version 1; ``sqlite3 results.sqlite .schema`` shows it):
   fine), ``label``, the configuration's name in tables and plots (runs of
   databases written before it existed read with an empty label, so analysis
   falls back to ``id`` / ``id@hash``), and ``isolated`` (0 for runs of the
-  ``inline`` executor, whose planner shared the harness's process); both are
-  added to older files when they are opened for writing;
+  ``inline`` executor, whose planner shared the harness's process) and
+  ``stopped_by``, the limit that ended the run (``docs/timing.md``; empty for
+  runs stored before it existed); all three are added to older files when
+  they are opened for writing;
 - ``history``: the convergence points of every run (experiment, run_key,
   iteration, evaluations, best_cost, time_s).
 
@@ -70,6 +72,7 @@ RUN_COLUMNS: tuple[str, ...] = (
     "seed", "status", "valid", "invalid_reason", "message", "wall_time_s", "cpu_time_s", "iterations", "evaluations",
     "label",
     "isolated",
+    "stopped_by",
 )
 """The leading columns of :func:`read_runs`; one column per metric id follows."""
 
@@ -113,6 +116,7 @@ CREATE TABLE runs (
     metrics TEXT NOT NULL,
     label TEXT NOT NULL DEFAULT '',
     isolated INTEGER NOT NULL DEFAULT 1,
+    stopped_by TEXT NOT NULL DEFAULT '',
     UNIQUE (experiment, run_key)
 );
 CREATE TABLE history (
@@ -205,6 +209,8 @@ class ResultStore:
             self._add_column("label TEXT NOT NULL DEFAULT ''")
         if "isolated" not in self._run_columns:  # a file written before the column existed
             self._add_column("isolated INTEGER NOT NULL DEFAULT 1")
+        if "stopped_by" not in self._run_columns:  # a file written before the column existed: unknown ('')
+            self._add_column("stopped_by TEXT NOT NULL DEFAULT ''")
 
     def _columns(self) -> set[str]:
         return {str(r[1]) for r in self.conn.execute("PRAGMA table_info(runs)")}
@@ -314,6 +320,7 @@ class ResultStore:
             "metrics": json.dumps({k: float(v) for k, v in record.metrics.items()}),
             "label": label,
             "isolated": int(bool(record.isolated)),
+            "stopped_by": record.stopped_by,
         }
         for mid in metric_ids:
             values[f"metric:{mid}"] = _real(record.metrics[mid])
@@ -373,7 +380,7 @@ def read_runs(db: str | Path, experiment: str | None = None, run_keys: "Collecti
     try:
         where, args = _experiment_filter(conn, path, experiment)
         present = {str(r[1]) for r in conn.execute("PRAGMA table_info(runs)")}
-        defaults = {"label": "''", "isolated": "1"}
+        defaults = {"label": "''", "isolated": "1", "stopped_by": "''"}
         base = ", ".join(f'"{c}"' if c in present else f'{defaults.get(c, "NULL")} AS "{c}"' for c in RUN_COLUMNS)
         rows = conn.execute(f"SELECT {base}, metrics FROM runs{where} ORDER BY id", args).fetchall()
     finally:
@@ -489,6 +496,7 @@ def read_record(db: str | Path, experiment: str, run_key: str) -> RunRecord:
         versions=json.loads(row["versions"]),
         started_at=row["started_at"],
         isolated=bool(row.get("isolated", 1)),
+        stopped_by=row.get("stopped_by", ""),
     )
 
 

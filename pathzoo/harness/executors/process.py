@@ -16,10 +16,17 @@ code, so nothing they send is unpickled: they send short tagged byte strings
   hard limit ``timeout_s`` counts from the *first* ``S``; later ones are
   ignored. The setup before it has its own limit,
   :data:`~pathzoo.harness.worker.SETUP_TIMEOUT_S`, and is recorded as ``crash``;
-- ``P`` (planning, after the warm-up): the planning clock starts. Wall time is
-  the harness's ``time.perf_counter`` from ``P`` to the outcome, CPU time the
-  worker process's CPU time read from the outside at the same two
-  moments (:func:`process_cpu_time`), so a planner cannot change its own timings;
+- ``P`` (planning, after the warm-up, before the measured planner is built):
+  the planning clocks start; ``E`` (``plan()`` returned, before the worker's
+  digest of the scenario): they end. Wall time is the harness's
+  ``time.perf_counter`` from ``P`` to ``E``, CPU time that of the worker's
+  process tree (:class:`~pathzoo.harness.cpu_clock.ProcessTreeCpu`) read from
+  outside at the same two moments, so a planner cannot change its own
+  timings. While a run with a clock limit plans, the monitor reads these
+  clocks (every :data:`CLOCK_POLL_S` for ``cpu_s``) and sets the worker's
+  shared stop byte (:class:`~pathzoo.harness.clock_stop.SharedClockStop`)
+  when a limit is spent; the run is stored with the stop the harness set
+  (``stopped_by``), whatever the planner did with the byte;
 - ``D`` + outcome: the future resolves;
 - a worker past its hard limit gets ``SIGKILL`` (``Process.kill``), the run
   resolves as ``timed_out`` and a fresh worker replaces it; one that dies
@@ -59,7 +66,6 @@ from __future__ import annotations
 import math
 import os
 import signal
-import sys
 import threading
 import time
 from collections import deque
@@ -69,6 +75,9 @@ from multiprocessing.connection import Connection, wait
 from typing import TYPE_CHECKING, Any
 
 from pathzoo.core.errors import PathzooError
+from pathzoo.core.budget import StopReason
+from pathzoo.harness.clock_stop import SharedClockStop
+from pathzoo.harness.cpu_clock import ProcessTreeCpu, process_cpu_time
 from pathzoo.harness.executors.base import RunExecutor
 from pathzoo.harness.launch import NoMainContext, default_start_method, die_with_harness, harness_alive, start_server
 from pathzoo.harness.specs import HeldScenarios
@@ -91,36 +100,16 @@ class WorkerStartError(PathzooError, RuntimeError):
     """A worker process died before it was ready: the harness cannot run anything."""
 
 
-_clock_gettime = getattr(time, "clock_gettime", None)  # bound at import, like _clock
-_CPU_CLOCK_OF_PID = sys.platform.startswith("linux") and _clock_gettime is not None
+CLOCK_POLL_S = 0.01
+"""How often the monitor reads the CPU time of a run with a ``cpu_s`` limit while it plans."""
+
+_EVENTS = {"started": b"S", "planning": b"P", "planned": b"E"}
 
 
-def process_cpu_time(pid: int) -> float:
-    """User + system CPU seconds of a process, read from outside it (NaN when it is gone).
-
-    On Linux this reads the process's CPU-time clock (``clock_gettime`` on
-    the clock id the kernel derives from a pid, as glibc's
-    ``clock_getcpuclockid`` does): about 5 microseconds and nanosecond
-    resolution, against 0.3-0.6 ms and 10 ms clock ticks for psutil's
-    ``cpu_times``, which is the fallback elsewhere.
-    """
-    if _CPU_CLOCK_OF_PID:
-        try:
-            return _clock_gettime((~pid << 3) | 2)  # MAKE_PROCESS_CPUCLOCK(pid, CPUCLOCK_SCHED)
-        except OSError:  # gone
-            return math.nan
-    try:
-        import psutil
-
-        times = psutil.Process(pid).cpu_times()
-        return float(times.user + times.system)
-    except Exception:  # noqa: BLE001 - gone, or psutil unavailable
-        return math.nan
-
-
-def _worker_main(conn: Connection, alive: Connection) -> None:
+def _worker_main(conn: Connection, alive: Connection, stop_flag: Any) -> None:
     """Loop of one worker process: receive a task, run it, send the outcome and whether the process is clean."""
     die_with_harness(alive)
+    stop = SharedClockStop(stop_flag)
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     fingerprint = ModuleFingerprint().update()
     conn.send_bytes(b"R")
@@ -135,7 +124,7 @@ def _worker_main(conn: Connection, alive: Connection) -> None:
             warm_up_tasks(task)
         else:
             keep_payload(task.scenario)  # the executor counts it as held from now on
-            if not _run(conn, task):
+            if not _run(conn, task, stop):
                 return
         changed = fingerprint.changed()
         if changed:
@@ -145,9 +134,9 @@ def _worker_main(conn: Connection, alive: Connection) -> None:
         conn.send_bytes(b"I")
 
 
-def _run(conn: Connection, task: "RunTask") -> bool:
+def _run(conn: Connection, task: "RunTask", stop: SharedClockStop) -> bool:
     """Run one task and send its outcome; False when the harness is gone."""
-    outcome = execute_task(task, lambda event: conn.send_bytes(b"S" if event == "started" else b"P"))
+    outcome = execute_task(task, lambda event: conn.send_bytes(_EVENTS[event]), stop=stop)
     try:
         conn.send_bytes(b"D" + encode_outcome(outcome))
     except (EOFError, OSError):
@@ -175,6 +164,8 @@ def describe_exit(exitcode: int | None) -> str:
 class _Worker:
     process: "BaseProcess"
     conn: Connection
+    stop: SharedClockStop
+    cpu: ProcessTreeCpu
     idle: bool = False
     was_ready: bool = False
     started_once: bool = False
@@ -186,6 +177,10 @@ class _Worker:
     in_setup: bool = False
     plan_t0: float = math.nan
     plan_c0: float = math.nan
+    plan_t1: float = math.nan
+    plan_c1: float = math.nan
+    stopped_by: StopReason | None = None
+    """The clock stop the harness set for the current run."""
     had_share: bool = False
     held: HeldScenarios = field(default_factory=HeldScenarios)
 
@@ -290,10 +285,11 @@ class ProcessExecutor(RunExecutor):
     # ------------------------------------------------------------- internals
     def _spawn(self) -> _Worker:
         parent, child = self._ctx.Pipe(duplex=True)
-        process = self._ctx.Process(target=_worker_main, args=(child, harness_alive()), name="pathzoo-worker")
+        flag = self._ctx.RawArray("b", 1)
+        process = self._ctx.Process(target=_worker_main, args=(child, harness_alive(), flag), name="pathzoo-worker")
         process.start()
         child.close()
-        worker = _Worker(process, parent)
+        worker = _Worker(process, parent, SharedClockStop(flag), ProcessTreeCpu(process.pid))
         self._workers.append(worker)
         return worker
 
@@ -339,7 +335,9 @@ class ProcessExecutor(RunExecutor):
             worker = idle
             worker.task, worker.future, worker.idle, worker.started_once = task, future, False, False
             worker.sent_at, worker.started_at = _clock(), utc_now()
-            worker.plan_t0 = worker.plan_c0 = math.nan
+            worker.plan_t0 = worker.plan_c0 = worker.plan_t1 = worker.plan_c1 = math.nan
+            worker.stopped_by = None
+            worker.stop.clear()  # the worker is idle: it reads the byte only once it plans this task
             worker.deadline = worker.sent_at + max(task.timeout_s, SETUP_TIMEOUT_S)
             worker.in_setup = True
             try:
@@ -360,10 +358,43 @@ class ProcessExecutor(RunExecutor):
         worker.finish(outcome)
 
     def _timed(self, worker: _Worker, outcome: RunOutcome) -> RunOutcome:
-        """The outcome with the harness's own wall and CPU times of ``plan()`` (NaN when it never started)."""
-        wall = _clock() - worker.plan_t0
-        cpu = process_cpu_time(worker.process.pid) - worker.plan_c0
-        return replace(outcome, wall_time_s=wall, cpu_time_s=cpu, started_at=worker.started_at)
+        """The outcome with the harness's own times (``P`` to ``E``; NaN when planning never started) and stop."""
+        if math.isnan(worker.plan_t1):
+            self._planned(worker)
+        assert worker.task is not None
+        stopped_by = worker.stopped_by or worker.task.budget.count_reached(outcome.iterations, outcome.evaluations)
+        return replace(outcome, wall_time_s=worker.plan_t1 - worker.plan_t0, cpu_time_s=worker.plan_c1 - worker.plan_c0,
+                       stopped_by=stopped_by or "none", started_at=worker.started_at)
+
+    def _planned(self, worker: _Worker) -> None:
+        """Read the clocks at the end of planning (``E``)."""
+        worker.plan_t1, worker.plan_c1 = _clock(), worker.cpu.read()
+
+    def _planning(self, worker: _Worker) -> bool:
+        """True while the worker's run plans under a clock limit that the harness has not stopped yet."""
+        return (worker.task is not None and worker.task.budget.timed and worker.stopped_by is None
+                and not math.isnan(worker.plan_t0) and math.isnan(worker.plan_t1))
+
+    def _watch_clocks(self, now: float) -> float:
+        """Set the stop of each planning run whose clock limit is spent; return when to look again."""
+        nearest = math.inf
+        for worker in self._workers:
+            if not self._planning(worker):
+                continue
+            assert worker.task is not None
+            budget = worker.task.budget
+            if budget.cpu_s is not None and worker.cpu.read() - worker.plan_c0 >= budget.cpu_s:
+                worker.stopped_by = "cpu_time"
+            elif budget.time_s is not None and now - worker.plan_t0 >= budget.time_s:
+                worker.stopped_by = "wall_time"
+            if worker.stopped_by is not None:
+                worker.stop.set(worker.stopped_by)
+                continue
+            if budget.cpu_s is not None:
+                nearest = min(nearest, now + CLOCK_POLL_S)
+            if budget.time_s is not None:
+                nearest = min(nearest, worker.plan_t0 + budget.time_s)
+        return nearest
 
     def _violation(self, worker: _Worker, what: str) -> None:
         if worker.task is not None:
@@ -392,11 +423,14 @@ class ProcessExecutor(RunExecutor):
                 worker.sent_at = _clock()
                 worker.deadline = worker.sent_at + worker.task.timeout_s
             elif tag == b"P" and worker.task is not None and worker.started_once and math.isnan(worker.plan_t0):
-                worker.plan_t0, worker.plan_c0 = _clock(), process_cpu_time(worker.process.pid)
+                worker.plan_t0, worker.plan_c0 = _clock(), worker.cpu.read()
                 self._first_alone = False
+            elif tag == b"E" and worker.task is not None and not math.isnan(worker.plan_t0) \
+                    and math.isnan(worker.plan_t1):
+                self._planned(worker)
             elif tag == b"D" and worker.task is not None:
                 self._finish(worker, self._timed(worker, decode_outcome(body, worker.task.run_key)))
-            elif tag in (b"S", b"P") and worker.task is not None:
+            elif tag in (b"S", b"P", b"E") and worker.task is not None:
                 continue  # repeated announcements change nothing
             else:
                 self._violation(worker, f"unexpected message {bytes(message[:8])!r}")
@@ -439,7 +473,7 @@ class ProcessExecutor(RunExecutor):
                         return
                 self._dispatch()
                 listening = [w for w in self._workers if w.listening]
-                nearest = min((w.deadline for w in listening), default=math.inf)
+                nearest = min(min((w.deadline for w in listening), default=math.inf), self._watch_clocks(_clock()))
                 timeout = None if math.isinf(nearest) else max(0.0, nearest - _clock())
                 ready = set(wait(
                     [self._wake_r, *(w.conn for w in listening), *(w.process.sentinel for w in self._workers)], timeout
