@@ -41,7 +41,7 @@ import traceback
 from collections import OrderedDict
 from dataclasses import dataclass, field, replace
 from datetime import datetime, timezone
-from typing import TYPE_CHECKING, Any, Callable
+from typing import TYPE_CHECKING, Any, Callable, TypeVar
 
 import numpy as np
 
@@ -257,18 +257,28 @@ def load_cached(spec: "ScenarioSpec", size: int = SCENARIO_CACHE_SIZE) -> "tuple
     A scenario object sent by reference is loaded from the bytes
     :func:`keep_payload` kept.
     """
-    key = spec.cache_key
+    def make() -> "tuple[Scenario, str]":
+        scenario = _load(spec)
+        return scenario, scenario_digest(scenario)
+
+    return _lru(_scenarios, spec.cache_key, size, make)
+
+
+_T = TypeVar("_T")
+
+
+def _lru(cache: "OrderedDict[Any, _T]", key: Any, size: int, make: Callable[[], _T]) -> _T:
+    """``cache[key]``, made by ``make`` (outside the lock) when missing; entries beyond the ``size`` most recent go."""
     with _scenario_lock:
-        if key in _scenarios:
-            _scenarios.move_to_end(key)
-            return _scenarios[key]
-    scenario = _load(spec)
-    entry = (scenario, scenario_digest(scenario))
+        if key in cache:
+            cache.move_to_end(key)
+            return cache[key]
+    value = make()
     with _scenario_lock:
-        _scenarios[key] = entry
-        while len(_scenarios) > size:
-            _scenarios.popitem(last=False)
-    return entry
+        cache[key] = value
+        while len(cache) > size:
+            cache.popitem(last=False)
+    return value
 
 
 def _load(spec: "ScenarioSpec") -> "Scenario":
@@ -293,17 +303,7 @@ _TWINS = 2
 
 def _twin(spec: "ScenarioSpec") -> "Scenario":
     """A second copy of a scenario, loaded as the runs' copy is (same types and flags), for warm-ups only."""
-    key = spec.cache_key
-    with _scenario_lock:
-        if key in _twins:
-            _twins.move_to_end(key)
-            return _twins[key]
-    twin = _load(spec)
-    with _scenario_lock:
-        _twins[key] = twin
-        while len(_twins) > _TWINS:
-            _twins.popitem(last=False)
-    return twin
+    return _lru(_twins, spec.cache_key, _TWINS, lambda: _load(spec))
 
 
 def warm_up_for(task: "RunTask", planner: Any) -> None:
@@ -409,7 +409,7 @@ def execute_task(task: "RunTask", report: Report | None = None, *, interruptible
         hard limit starts there, before the warm-up), with ``"planning"`` just
         before the measured planner is built (the planning clocks start
         there) and with ``"planned"`` as soon as ``plan()`` returns (they end
-        there).
+        there). It may block until the executor has read its clocks.
     interruptible : bool
         Let ``KeyboardInterrupt`` through (the inline executor, where Ctrl-C is
         the user's); otherwise it is a crash like any other exception.
@@ -479,7 +479,8 @@ def _execute(task: "RunTask", report: Report, stop: ClockStop | None) -> RunOutc
         crash = exc
     wall = _clock() - t0  # NaN when plan() never started
     cpu = _cpu() - c0
-    report("planned")
+    if not math.isnan(t0):
+        report("planned")
     stopped_by = _stopped_by(task, budget.stop, result)
     versions = _provenance(versions)
     modified = scenario_digest(scenario) != digest

@@ -13,13 +13,14 @@ from pathzoo.testing.scenarios import check_scenario
 
 __all__ = ["warm_up", "WARM_UP_BUDGET"]
 
-WARM_UP_BUDGET = Budget(iterations=2, evaluations=200)
+WARM_UP_BUDGET = Budget(iterations=2)
 """Budget of a warm-up call: enough to reach every compiled kernel, too little to matter.
 
-No clock limit: a first compilation takes seconds, and a clock stop during it
-would end the warm-up before the search loop, whose kernels would then be
-compiled in the first measured run. The counts bound the work; the hard
-limit of the run still applies."""
+Two iterations, and no other limit: an evaluation cap stops a one-pass
+search (an exact planner's) before it reaches the goal and the kernels that
+build the path, and a clock limit would stop a warm-up during its first,
+slow compilation, before the search loop; either left those kernels to be
+compiled in the first measured run. The hard limit of the run still applies."""
 
 _warmed: set[tuple[type, str]] = set()
 _lock = threading.Lock()

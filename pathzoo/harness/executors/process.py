@@ -18,7 +18,8 @@ code, so nothing they send is unpickled: they send short tagged byte strings
   :data:`~pathzoo.harness.worker.SETUP_TIMEOUT_S`, and is recorded as ``crash``;
 - ``P`` (planning, after the warm-up, before the measured planner is built):
   the planning clocks start; ``E`` (``plan()`` returned, before the worker's
-  digest of the scenario): they end. Wall time is the harness's
+  digest of the scenario): they end. The worker waits for the harness's
+  ``G`` after each, so the clocks are read while it waits. Wall time is the harness's
   ``time.perf_counter`` from ``P`` to ``E``, CPU time that of the worker's
   process tree (:class:`~pathzoo.harness.cpu_clock.ProcessTreeCpu`) read from
   outside at the same two moments, so a planner cannot change its own
@@ -136,7 +137,13 @@ def _worker_main(conn: Connection, alive: Connection, stop_flag: Any) -> None:
 
 def _run(conn: Connection, task: "RunTask", stop: SharedClockStop) -> bool:
     """Run one task and send its outcome; False when the harness is gone."""
-    outcome = execute_task(task, lambda event: conn.send_bytes(_EVENTS[event]), stop=stop)
+
+    def report(event: str) -> None:
+        conn.send_bytes(_EVENTS[event])
+        if event != "started":  # wait until the harness has read its clocks: no CPU of ours falls outside them
+            conn.recv_bytes(1)
+
+    outcome = execute_task(task, report, stop=stop)
     try:
         conn.send_bytes(b"D" + encode_outcome(outcome))
     except (EOFError, OSError):
@@ -424,10 +431,12 @@ class ProcessExecutor(RunExecutor):
                 worker.deadline = worker.sent_at + worker.task.timeout_s
             elif tag == b"P" and worker.task is not None and worker.started_once and math.isnan(worker.plan_t0):
                 worker.plan_t0, worker.plan_c0 = _clock(), worker.cpu.read()
+                worker.conn.send_bytes(b"G")
                 self._first_alone = False
             elif tag == b"E" and worker.task is not None and not math.isnan(worker.plan_t0) \
                     and math.isnan(worker.plan_t1):
                 self._planned(worker)
+                worker.conn.send_bytes(b"G")
             elif tag == b"D" and worker.task is not None:
                 self._finish(worker, self._timed(worker, decode_outcome(body, worker.task.run_key)))
             elif tag in (b"S", b"P", b"E") and worker.task is not None:
