@@ -373,6 +373,14 @@ class ProcessExecutor(RunExecutor):
         return replace(outcome, wall_time_s=worker.plan_t1 - worker.plan_t0, cpu_time_s=worker.plan_c1 - worker.plan_c0,
                        stopped_by=stopped_by or "none", started_at=worker.started_at)
 
+    @staticmethod
+    def _go_on(worker: _Worker) -> None:
+        """Let the worker go on after ``P`` or ``E`` (its clocks are read); a dead one is reported by its sentinel."""
+        try:
+            worker.conn.send_bytes(b"G")
+        except (OSError, EOFError):
+            pass
+
     def _planned(self, worker: _Worker) -> None:
         """Read the clocks at the end of planning (``E``)."""
         worker.plan_t1, worker.plan_c1 = _clock(), worker.cpu.read()
@@ -431,12 +439,12 @@ class ProcessExecutor(RunExecutor):
                 worker.deadline = worker.sent_at + worker.task.timeout_s
             elif tag == b"P" and worker.task is not None and worker.started_once and math.isnan(worker.plan_t0):
                 worker.plan_t0, worker.plan_c0 = _clock(), worker.cpu.read()
-                worker.conn.send_bytes(b"G")
+                self._go_on(worker)
                 self._first_alone = False
             elif tag == b"E" and worker.task is not None and not math.isnan(worker.plan_t0) \
                     and math.isnan(worker.plan_t1):
                 self._planned(worker)
-                worker.conn.send_bytes(b"G")
+                self._go_on(worker)
             elif tag == b"D" and worker.task is not None:
                 self._finish(worker, self._timed(worker, decode_outcome(body, worker.task.run_key)))
             elif tag in (b"S", b"P", b"E") and worker.task is not None:
