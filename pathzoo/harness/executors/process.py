@@ -24,7 +24,7 @@ code, so nothing they send is unpickled: they send short tagged byte strings
   process tree (:class:`~pathzoo.harness.cpu_clock.ProcessTreeCpu`) read from
   outside at the same two moments, so a planner cannot change its own
   timings. While a run with a clock limit plans, the monitor reads these
-  clocks (every :data:`CLOCK_POLL_S` for ``cpu_s``) and sets the worker's
+  clocks (for ``cpu_s``: see :data:`CLOCK_POLL_S`) and sets the worker's
   shared stop byte (:class:`~pathzoo.harness.clock_stop.SharedClockStop`)
   when a limit is spent; the run is stored with the stop the harness set
   (``stopped_by``), whatever the planner did with the byte;
@@ -102,7 +102,13 @@ class WorkerStartError(PathzooError, RuntimeError):
 
 
 CLOCK_POLL_S = 0.01
-"""How often the monitor reads the CPU time of a run with a ``cpu_s`` limit while it plans."""
+"""How often, at most, the monitor reads the CPU time of a run with a ``cpu_s`` limit while it plans.
+
+Far from the limit it reads it less often: a process tree cannot use more
+than one CPU second per core in a wall second, so the next reading is due
+when the CPU seconds left, spread over every core, could be spent."""
+
+_CORES = os.cpu_count() or 1
 
 _EVENTS = {"started": b"S", "planning": b"P", "planned": b"E"}
 
@@ -398,15 +404,16 @@ class ProcessExecutor(RunExecutor):
                 continue
             assert worker.task is not None
             budget = worker.task.budget
-            if budget.cpu_s is not None and worker.cpu.read() - worker.plan_c0 >= budget.cpu_s:
+            cpu_left = math.inf if budget.cpu_s is None else budget.cpu_s - (worker.cpu.read() - worker.plan_c0)
+            if cpu_left <= 0.0:
                 worker.stopped_by = "cpu_time"
             elif budget.time_s is not None and now - worker.plan_t0 >= budget.time_s:
                 worker.stopped_by = "wall_time"
             if worker.stopped_by is not None:
                 worker.stop.set(worker.stopped_by)
                 continue
-            if budget.cpu_s is not None:
-                nearest = min(nearest, now + CLOCK_POLL_S)
+            if budget.cpu_s is not None:  # a process tree uses at most one CPU second per core and wall second
+                nearest = min(nearest, now + max(CLOCK_POLL_S, cpu_left / _CORES))
             if budget.time_s is not None:
                 nearest = min(nearest, worker.plan_t0 + budget.time_s)
         return nearest
