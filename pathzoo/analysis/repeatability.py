@@ -20,7 +20,7 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["RunDifference", "Comparison", "compare_results", "measured_time_metrics"]
+__all__ = ["Comparison", "RunDifference", "compare_results", "measured_time_metrics"]
 
 _FIELDS = ("planner_version", "params_hash", "seed", "status", "valid", "invalid_reason", "iterations", "evaluations",
            "stopped_by")
@@ -55,8 +55,8 @@ class Comparison:
         if self.identical:
             return f"experiment '{self.experiment}': {self.n_runs} runs, identical paths and metrics (times aside)"
         runs = len({d.run_key for d in self.differences})
-        lines = [f"experiment '{self.experiment}': {runs} of {self.n_runs} runs differ "
-                 f"({len(self.differences)} values):"]
+        lines = [(f"experiment '{self.experiment}': {runs} of {self.n_runs} runs differ "
+                  f"({len(self.differences)} values):")]
         lines += [f"  {d.run_key}  {d.field}: {d.first} != {d.second}" for d in self.differences[:limit]]
         if len(self.differences) > limit:
             lines.append(f"  ... and {len(self.differences) - limit} more")

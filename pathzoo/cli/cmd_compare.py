@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-__all__ = ["add_parser", "EXIT_DIFFERENT"]
+__all__ = ["EXIT_DIFFERENT", "add_parser"]
 
 EXIT_DIFFERENT = 1
 """Exit code when the databases differ (2 stays the code of a bad input, as for every command)."""

@@ -26,7 +26,7 @@ from typing import Any
 
 from pathzoo.core.budget import Budget, StopReason
 
-__all__ = ["SharedClockStop", "InProcessClockStop"]
+__all__ = ["InProcessClockStop", "SharedClockStop"]
 
 _CODES: dict[int, StopReason] = {1: "cpu_time", 2: "wall_time"}
 _REASONS = {reason: code for code, reason in _CODES.items()}

@@ -15,7 +15,7 @@ import os
 import sys
 import time
 
-__all__ = ["process_cpu_time", "ProcessTreeCpu", "DESCENDANTS_REFRESH_S"]
+__all__ = ["DESCENDANTS_REFRESH_S", "ProcessTreeCpu", "process_cpu_time"]
 
 _clock = time.perf_counter  # bound at import: a later patch of the time module does not reach the harness
 _clock_gettime = getattr(time, "clock_gettime", None)

@@ -37,8 +37,8 @@ def test_two_runs_of_one_experiment_compare_identical_times_aside(two_runs):
 
 
 @pytest.mark.parametrize("change, field", [
-    ("UPDATE runs SET metrics = json_set(metrics, '$.length', json_extract(metrics, '$.length') + 1e-9) "
-     "WHERE run_key LIKE 'aco.as%|1'", "length"),
+    (("UPDATE runs SET metrics = json_set(metrics, '$.length', json_extract(metrics, '$.length') + 1e-9) "
+      "WHERE run_key LIKE 'aco.as%|1'"), "length"),
     ("UPDATE runs SET iterations = 2 WHERE run_key LIKE 'aco.as%|0'", "iterations"),
     ("UPDATE runs SET stopped_by = 'cpu_time' WHERE run_key LIKE 'exact.astar%|0'", "stopped_by"),
     ("UPDATE history SET best_cost = best_cost * 2 WHERE run_key LIKE 'aco.as%|0'", "history"),

@@ -34,7 +34,7 @@ def test_a_child_process_is_charged(forged, tmp_path):
 
 
 def test_the_scenario_digest_after_the_run_is_not_charged(forged, tmp_path, monkeypatch):
-    import pathzoo.harness.worker as worker
+    from pathzoo.harness import worker
 
     digest = worker.scenario_digest
 
@@ -84,7 +84,7 @@ class _NeverStop:
 
 def test_a_clock_limit_changes_no_result_that_the_counts_end(monkeypatch):
     """The colony's behaviour ignores clocks: with a clock that races ahead, a counted run is unchanged."""
-    import pathzoo_aco.engine.colony as colony
+    from pathzoo_aco.engine import colony
 
     scenario = pathzoo.load_scenario("gant.fig7")
     planner = pathzoo.make_planner("aco.as", n_ants=5)
