@@ -89,7 +89,7 @@ def test_a_clock_limit_changes_no_result_that_the_counts_end(monkeypatch):
     scenario = pathzoo.load_scenario("gant.fig7")
     planner = pathzoo.make_planner("aco.as", n_ants=5)
     plain = planner.plan(scenario, budget=Budget(iterations=4), rng=np.random.default_rng(3))
-    fake = iter(np.arange(0.0, 1e9, 1e3))  # every reading of the clock 1000 s later than the last
+    fake = iter(time.perf_counter() + np.arange(1e3, 1e9, 1e3))  # every reading 1000 s later than the last
     monkeypatch.setattr(colony.time, "perf_counter", lambda: float(next(fake)))
     timed = planner.plan(scenario, budget=Budget(iterations=4, time_s=5.0, stop=_NeverStop()),
                          rng=np.random.default_rng(3))
