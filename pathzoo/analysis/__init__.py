@@ -24,6 +24,7 @@ _LAZY = {
     "load_experiment": "pathzoo.analysis.database",
     "export_ompl": "pathzoo.analysis.ompl_export",
     "write_ompl_logs": "pathzoo.analysis.ompl_export",
+    "compare_results": "pathzoo.analysis.repeatability",
 }
 
 __all__ = ["leaderboard", "format_leaderboard", "summarize", "summarize_metrics", *_LAZY]

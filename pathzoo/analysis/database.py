@@ -30,7 +30,7 @@ class StoredExperiment:
     seed : int
         Experiment seed.
     budget : mapping
-        Per-run budget (``iterations``, ``evaluations``, ``time_s``; None when unset).
+        Per-run budget (``iterations``, ``evaluations``, ``time_s``, and ``cpu_s`` when set; None when unset).
     timeout_s : float
         Hard per-run limit.
     created : str

@@ -31,8 +31,10 @@ from pathzoo.analysis.frame import Direction, with_config
 from pathzoo.analysis.hybrid import HYBRID_MARK, HYBRID_NOTE, hybrid_planners
 from pathzoo.analysis.path_models import MODEL_RATIO, REFERENCE_COLUMN, with_model_ratio
 from pathzoo.analysis.summary import summarize
+from pathzoo.core.budget import CLOCK_STOPS
 
-__all__ = ["leaderboard", "format_leaderboard", "power_note", "RANKING_RULE", "MODEL_RATIO_NOTE"]
+__all__ = ["leaderboard", "format_leaderboard", "clock_stops", "power_note", "RANKING_RULE", "MODEL_RATIO_NOTE",
+           "CLOCK_MARK", "CLOCK_NOTE"]
 
 RANKING_RULE = (
     "Rank within each scenario: penalized median (failed runs count as worst), "
@@ -44,6 +46,14 @@ MODEL_RATIO_NOTE = (
     "model_ratio: length (on dynamic maps: arrival time) over the optimum of the planner's own path model; "
     "'optimum' names it: graph optimum (moves between neighbouring cells), any-angle optimum (straight segments "
     "in any direction), earliest arrival of SIPP (dynamic maps)."
+)
+
+CLOCK_MARK = " (clock)"
+"""Appended to a configuration whose runs include some a clock limit ended."""
+
+CLOCK_NOTE = (
+    "(clock): some runs of this configuration were ended by a clock limit (cpu_s or time_s), "
+    "so their results depend on the machine and its load; see docs/timing.md."
 )
 
 _VERDICT_NOTE = (
@@ -131,7 +141,9 @@ def leaderboard(
     -------
     DataFrame
         Columns ``scenario, rank, planner, config, params_hash, n_runs,
-        success_rate, median, iqr, sd`` (plus the reference columns), sorted
+        success_rate, median, iqr, sd, clock_stops`` (plus the reference
+        columns; ``clock_stops`` counts the runs a clock limit ended, whose
+        results depend on the machine: ``docs/timing.md``), sorted
         by scenario and rank. ``attrs["metric"]`` is the metric's
         :class:`~pathzoo.analysis.frame.MetricInfo`; ``attrs["reference"]``
         and ``attrs["alpha"]`` are set too. See the module docstring for the
@@ -143,7 +155,7 @@ def leaderboard(
     info = summary.attrs["metric"]
     summary["rank"] = _rank_within(summary, info.direction)
     cols = ["scenario", "rank", "planner", "config", "params_hash", "n_runs", "success_rate", "median", "iqr", "sd"]
-    table = summary[cols]
+    table = summary[cols].merge(clock_stops(runs, metric), on=["scenario", "config"], how="left")
     if reference is not None:
         from pathzoo.analysis.stats import pairwise_tests
 
@@ -172,6 +184,14 @@ def _references_used(runs: pd.DataFrame) -> pd.DataFrame:
     return grouped.rename("optimum").reset_index()
 
 
+def clock_stops(runs: pd.DataFrame, metric: str = "length") -> pd.DataFrame:
+    """Per scenario and configuration, the number of runs a clock limit ended (``stopped_by`` cpu_time or wall_time)."""
+    df = with_config(runs, metric)
+    stopped = df["stopped_by"].isin(CLOCK_STOPS) if "stopped_by" in df.columns else pd.Series(False, index=df.index)
+    counts = stopped.groupby([df["scenario"], df["config"]]).sum().astype(int)
+    return counts.rename("clock_stops").reset_index()
+
+
 def format_leaderboard(table: pd.DataFrame, fmt: str = "text") -> str:
     """Render a :func:`leaderboard` table.
 
@@ -198,7 +218,7 @@ def format_leaderboard(table: pd.DataFrame, fmt: str = "text") -> str:
         {
             "scenario": table["scenario"].astype(str),
             "rank": table["rank"].astype(str),
-            "planner": names,
+            "planner": names + np.where(table["clock_stops"] > 0, CLOCK_MARK, ""),
             "runs": table["n_runs"].astype(str),
             "success": table["success_rate"].map(format_percent),
             "median": table["median"].map(format_number),
@@ -212,6 +232,8 @@ def format_leaderboard(table: pd.DataFrame, fmt: str = "text") -> str:
         notes.append(MODEL_RATIO_NOTE)
     if hybrids:
         notes.append(HYBRID_NOTE)
+    if (table["clock_stops"] > 0).any():
+        notes.append(CLOCK_NOTE)
     if "vs_reference" in table.columns:
         display["vs ref"] = table["vs_reference"].fillna("–")
         display["p (Holm)"] = table["p_holm"].map(lambda x: format_number(x, 2))

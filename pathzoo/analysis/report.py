@@ -32,6 +32,7 @@ from pathzoo.analysis.formatting import format_number, render_table
 from pathzoo.analysis.frame import metric_info, with_config
 from pathzoo.analysis.leaderboard import format_leaderboard, leaderboard
 from pathzoo.analysis.path_models import MODEL_RATIO, with_model_ratio
+from pathzoo.core.budget import CLOCK_STOPS
 from pathzoo.core.errors import InvalidParameterError, PathzooError
 from pathzoo.core.scenario import Scenario
 from pathzoo.core.status import RunStatus
@@ -277,6 +278,12 @@ def render_report(
         page.note(f"{len(df) - n} of {len(df)} runs ran in the OS sandbox" + (
             f"; {n} did not, so those planners could have reached other runs' results (see docs/sandbox.md)."
             if n else "."), "warn" if n else "pz-note")
+    clocked = df["stopped_by"].isin(CLOCK_STOPS) if "stopped_by" in df.columns else pd.Series(False, index=df.index)
+    if clocked.any():
+        names = ", ".join(sorted(df.loc[clocked, "config"].astype(str).unique()))
+        page.note(f"{int(clocked.sum())} of {len(df)} runs were ended by a clock limit (cpu_s or time_s), so their "
+                  f"results depend on the machine and its load ({names}; marked '(clock)' in the leaderboards; "
+                  "see docs/timing.md).", "warn")
     page.table(render_table(_outcomes(df), "html", title="Run outcomes per planner"))
     planners = df.drop_duplicates("config")[["config", "planner", "planner_version", "params"]].sort_values("config")
     page.begin("details", "Planner parameters")

@@ -7,6 +7,7 @@ from typing import Any, Mapping
 
 import numpy as np
 
+from pathzoo.core.budget import CLOCK_STOPS
 from pathzoo.core.status import RunStatus, Status
 
 __all__ = ["PlanResult", "HistoryPoint", "RunRecord"]
@@ -97,6 +98,14 @@ class RunRecord:
     """False when the planner ran in the harness's own process (the ``inline`` executor), for debugging only."""
     sandboxed: bool = False
     """True when the planner ran in an OS sandbox (``docs/sandbox.md``)."""
+    stopped_by: str = "none"
+    """The limit that ended the run (:data:`pathzoo.core.budget.STOP_REASONS`, ``"none"`` when the planner
+    finished by itself; a timeout is ``"wall_time"``). A clock stop makes the result machine-dependent."""
+
+    @property
+    def machine_dependent(self) -> bool:
+        """True when a clock ended the run (``stopped_by`` is ``cpu_time`` or ``wall_time``)."""
+        return self.stopped_by in CLOCK_STOPS
 
     @property
     def success(self) -> bool:

@@ -30,6 +30,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from pathzoo.core.budget import STOP_REASONS
 from pathzoo.core.results import HistoryPoint
 from pathzoo.core.status import Status
 
@@ -145,6 +146,7 @@ def bound_outcome(outcome: "RunOutcome") -> "RunOutcome":
         message=bound_text(outcome.message),
         wall_time_s=bound_time(outcome.wall_time_s),
         cpu_time_s=bound_time(outcome.cpu_time_s),
+        stopped_by=outcome.stopped_by if outcome.stopped_by in STOP_REASONS else "none",
         history=_history(outcome.history),
         versions=versions,
         bounds_error=bound_text(outcome.bounds_error) or bad_iterations or bad_evaluations,

@@ -6,7 +6,7 @@ TOML format (every key but the planners and scenarios is optional)::
     name = "arena"              # default: the file's stem
     seed = 0                    # experiment seed; each run's seed derives from it
     seeds = 10                  # seed indices 0..9, or an explicit list [0, 4, 7]
-    budget = { time_s = 2.0 }   # iterations, evaluations, time_s (default time_s = 10)
+    budget = { cpu_s = 2.0 }    # iterations, evaluations, cpu_s, time_s (default time_s = 10)
     timeout_s = 60              # hard wall limit per run (default budget time + 30 s)
     jobs = 4                    # worker processes (default: number of CPUs)
     db = "results.sqlite"       # result database, relative to this file

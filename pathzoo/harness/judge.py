@@ -95,6 +95,7 @@ def _record(task: "RunTask", outcome: "RunOutcome", status: RunStatus, valid: bo
         message=message,
         wall_time_s=float(outcome.wall_time_s),
         cpu_time_s=float(outcome.cpu_time_s),
+        stopped_by=outcome.stopped_by if returned else "wall_time" if status is RunStatus.TIMEOUT else "none",
         iterations=outcome.iterations if returned else 0,
         evaluations=outcome.evaluations if returned else 0,
         path=outcome.path if returned else None,

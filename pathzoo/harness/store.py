@@ -15,11 +15,13 @@ Layout (schema version 1; ``sqlite3 results.sqlite .schema`` shows it):
   fine), ``label``, the configuration's name in tables and plots (runs of
   databases written before it existed read with an empty label, so analysis
   falls back to ``id`` / ``id@hash``), and ``isolated`` (0 for runs of the
-  ``inline`` executor, whose planner shared the harness's process), and
+  ``inline`` executor, whose planner shared the harness's process),
   ``sandboxed`` (1 when the planner ran in the OS sandbox,
-  :mod:`pathzoo.harness.sandbox`); all three are added to older files when
-  they are opened for writing (``sandboxed`` as 0: no run was sandboxed then),
-  and read as their defaults from files not opened for writing since;
+  :mod:`pathzoo.harness.sandbox`) and ``stopped_by``, the limit that ended
+  the run (``docs/timing.md``); all are added to older files when they are
+  opened for writing (``sandboxed`` as 0: no run was sandboxed then;
+  ``stopped_by`` empty: unknown), and read as their defaults from files not
+  opened for writing since;
 - ``history``: the convergence points of every run (experiment, run_key,
   iteration, evaluations, best_cost, time_s).
 
@@ -74,6 +76,7 @@ RUN_COLUMNS: tuple[str, ...] = (
     "label",
     "isolated",
     "sandboxed",
+    "stopped_by",
 )
 """The leading columns of :func:`read_runs`; one column per metric id follows."""
 
@@ -118,6 +121,7 @@ CREATE TABLE IF NOT EXISTS runs (
     label TEXT NOT NULL DEFAULT '',
     isolated INTEGER NOT NULL DEFAULT 1,
     sandboxed INTEGER NOT NULL DEFAULT 0,
+    stopped_by TEXT NOT NULL DEFAULT '',
     UNIQUE (experiment, run_key)
 );
 CREATE TABLE IF NOT EXISTS history (
@@ -220,6 +224,8 @@ class ResultStore:
             self._add_column("isolated INTEGER NOT NULL DEFAULT 1")
         if "sandboxed" not in self._run_columns:  # a file written before the sandbox existed
             self._add_column("sandboxed INTEGER NOT NULL DEFAULT 0")
+        if "stopped_by" not in self._run_columns:  # a file written before the column existed: unknown ('')
+            self._add_column("stopped_by TEXT NOT NULL DEFAULT ''")
 
     def _columns(self) -> set[str]:
         return {str(r[1]) for r in self.conn.execute("PRAGMA table_info(runs)")}
@@ -330,6 +336,7 @@ class ResultStore:
             "label": label,
             "isolated": int(bool(record.isolated)),
             "sandboxed": int(bool(record.sandboxed)),
+            "stopped_by": record.stopped_by,
         }
         for mid in metric_ids:
             values[f"metric:{mid}"] = _real(record.metrics[mid])
@@ -389,7 +396,7 @@ def read_runs(db: str | Path, experiment: str | None = None, run_keys: "Collecti
     try:
         where, args = _experiment_filter(conn, path, experiment)
         present = {str(r[1]) for r in conn.execute("PRAGMA table_info(runs)")}
-        defaults = {"label": "''", "isolated": "1", "sandboxed": "0"}
+        defaults = {"label": "''", "isolated": "1", "sandboxed": "0", "stopped_by": "''"}
         base = ", ".join(f'"{c}"' if c in present else f'{defaults.get(c, "NULL")} AS "{c}"' for c in RUN_COLUMNS)
         rows = conn.execute(f"SELECT {base}, metrics FROM runs{where} ORDER BY id", args).fetchall()
     finally:
@@ -507,6 +514,7 @@ def read_record(db: str | Path, experiment: str, run_key: str) -> RunRecord:
         started_at=row["started_at"],
         isolated=bool(row.get("isolated", 1)),
         sandboxed=bool(row.get("sandboxed", 0)),
+        stopped_by=row.get("stopped_by", ""),
     )
 
 

@@ -33,7 +33,7 @@ MAX_OUTCOME_BYTES = 8 * 3 * MAX_PATH_POINTS + 8 * MAX_PATH_POINTS + 32 * MAX_HIS
 """Largest encoded outcome accepted (a maximal 3-D path with times and a full history, plus 1 MiB of header)."""
 
 _BOOLS = ("crash", "scenario_modified", "tainted", "sandboxed")
-_TEXTS = ("path_error", "message", "started_at", "bounds_error")
+_TEXTS = ("path_error", "message", "started_at", "bounds_error", "stopped_by")
 _FLOATS = ("wall_time_s", "cpu_time_s")
 
 

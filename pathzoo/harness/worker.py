@@ -18,9 +18,14 @@ replaced any part of it is flagged (``scenario_modified``, judged
 Monkeypatching is caught by :mod:`pathzoo.harness.tamper` and makes the
 executor replace the worker.
 
-The times measured here (``time.perf_counter`` and ``time.process_time``
-inside the planner's process) are only a fallback: the process and Dask
-executors time runs with their own clocks, outside this process.
+The planning clocks start just before the planner is built (its
+constructor is planning work) and end when ``plan()`` returns, before the
+scenario's digest and any other harness work (``docs/timing.md``). The times
+measured here (``time.perf_counter`` and ``time.process_time`` inside the
+planner's process) are only a fallback: the process and Dask executors time
+runs with their own clocks, outside this process. A budget with a clock
+limit gets a clock stop (:mod:`pathzoo.harness.clock_stop`): the executor's
+shared one, or one read in this process.
 """
 
 from __future__ import annotations
@@ -36,14 +41,16 @@ import traceback
 from collections import OrderedDict
 from dataclasses import dataclass, field, replace
 from datetime import datetime, timezone
-from typing import TYPE_CHECKING, Any, Callable
+from typing import TYPE_CHECKING, Any, Callable, TypeVar
 
 import numpy as np
 
+from pathzoo.core.budget import ClockStop
 from pathzoo.core.errors import ExternalPlannerError
 from pathzoo.core.results import HistoryPoint, PlanResult
 from pathzoo.core.status import Status
 from pathzoo.harness.bounds import bound_outcome, bound_text
+from pathzoo.harness.clock_stop import InProcessClockStop
 from pathzoo.harness.digest import scenario_digest, warm
 from pathzoo.harness.provenance import PEAK_RSS_KEY, host, loaded_distributions, peak_rss_mb, reset_peak_rss
 
@@ -61,6 +68,7 @@ __all__ = [
     "SCENARIO_CACHE_SIZE",
     "SETUP_TIMEOUT_S",
     "Report",
+    "warm_up_for",
 ]
 
 SCENARIO_CACHE_SIZE = 4
@@ -95,7 +103,13 @@ class RunOutcome:
     message : str
         The planner's message, or the crash description.
     wall_time_s, cpu_time_s : float
-        Wall and process CPU time of ``plan()`` only.
+        Wall and CPU time of building the planner and its ``plan()`` call.
+    stopped_by : str
+        The limit that ended the run (:data:`pathzoo.core.budget.STOP_REASONS`);
+        the process executor decides the clock stops itself.
+    sandboxed : bool
+        The planner ran in an OS sandbox (:mod:`pathzoo.harness.sandbox`); set
+        by the executor that supervised it, never by the planner's process.
     history : tuple of HistoryPoint
         Progress reports, timed by the harness (see :class:`HistoryRecorder`).
     crash : bool
@@ -117,9 +131,6 @@ class RunOutcome:
     bounds_error : str
         Why a planner-chosen value is out of bounds (:mod:`pathzoo.harness.bounds`);
         the run is judged ``invalid`` with this reason.
-    sandboxed : bool
-        The planner ran in an OS sandbox (:mod:`pathzoo.harness.sandbox`); set
-        by the executor that supervised it, never by the planner's process.
     """
 
     run_key: str
@@ -132,6 +143,8 @@ class RunOutcome:
     message: str = ""
     wall_time_s: float = math.nan
     cpu_time_s: float = math.nan
+    stopped_by: str = "none"
+    sandboxed: bool = False
     history: tuple[HistoryPoint, ...] = ()
     crash: bool = False
     timed_out: bool = False
@@ -140,7 +153,6 @@ class RunOutcome:
     started_at: str = ""
     tainted: bool = False
     bounds_error: str = ""
-    sandboxed: bool = False
 
 
 def utc_now() -> str:
@@ -255,26 +267,72 @@ def load_cached(spec: "ScenarioSpec", size: int = SCENARIO_CACHE_SIZE) -> "tuple
     A scenario object sent by reference is loaded from the bytes
     :func:`keep_payload` kept.
     """
-    key = spec.cache_key
+    def make() -> "tuple[Scenario, str]":
+        scenario = _load(spec)
+        return scenario, scenario_digest(scenario)
+
+    return _lru(_scenarios, spec.cache_key, size, make)
+
+
+_T = TypeVar("_T")
+
+
+def _lru(cache: "OrderedDict[Any, _T]", key: Any, size: int, make: Callable[[], _T]) -> _T:
+    """``cache[key]``, made by ``make`` (outside the lock) when missing; entries beyond the ``size`` most recent go."""
     with _scenario_lock:
-        if key in _scenarios:
-            _scenarios.move_to_end(key)
-            return _scenarios[key]
+        if key in cache:
+            cache.move_to_end(key)
+            return cache[key]
+    value = make()
+    with _scenario_lock:
+        cache[key] = value
+        while len(cache) > size:
+            cache.popitem(last=False)
+    return value
+
+
+def _load(spec: "ScenarioSpec") -> "Scenario":
+    """Load a scenario with its shared geometry built (an object sent by reference from the kept bytes)."""
     if spec.source == "object" and not spec.payload and spec.digest in _payloads:
         spec = replace(spec, payload=_payloads[spec.digest])
-    scenario = warm(spec.load())
-    entry = (scenario, scenario_digest(scenario))
-    with _scenario_lock:
-        _scenarios[key] = entry
-        while len(_scenarios) > size:
-            _scenarios.popitem(last=False)
-    return entry
+    return warm(spec.load())
 
 
 def evict(spec: "ScenarioSpec") -> None:
     """Forget a cached scenario."""
     with _scenario_lock:
         _scenarios.pop(spec.cache_key, None)
+
+
+# ------------------------------------------------------------------ warm-up
+_twins: "OrderedDict[tuple[str, str, str, str], Scenario]" = OrderedDict()
+_warmed_for: set[tuple[str, str, tuple[str, str, str, str]]] = set()
+_TWINS = 2
+"""Warm-up twins of scenarios kept per process."""
+
+
+def _twin(spec: "ScenarioSpec") -> "Scenario":
+    """A second copy of a scenario, loaded as the runs' copy is (same types and flags), for warm-ups only."""
+    return _lru(_twins, spec.cache_key, _TWINS, lambda: _load(spec))
+
+
+def warm_up_for(task: "RunTask", planner: Any) -> None:
+    """Warm ``planner`` up on a twin of the task's scenario, once per configuration and scenario in this process.
+
+    The twin is loaded the way the measured run's scenario is, so the warm-up
+    meets the same argument types and compiles every numba specialisation
+    the run needs (:func:`pathzoo.core.warmup.warm_up`); being another
+    object, it keeps whatever the planner caches on a scenario away from
+    the measured runs. Errors are left to the measured run.
+    """
+    from pathzoo.core.warmup import warm_up  # not at the top: the harness imports this module before it needs numba
+
+    key = (task.planner.id, task.params_hash, task.scenario.cache_key)
+    with _scenario_lock:
+        if key in _warmed_for:
+            return
+        _warmed_for.add(key)
+    warm_up(planner, task.scenario.kind, on=_twin(task.scenario))
 
 
 # --------------------------------------------------------------------- runs
@@ -304,7 +362,7 @@ def _as_array(value: Any) -> tuple[np.ndarray | None, str]:
 
 
 Report = Callable[[str], None]
-"""Callback through which :func:`execute_task` announces ``"started"`` (setup done) and ``"planning"``."""
+"""Callback through which :func:`execute_task` announces ``"started"`` (setup done), ``"planning"`` and ``"planned"``."""
 
 
 def _message(value: Any) -> str:
@@ -315,7 +373,8 @@ def _message(value: Any) -> str:
         return f"(message could not be converted to text: {type(exc).__name__})"
 
 
-def execute_task(task: "RunTask", report: Report | None = None, *, interruptible: bool = False) -> RunOutcome:
+def execute_task(task: "RunTask", report: Report | None = None, *, interruptible: bool = False,
+                 stop: ClockStop | None = None) -> RunOutcome:
     """Run one task in this process and report what happened; never raises.
 
     Parameters
@@ -324,14 +383,19 @@ def execute_task(task: "RunTask", report: Report | None = None, *, interruptible
         The run.
     report : callable, optional
         Called with ``"started"`` once the planner and scenario are ready (the
-        hard limit starts there, before the warm-up) and with ``"planning"``
-        just before ``plan()`` (the planning clock starts there).
+        hard limit starts there, before the warm-up), with ``"planning"`` just
+        before the measured planner is built (the planning clocks start
+        there) and with ``"planned"`` as soon as ``plan()`` returns (they end
+        there). It may block until the executor has read its clocks.
     interruptible : bool
         Let ``KeyboardInterrupt`` through (the inline executor, where Ctrl-C is
         the user's); otherwise it is a crash like any other exception.
+    stop : ClockStop, optional
+        The executor's clock stop for a budget with a clock limit (default:
+        an :class:`~pathzoo.harness.clock_stop.InProcessClockStop`).
     """
     try:
-        return bound_outcome(_execute(task, report or (lambda event: None)))
+        return bound_outcome(_execute(task, report or (lambda event: None), stop))
     except KeyboardInterrupt:
         if interruptible:
             raise
@@ -340,13 +404,24 @@ def execute_task(task: "RunTask", report: Report | None = None, *, interruptible
         return RunOutcome(task.run_key, crash=True, message=_message(describe_exception(exc)))
 
 
-def _execute(task: "RunTask", report: Report) -> RunOutcome:
-    from pathzoo.core.warmup import warm_up  # not at the top: the harness imports this module before numba
+def _stopped_by(task: "RunTask", stop: ClockStop | None, result: Any) -> str:
+    """The clock stop reported to the planner, else the count limit its result reached, else ``"none"``."""
+    clock = None if stop is None else stop.reason()
+    if clock is not None:
+        return clock
+    if isinstance(result, PlanResult):
+        try:
+            return task.budget.count_reached(int(result.iterations), int(result.evaluations)) or "none"
+        except BaseException:  # noqa: BLE001 - counts of any type; bound_outcome reports them
+            return "none"
+    return "none"
 
+
+def _execute(task: "RunTask", report: Report, stop: ClockStop | None) -> RunOutcome:
     started_at = utc_now()
     try:
         ensure_plugins(task.plugin_modules)
-        planner = task.build_planner()
+        planner = task.build_planner()  # for the version check and the warm-up; the measured run builds its own
         if planner.version != task.planner_version:
             raise RuntimeError(
                 f"{task.planner.id} is version {planner.version} in this worker, {task.planner_version} in the harness"
@@ -362,26 +437,34 @@ def _execute(task: "RunTask", report: Report) -> RunOutcome:
     crash: BaseException | None = None
     result: Any = None
     t0 = c0 = math.nan
+    budget = task.budget
     try:
         # inside the hard limit (a hanging planner still times out), outside planning time
-        warm_up(planner, scenario.kind)
+        warm_up_for(task, planner)
         reset_peak_rss()
         report("planning")
         recorder.t0 = t0 = _clock()
         c0 = _cpu()
-        result = planner.plan(scenario, budget=task.budget, rng=rng, progress=recorder)
+        if budget.timed:
+            stop = stop if stop is not None else InProcessClockStop(budget)
+            budget = replace(budget, stop=stop)
+        planner = task.build_planner()  # measured and limited: work done in a constructor is planning work
+        result = planner.plan(scenario, budget=budget, rng=rng, progress=recorder)
     except KeyboardInterrupt:
         raise
     except BaseException as exc:  # noqa: BLE001 - SystemExit included
         crash = exc
     wall = _clock() - t0  # NaN when plan() never started
     cpu = _cpu() - c0
+    if not math.isnan(t0):
+        report("planned")
+    stopped_by = _stopped_by(task, budget.stop, result)
     versions = _provenance(versions)
     modified = scenario_digest(scenario) != digest
     if modified:
         evict(task.scenario)
     common: dict[str, Any] = dict(
-        wall_time_s=wall, cpu_time_s=cpu, history=recorder.history(), scenario_modified=modified,
+        wall_time_s=wall, cpu_time_s=cpu, stopped_by=stopped_by, history=recorder.history(), scenario_modified=modified,
         versions=versions, started_at=started_at,
     )
     if crash is not None:

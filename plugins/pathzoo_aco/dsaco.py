@@ -26,9 +26,9 @@ Mechanism, with the paper's equations:
   (:meth:`DSACO.walk_costs`).
 
 :meth:`DSACO.plan` runs the colony in compiled code
-(:mod:`pathzoo_aco.dsaco_colony`) with the same results as the generic loop;
-under a time budget the generic loop runs (``extras["walk_time_s"]`` is then
-the walks' time, otherwise the compiled colony's).
+(:mod:`pathzoo_aco.dsaco_colony`) with the same results as the generic loop
+(``extras["walk_time_s"]`` is the compiled colony's time); a clock limit is
+checked between iterations and only stops it.
 
 Lengths and heights are measured in horizontal cells (the paper's
 kilometres on its 1 km grid). Table 4: m = 10, n = 500, Q = 100, α = 1,
@@ -340,18 +340,18 @@ class DSACO(AntColonyPlanner):
              progress: ProgressCallback | None = None) -> PlanResult:
         """Run the colony in compiled code (:mod:`pathzoo_aco.dsaco_colony`); results equal the generic loop's.
 
-        The generic :meth:`AntColonyPlanner.plan` runs instead under a time
-        budget (its walks stop mid-way when time runs out) and for a turn table
-        with factors other than 0 and 1 (none is built today). Without a
-        ``progress`` callback the iterations run in one call per
-        :data:`_SCHEDULE_CHUNK` of them; with one, one call per iteration, so
-        each report comes when its iteration ends.
+        The generic :meth:`AntColonyPlanner.plan` runs instead for a turn
+        table with factors other than 0 and 1 (none is built today). Without a
+        ``progress`` callback or a clock limit the iterations run in one call
+        per :data:`_SCHEDULE_CHUNK` of them; otherwise one call per iteration,
+        so each report comes when its iteration ends and a clock stop is seen
+        before the next one starts.
         """
         self.check_supports(scenario)
+        clock = budget.start()
         problem = ColonyProblem.of(scenario)
-        rules = None if budget.time_s is not None else problem.memo(self.table_key("walk_rules"),
-                                                                    lambda: self.walk_rules(problem))
-        if rules is None or not np.isin(rules.turn, (0.0, 1.0)).all():  # the lists know allowed or not only
+        rules = problem.memo(self.table_key("walk_rules"), lambda: self.walk_rules(problem))
+        if not np.isin(rules.turn, (0.0, 1.0)).all():  # the lists know allowed or not only
             return super().plan(scenario, budget=budget, rng=rng, progress=progress)
         if problem.start == problem.goal:
             return PlanResult(Status.SOLVED, problem.walk_points(np.zeros(0, dtype=np.int64)),
@@ -368,6 +368,8 @@ class DSACO(AntColonyPlanner):
         arrays = (table, problem.horizontal_offsets, rules.turn, fitness, (trail.x, trail.lo, trail.hi, self.rho),
                   (rules.tau_exp, self.q, problem.start, problem.goal, rules.backtrack, rules.max_steps))
         walk_time = 0.0
+        timed = budget.timed
+        stopped = False
         total = self.iteration_count(budget)
         for first in range(0, total, _SCHEDULE_CHUNK):  # bounded memory for the schedule of any budget
             ants = self.ants_per_iteration(budget, first, min(total, first + _SCHEDULE_CHUNK))
@@ -376,14 +378,18 @@ class DSACO(AntColonyPlanner):
                         np.array([q0_schedule(first + k, self.iterations, self.q0_initial) for k in range(len(ants))]),
                         np.array([p_schedule(first + k + 1, self.p, self.gamma_p) for k in range(len(ants))]), ants)
             started = time.perf_counter()
-            for stop_at in ([first + len(ants)] if progress is None else range(first + 1, first + len(ants) + 1)):
+            one_call = progress is None and not timed
+            for stop_at in ([first + len(ants)] if one_call else range(first + 1, first + len(ants) + 1)):
+                if timed and clock.time_up():
+                    stopped = True
+                    break
                 run_colony(*arrays, schedule, run, first=first, stop_at=stop_at)
                 if progress is not None:
                     progress(int(run.counters[0]), int(run.counters[1]), float(run.best_cost[0]))
                 if run.counters[4]:
                     break
             walk_time += time.perf_counter() - started
-            if run.counters[4]:  # stopped early: leave the rng as the generic loop would
+            if run.counters[4] or stopped:  # stopped early: leave the rng as the generic loop would
                 rng.bit_generator.state = rng_state
                 for _ in range(int(run.counters[0]) - first):
                     rng.integers(2**31 - 1)
@@ -398,8 +404,8 @@ class DSACO(AntColonyPlanner):
                           iterations=iterations, evaluations=evaluations, message=message, extras=extras)
 
     def iteration_count(self, budget: Budget) -> int:
-        """Iterations the budget allows without a time limit: its iterations, as many as its evaluations fill
-        (``n_ants`` each), or the ``iterations`` parameter when the budget is unlimited."""
+        """Iterations the budget's counts allow: its iterations, as many as its evaluations fill
+        (``n_ants`` each), or the ``iterations`` parameter when it sets neither."""
         counts = [n for n in (budget.iterations,
                               None if budget.evaluations is None else -(-budget.evaluations // self.n_ants))
                   if n is not None]

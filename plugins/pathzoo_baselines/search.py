@@ -8,8 +8,8 @@ Budgets
   would overrun the limit is cut: only its first candidates are evaluated,
   the rest get cost ``inf`` and are not counted, so the limit is never
   exceeded.
-- ``time_s``: checked between generations, so the limit is overshot by at
-  most one generation; for the costly encodings (``routed``, ``cells``:
+- ``cpu_s``, ``time_s``: checked between generations (they only stop the
+  search), so the limit is overshot by at most one generation; for the costly encodings (``routed``, ``cells``:
   graph searches per candidate) also while drawing the initial candidates
   and every few evaluations, so on very large maps the overshoot is a few
   candidates, not a generation (the candidates left get ``inf``, uncounted,
@@ -119,8 +119,8 @@ class Search:
         return self.clock.exhausted(iterations=self.iterations, evaluations=self.evaluations)
 
     def out_of_time(self) -> bool:
-        """True once a time limit is set and spent."""
-        return self.budget.time_s is not None and self.clock.remaining_time <= 0.0
+        """True once a clock limit (``cpu_s``, ``time_s``) is set and spent."""
+        return self.clock.time_up() is not None
 
     def initial(self, rng: np.random.Generator, n: int) -> np.ndarray | list[np.ndarray]:
         """The encoding's ``n`` initial candidates; a costly encoding stops drawing new ones when time is up."""
@@ -140,7 +140,7 @@ class Search:
         genes = genes if isinstance(genes, list) else np.asarray(genes)
         costs = np.full(len(genes), math.inf)
         n = int(min(len(genes), self.remaining_evaluations))
-        if getattr(self.encoding, "costly", False) and self.budget.time_s is not None:
+        if getattr(self.encoding, "costly", False) and self.budget.timed:
             done = 0
             while done < n and not (self.evaluations > 0 and self.out_of_time()):
                 step = min(n, done + _TIMED_CHUNK)

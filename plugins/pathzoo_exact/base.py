@@ -49,8 +49,8 @@ Budgets
 -------
 Numba code cannot read the clock cheaply, so the search runs in batches of
 :attr:`GraphSearchPlanner.batch_expansions` expansions (a few milliseconds
-each) and the Python driver checks ``budget.time_s`` between batches: the time
-limit is overshot by at most one batch. ``budget.evaluations`` caps the number
+each) and the Python driver checks the clock limits (``cpu_s``, ``time_s``)
+between batches: a clock stop overshoots by at most one batch. ``budget.evaluations`` caps the number
 of expanded nodes exactly. ``budget.iterations`` is always met, since the
 search is one iteration. With no limit at all the search runs to completion,
 which is bounded by the size of the graph.
@@ -224,8 +224,10 @@ class GraphSearchPlanner(Planner, abc.ABC):
                 break
             if cap is not None and state.expanded >= cap:
                 return self._failed(state, f"evaluation budget of {cap} expansions exhausted before the goal")
-            if clock.exhausted():
-                return self._failed(state, f"time budget of {budget.time_s} s exhausted before the goal")
+            spent = clock.time_up()
+            if spent is not None:
+                return self._failed(state, f"{'CPU' if spent == 'cpu_time' else 'wall'} time budget exhausted "
+                                    "before the goal")
         if status == EXHAUSTED:
             return PlanResult(
                 Status.NO_PATH,

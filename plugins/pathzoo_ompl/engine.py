@@ -27,13 +27,14 @@ sample or expansion). pathzoo counts these calls:
 - ``evaluations``: motion (segment) checks. When the limit is reached the
   validator refuses every further motion unchecked, so the count is never
   exceeded and no unchecked motion is ever accepted;
-- ``time_s``: wall time of the whole ``plan()``, checked at every step.
-  PRM* stops growing early enough to leave twice its last roadmap search's
-  duration for the final search; the simplifier stops at the limit;
+- ``cpu_s``, ``time_s``: read through the budget's clock
+  (:meth:`~pathzoo.core.budget.BudgetClock.time_up`, set by the harness) at
+  every step; they only stop the search (PRM* after its current roadmap
+  search);
 - no limit at all: :data:`DEFAULT_TIME_S`, OMPL's own default solve time.
 
-With an iteration or evaluation limit a seed gives the same path; a time
-limit makes the amount of work, hence the path, depend on the machine.
+With an iteration or evaluation limit a seed gives the same path; a clock
+stop makes the amount of work, hence the path, depend on the machine.
 
 Seeding, noise, convergence
 ---------------------------
@@ -74,8 +75,7 @@ sampling-based planners cannot prove that no path exists.
 from __future__ import annotations
 
 import math
-import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any, Callable
 
 import numpy as np
@@ -94,7 +94,6 @@ if TYPE_CHECKING:
 
 __all__ = ["DEFAULT_TIME_S", "compiled_checks", "segment_validator", "solve", "state_checker"]
 
-_now = time.perf_counter
 _MOTION_CLEAR = entry_point(motion_clear)
 _POINT_FREE = entry_point(point_free)
 _MOTION_CLEAR_3D = entry_point(motion_clear_3d)
@@ -123,16 +122,15 @@ class _Run:
     steps: int = 0
     best: float = math.inf
     error: BaseException | None = None
-    reserve_s: float = 0.0
     step_limit: float = field(init=False)
     motion_limited: bool = field(init=False)
-    deadline: float = field(init=False)
+    timed: bool = field(init=False)
 
     def __post_init__(self) -> None:
         b = self.budget
         self.step_limit = math.inf if b.iterations is None else b.iterations * self.steps_per_iteration
         self.motion_limited = b.evaluations is not None
-        self.deadline = math.inf if b.time_s is None else self.clock.started + b.time_s
+        self.timed = b.timed
 
     @property
     def iteration(self) -> int:
@@ -148,10 +146,14 @@ class _Run:
         """True once a limit is reached (or a callback failed)."""
         return (
             self.steps >= self.step_limit
-            or _now() + self.reserve_s >= self.deadline
+            or self.time_up()
             or self.error is not None
             or (self.budget.evaluations is not None and self.checks.motions >= self.budget.evaluations)
         )
+
+    def time_up(self) -> bool:
+        """True once a clock limit is spent."""
+        return self.timed and self.clock.time_up() is not None
 
     def step(self) -> bool:
         """One termination-condition check: count a step and return False; True once spent."""
@@ -305,9 +307,7 @@ def _plan_prm(planner: Any, si: Any, run: _Run, dim: int) -> np.ndarray | None:
             return run.steps >= target or run.step()
 
         planner.growRoadmapPtc(ob.PlannerTerminationCondition(stop))
-        searched = run.clock.elapsed
         found = _roadmap_path(planner, si, dim)
-        run.reserve_s = 2.0 * (run.clock.elapsed - searched)  # keep time for the last, larger search
         if found is not None and _length(found) < run.best:
             best = found
             run.improve(_length(found))
@@ -345,7 +345,7 @@ def solve(
     """Plan with the OMPL planner ``spec`` describes; see the module docstring."""
     seed = int(rng.integers(1, 2**31 - 1))
     if budget.unlimited:
-        budget = Budget(time_s=DEFAULT_TIME_S)
+        budget = replace(budget, time_s=DEFAULT_TIME_S)
     run = _Run(budget, budget.start(), spec.iteration_steps, progress, compiled_checks(scenario, budget.evaluations))
     if np.array_equal(scenario.start, scenario.goal):
         run.improve(0.0)
@@ -409,7 +409,7 @@ def _solve(spec: "OmplPlanner", scenario: Scenario, seed: int, run: _Run) -> Pla
 def _simplified(si: Any, raw: np.ndarray, scenario: Scenario, run: _Run) -> tuple[np.ndarray, bool]:
     """OMPL's PathSimplifier on ``raw``; the raw path is kept if the result fails the validator."""
     geometric = og.PathGeometric(si, _states(si, raw))
-    og.PathSimplifier(si).simplify(geometric, ob.PlannerTerminationCondition(lambda: _now() >= run.deadline))
+    og.PathSimplifier(si).simplify(geometric, ob.PlannerTerminationCondition(run.time_up))
     shorter = _array(geometric, scenario.dim)
     if validate_path(scenario, shorter):
         return shorter, True

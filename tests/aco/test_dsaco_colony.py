@@ -96,16 +96,33 @@ def test_without_progress_one_call_gives_the_same_answer():
     _same(a, b)
 
 
-def test_time_budgets_and_graded_turn_factors_take_the_generic_loop(monkeypatch):
+class _StopAfter:
+    """A clock stop (as the harness attaches) that reports the CPU limit spent from its ``n + 1``-th reading on."""
+
+    def __init__(self, n: int) -> None:
+        self.left = n
+
+    def reason(self):
+        self.left -= 1
+        return "cpu_time" if self.left < 0 else None
+
+
+def test_a_clock_limit_only_stops_the_compiled_colony_between_iterations():
+    planner = pathzoo.make_planner("aco.dsaco", n_ants=4)
+    timed = planner.plan(_grid(), budget=Budget(iterations=6, time_s=1e6, cpu_s=1e6), rng=np.random.default_rng(2))
+    _same(timed, AntColonyPlanner.plan(planner, _grid(), budget=Budget(iterations=6), rng=np.random.default_rng(2)))
+    runs = []
+    for plan in (planner.plan, lambda *a, **kw: AntColonyPlanner.plan(planner, *a, **kw)):
+        rng = np.random.default_rng(2)
+        runs.append((plan(_grid(), budget=Budget(iterations=6, cpu_s=1.0, stop=_StopAfter(3)), rng=rng),
+                     rng.bit_generator.state))
+    assert runs[0][0].iterations == 3
+    _same(runs[0][0], runs[1][0])
+    assert runs[0][1] == runs[1][1]
+
+
+def test_graded_turn_factors_take_the_generic_loop():
     import pathzoo_aco.dsaco as dsaco
-
-    def fail(*args, **kwargs):
-        raise AssertionError("compiled colony used")
-
-    monkeypatch.setattr(dsaco, "run_colony", fail)
-    result = pathzoo.make_planner("aco.dsaco").plan(_grid(), budget=Budget(time_s=5.0, iterations=2),
-                                                    rng=np.random.default_rng(0))
-    assert result.solved
 
     class Graded(type(pathzoo.make_planner("aco.dsaco"))):  # a turn table that weighs turns, not only forbids them
         def walk_rules(self, problem):

@@ -92,3 +92,36 @@ def test_vehicle_rejects_bad_values():
         VehicleModel(mass_kg=-1)
     with pytest.raises(InvalidScenarioError, match="unknown key"):
         VehicleModel.from_mapping({"mass": 3}, source="x.toml")
+
+
+# ------------------------------------------------------------------ budget clock limits (docs/timing.md)
+def test_cpu_budget_is_validated_and_kept_out_of_old_budget_dicts():
+    assert Budget.from_mapping({"cpu_s": 2.0}).cpu_s == 2.0
+    assert "cpu_s" not in Budget(iterations=3).to_dict()  # budgets stored before cpu_s compare equal
+    assert Budget(cpu_s=1.5).to_dict()["cpu_s"] == 1.5
+    for bad in (0, -1.0, float("nan"), True, "2"):
+        with pytest.raises(InvalidParameterError, match="budget.cpu_s"):
+            Budget(cpu_s=bad)
+    assert Budget(cpu_s=1.0).timed and not Budget(cpu_s=1.0).counted and not Budget(cpu_s=1.0).unlimited
+
+
+def test_budget_clock_reports_the_first_limit_reached():
+    clock = Budget(iterations=3, evaluations=10).start()
+    assert not clock.exhausted(iterations=2, evaluations=5) and clock.stopped_by is None
+    assert clock.limit_reached(iterations=2, evaluations=10) == "evaluations"
+    assert clock.exhausted(iterations=3) and clock.stopped_by == "evaluations"  # the first one is kept
+
+
+def test_an_attached_clock_stop_replaces_the_budget_clocks():
+    class Stop:
+        said = None
+
+        def reason(self):
+            return self.said
+
+    stop = Stop()
+    clock = Budget(time_s=1e-9, cpu_s=1e-9, stop=stop).start()
+    assert not clock.exhausted()  # the harness's stop decides, not this process's clocks
+    stop.said = "cpu_time"
+    assert clock.exhausted() and clock.stopped_by == "cpu_time"
+    assert Budget(time_s=1.0, stop=stop) == Budget(time_s=1.0)  # not part of the budget's value

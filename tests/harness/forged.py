@@ -123,6 +123,53 @@ class Sabotage(Planner):
         return PlanResult(Status.SOLVED, path=np.array([scenario.start, scenario.goal]))
 
 
+def burn_cpu(seconds: float) -> None:
+    """Spin until this process has used ``seconds`` more CPU seconds."""
+    end = time.process_time() + seconds
+    while time.process_time() < end:
+        pass
+
+
+class Burner(Planner):
+    """Burns CPU where its parameters say (constructor, ``plan()``, a child process), then loops on the budget.
+
+    The loop counts one iteration per ``step_cpu_s`` of CPU and stops when the
+    budget clock says so; the answer is the reference path.
+    """
+
+    id = "test.burner"
+    summary = "burns CPU in __init__, plan() or a child process"
+    kinds = KINDS
+    params = {
+        "init_cpu_s": Param(0.0, "CPU seconds burnt in the constructor", low=0.0),
+        "child_cpu_s": Param(0.0, "CPU seconds burnt by a child process of plan()", low=0.0),
+        "step_cpu_s": Param(0.01, "CPU seconds per iteration of the budget loop", low=0.0),
+    }
+
+    def __init__(self, **params: object) -> None:
+        super().__init__(**params)
+        burn_cpu(self.init_cpu_s)
+
+    def plan(self, scenario: Scenario, *, budget: Budget, rng: np.random.Generator,
+             progress: ProgressCallback | None = None) -> PlanResult:
+        import subprocess
+        import sys
+
+        clock = budget.start()
+        if self.child_cpu_s:
+            spin = f"import time\nend = time.process_time() + {self.child_cpu_s}\nwhile time.process_time() < end: pass"
+            subprocess.run([sys.executable, "-S", "-c", spin], check=True)
+        iterations = 0
+        while not clock.exhausted(iterations=iterations, evaluations=iterations):
+            burn_cpu(self.step_cpu_s)
+            iterations += 1
+            if budget.iterations is None and budget.evaluations is None and not budget.timed:
+                break
+        ref = reference_path(scenario)
+        assert ref is not None
+        return PlanResult(Status.SOLVED, path=ref.path.copy(), iterations=iterations, evaluations=iterations)
+
+
 class GridOnly(Honest):
     """An honest planner that only declares ``grid2d``."""
 
@@ -132,7 +179,7 @@ class GridOnly(Honest):
 
 @hookimpl
 def pathzoo_register_planners() -> Sequence[type[Planner]]:
-    return [Honest, Fixed, Sabotage, GridOnly]
+    return [Honest, Fixed, Sabotage, Burner, GridOnly]
 
 
 @hookimpl

@@ -4,7 +4,8 @@ Nothing is isolated here: the planner runs in the harness's own process, so
 it could patch the harness itself. The verdict is still given by the judge
 process (:mod:`pathzoo.harness.judge_worker`) on its own scenario, and wall
 and CPU times are read with clock functions bound when this module was
-imported, but every run is stored with ``isolated = False`` and shown so by
+imported (the clock limits are read in this process too,
+:class:`~pathzoo.harness.clock_stop.InProcessClockStop`), but every run is stored with ``isolated = False`` and shown so by
 the leaderboard and the report. Use ``process`` or ``dask`` for results.
 """
 
@@ -46,13 +47,13 @@ class InlineExecutor(RunExecutor):
         """Run the task now and return a completed future."""
         future: Future[RunOutcome] = Future()
         future.set_running_or_notify_cancel()
-        marks = {"planning": (math.nan, math.nan)}
+        marks = {"planning": (math.nan, math.nan), "planned": (math.nan, math.nan)}
 
         def report(event: str) -> None:
-            if event == "planning" and math.isnan(marks["planning"][0]):
-                marks["planning"] = (_clock(), _cpu())
+            if event in marks and math.isnan(marks[event][0]):
+                marks[event] = (_clock(), _cpu())
 
         outcome = execute_task(task, report, interruptible=True)
-        t0, c0 = marks["planning"]
-        future.set_result(replace(outcome, wall_time_s=_clock() - t0, cpu_time_s=_cpu() - c0))
+        (t0, c0), (t1, c1) = marks["planning"], marks["planned"]
+        future.set_result(replace(outcome, wall_time_s=t1 - t0, cpu_time_s=c1 - c0))
         return future

@@ -15,12 +15,19 @@ code, so nothing they send is unpickled: they send short tagged byte strings
   hard limit ``timeout_s`` counts from the *first* ``S``; later ones are
   ignored. The setup before it has its own limit,
   :data:`~pathzoo.harness.worker.SETUP_TIMEOUT_S`, and is recorded as ``crash``;
-- ``P`` (planning, after the warm-up): the planning clock starts. Wall time is
-  the harness's ``time.perf_counter`` from ``P`` to the outcome, CPU time the
-  worker process's CPU time read from the outside at the same two
-  moments (:func:`process_cpu_time`; for a sandboxed worker, the larger of
-  that and its whole cgroup's, children included), so a planner cannot
-  change its own timings;
+- ``P`` (planning, after the warm-up, before the measured planner is built):
+  the planning clocks start; ``E`` (``plan()`` returned, before the worker's
+  digest of the scenario): they end. The worker waits for the harness's
+  ``G`` after each, so the clocks are read while it waits. Wall time is the harness's
+  ``time.perf_counter`` from ``P`` to ``E``, CPU time that of the worker's
+  process tree (:class:`~pathzoo.harness.cpu_clock.ProcessTreeCpu`; for a
+  sandboxed worker, the tree under its ``bwrap`` process, the planner's
+  children included) read from outside at the same two moments, so a planner cannot change its own
+  timings. While a run with a clock limit plans, the monitor reads these
+  clocks (for ``cpu_s``: see :data:`CLOCK_POLL_S`) and sets the worker's
+  shared stop byte (:class:`~pathzoo.harness.clock_stop.SharedClockStop`)
+  when a limit is spent; the run is stored with the stop the harness set
+  (``stopped_by``), whatever the planner did with the byte;
 - ``D`` + outcome: the future resolves;
 - a worker past its hard limit gets ``SIGKILL`` (``Process.kill``), the run
   resolves as ``timed_out`` and a fresh worker replaces it; one that dies
@@ -75,7 +82,6 @@ import math
 import os
 import shutil
 import signal
-import sys
 import threading
 import time
 import tempfile
@@ -87,6 +93,9 @@ from multiprocessing.connection import Connection, wait
 from typing import TYPE_CHECKING, Any
 
 from pathzoo.core.errors import PathzooError
+from pathzoo.core.budget import StopReason
+from pathzoo.harness.clock_stop import SharedClockStop
+from pathzoo.harness.cpu_clock import ProcessTreeCpu, process_cpu_time
 from pathzoo.harness.executors.base import RunExecutor
 from pathzoo.harness.cgroup import ProcessGroup
 from pathzoo.harness.launch import (NoMainContext, SandboxedProcess, default_start_method, die_with_harness,
@@ -116,54 +125,22 @@ class WorkerStartError(PathzooError, RuntimeError):
 MAX_START_FAILURES = 3
 """Workers in a row that die before they are ready, after which the executor gives up (:class:`WorkerStartError`)."""
 
-_clock_gettime = getattr(time, "clock_gettime", None)  # bound at import, like _clock
-_CPU_CLOCK_OF_PID = sys.platform.startswith("linux") and _clock_gettime is not None
+CLOCK_POLL_S = 0.01
+"""How often, at most, the monitor reads the CPU time of a run with a ``cpu_s`` limit while it plans.
+
+Far from the limit it reads it less often: a process tree cannot use more
+than one CPU second per core in a wall second, so the next reading is due
+when the CPU seconds left, spread over every core, could be spent."""
+
+_CORES = os.cpu_count() or 1
+
+_EVENTS = {"started": b"S", "planning": b"P", "planned": b"E"}
 
 
-def process_cpu_time(pid: int | None) -> float:
-    """User + system CPU seconds of a process, read from outside it (NaN when it is gone or never started).
-
-    On Linux this reads the process's CPU-time clock (``clock_gettime`` on
-    the clock id the kernel derives from a pid, as glibc's
-    ``clock_getcpuclockid`` does): about 5 microseconds and nanosecond
-    resolution, against 0.3-0.6 ms and 10 ms clock ticks for psutil's
-    ``cpu_times``, which is the fallback elsewhere.
-    """
-    if pid is None:
-        return math.nan
-    if _CPU_CLOCK_OF_PID and _clock_gettime is not None:
-        try:
-            return _clock_gettime((~pid << 3) | 2)  # MAKE_PROCESS_CPUCLOCK(pid, CPUCLOCK_SCHED)
-        except OSError:  # gone
-            return math.nan
-    try:
-        import psutil
-
-        times = psutil.Process(pid).cpu_times()
-        return float(times.user + times.system)
-    except Exception:  # noqa: BLE001 - gone, or psutil unavailable
-        return math.nan
-
-
-def _python_of(pids: frozenset[int], outer: int) -> int:
-    """The worker's Python process among the first processes of its sandbox (the outer ``bwrap`` is ``outer``).
-
-    ``bwrap`` (``outer``) starts the namespace's init, which starts Python:
-    the one whose parent is not ``outer``. 0 when it cannot be told.
-    """
-    for pid in pids - {outer}:
-        try:
-            stat = Path(f"/proc/{pid}/stat").read_text()
-        except OSError:
-            continue
-        if int(stat.rsplit(")", 1)[1].split()[1]) != outer:
-            return pid
-    return 0
-
-
-def _worker_main(conn: Connection, alive: Connection, sandboxed: bool = False) -> None:
+def _worker_main(conn: Connection, alive: Connection, stop_flag: Any, sandboxed: bool = False) -> None:
     """Loop of one worker process: receive a task, run it, send the outcome and whether the process is clean."""
     die_with_harness(alive)
+    stop = SharedClockStop(stop_flag)
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     if sandboxed:  # spawned, not forked from the server that has done this already
         import pathzoo.harness.executors.warmup  # noqa: F401
@@ -177,7 +154,7 @@ def _worker_main(conn: Connection, alive: Connection, sandboxed: bool = False) -
         if task is None:
             return
         keep_payload(task.scenario)  # the executor counts it as held from now on
-        if not _run(conn, task):
+        if not _run(conn, task, stop):
             return
         changed = fingerprint.changed()
         if changed:
@@ -187,9 +164,15 @@ def _worker_main(conn: Connection, alive: Connection, sandboxed: bool = False) -
         conn.send_bytes(b"I")
 
 
-def _run(conn: Connection, task: "RunTask") -> bool:
+def _run(conn: Connection, task: "RunTask", stop: SharedClockStop) -> bool:
     """Run one task and send its outcome; False when the harness is gone."""
-    outcome = execute_task(task, lambda event: conn.send_bytes(b"S" if event == "started" else b"P"))
+
+    def report(event: str) -> None:
+        conn.send_bytes(_EVENTS[event])
+        if event != "started":  # wait until the harness has read its clocks: no CPU of ours falls outside them
+            conn.recv_bytes(1)
+
+    outcome = execute_task(task, report, stop=stop)
     try:
         conn.send_bytes(b"D" + encode_outcome(outcome))
     except (EOFError, OSError):
@@ -223,6 +206,8 @@ def describe_exit(exitcode: int | None, *, sandboxed: bool = False) -> str:
 class _Worker:
     process: "BaseProcess"
     conn: Connection
+    stop: SharedClockStop
+    cpu: ProcessTreeCpu
     idle: bool = False
     was_ready: bool = False
     started_once: bool = False
@@ -233,13 +218,16 @@ class _Worker:
     deadline: float = math.inf
     in_setup: bool = False
     plan_t0: float = math.nan
-    plan_c0: tuple[float, float] = (math.nan, math.nan)
+    plan_c0: float = math.nan
+    plan_t1: float = math.nan
+    plan_c1: float = math.nan
+    stopped_by: StopReason | None = None
+    """The clock stop the harness set for the current run."""
     held: HeldScenarios = field(default_factory=HeldScenarios)
     config: "tuple[str, str] | None" = None
     group: ProcessGroup | None = None
     scratch: str = ""
     baseline: frozenset[int] = frozenset()
-    inner_pid: int = 0
     visible: frozenset[str] = frozenset()
 
     @property
@@ -363,19 +351,21 @@ class ProcessExecutor(RunExecutor):
         """A new worker, for ``config`` (sandboxed: in its own cgroup and bubblewrap sandbox)."""
         parent, child = self._ctx.Pipe(duplex=True)
         group, scratch, visible = None, "", frozenset(self._visible_dirs())
+        flag = self._ctx.RawArray("b", 1)
         if self.sandboxed:
             assert config is not None
             self._serial += 1
             group = ProcessGroup(f"w{self._serial}", memory_bytes=self.limits.memory_bytes,
                                  max_tasks=self.limits.max_tasks)
             scratch = os.path.join(self._scratch_root, f"w{self._serial}")
-            process: Any = SandboxedProcess(target=_worker_main, args=(child, harness_alive(), True),
+            process: Any = SandboxedProcess(target=_worker_main, args=(child, harness_alive(), flag, True),
                                             name="pathzoo-worker")
             process.sandbox_prefix = sandboxed_command(
                 (), procs_files=group.procs_files, scratch=Path(scratch), numba_cache=worker_numba_cache(config[0]),
                 readable=visible)
         else:
-            process = self._ctx.Process(target=_worker_main, args=(child, harness_alive()), name="pathzoo-worker")
+            process = self._ctx.Process(target=_worker_main, args=(child, harness_alive(), flag),
+                                        name="pathzoo-worker")
         try:
             process.start()
         except BaseException:
@@ -383,7 +373,8 @@ class ProcessExecutor(RunExecutor):
                 group.remove()
             raise
         child.close()
-        worker = _Worker(process, parent, config=config, group=group, scratch=scratch, visible=visible)
+        worker = _Worker(process, parent, SharedClockStop(flag), ProcessTreeCpu(process.pid or 0), config=config,
+                         group=group, scratch=scratch, visible=visible)
         self._workers.append(worker)
         return worker
 
@@ -484,7 +475,9 @@ class ProcessExecutor(RunExecutor):
                 continue
             worker.task, worker.future, worker.idle, worker.started_once = task, future, False, False
             worker.sent_at, worker.started_at = _clock(), utc_now()
-            worker.plan_t0, worker.plan_c0 = math.nan, (math.nan, math.nan)
+            worker.plan_t0 = worker.plan_c0 = worker.plan_t1 = worker.plan_c1 = math.nan
+            worker.stopped_by = None
+            worker.stop.clear()  # the worker is idle: it reads the byte only once it plans this task
             worker.deadline = worker.sent_at + max(task.timeout_s, SETUP_TIMEOUT_S)
             worker.in_setup = True
             try:
@@ -507,28 +500,58 @@ class ProcessExecutor(RunExecutor):
                                                f"{self.limits.memory_bytes / 2**20:.0f} MiB)")
         worker.finish(replace(outcome, sandboxed=worker.group is not None))
 
-    def _cpu(self, worker: _Worker) -> tuple[float, float]:
-        """CPU seconds used so far by the worker's whole cgroup (NaN unsandboxed) and by its Python process."""
-        if worker.group is None:
-            return math.nan, process_cpu_time(worker.process.pid or 0)
-        return worker.group.cpu_seconds(), process_cpu_time(worker.inner_pid) if worker.inner_pid else math.nan
-
-    def _cpu_since(self, worker: _Worker) -> float:
-        """CPU seconds since ``plan_c0``: the larger of the cgroup's and the process's (NaN when neither is known).
-
-        The cgroup's count includes the planner's children but is charged
-        at scheduler ticks, so for a run of a few milliseconds it can miss
-        the worker's own time, which the process's clock has.
-        """
-        now = self._cpu(worker)
-        spans = [b - a for a, b in zip(worker.plan_c0, now) if not (math.isnan(a) or math.isnan(b))]
-        return max(spans) if spans else math.nan
+    @staticmethod
+    def _cpu_since(worker: _Worker) -> float:
+        """CPU seconds of the worker's process tree since ``P`` (NaN when planning never started)."""
+        return worker.cpu.read() - worker.plan_c0
 
     def _timed(self, worker: _Worker, outcome: RunOutcome) -> RunOutcome:
-        """The outcome with the harness's own wall and CPU times of ``plan()`` (NaN when it never started)."""
-        wall = _clock() - worker.plan_t0
-        cpu = self._cpu_since(worker)
-        return replace(outcome, wall_time_s=wall, cpu_time_s=cpu, started_at=worker.started_at)
+        """The outcome with the harness's own times (``P`` to ``E``; NaN when planning never started) and stop."""
+        if math.isnan(worker.plan_t1):
+            self._planned(worker)
+        assert worker.task is not None
+        stopped_by = worker.stopped_by or worker.task.budget.count_reached(outcome.iterations, outcome.evaluations)
+        return replace(outcome, wall_time_s=worker.plan_t1 - worker.plan_t0, cpu_time_s=worker.plan_c1 - worker.plan_c0,
+                       stopped_by=stopped_by or "none", started_at=worker.started_at)
+
+    @staticmethod
+    def _go_on(worker: _Worker) -> None:
+        """Let the worker go on after ``P`` or ``E`` (its clocks are read); a dead one is reported by its sentinel."""
+        try:
+            worker.conn.send_bytes(b"G")
+        except (OSError, EOFError):
+            pass
+
+    def _planned(self, worker: _Worker) -> None:
+        """Read the clocks at the end of planning (``E``)."""
+        worker.plan_t1, worker.plan_c1 = _clock(), worker.cpu.read()
+
+    def _planning(self, worker: _Worker) -> bool:
+        """True while the worker's run plans under a clock limit that the harness has not stopped yet."""
+        return (worker.task is not None and worker.task.budget.timed and worker.stopped_by is None
+                and not math.isnan(worker.plan_t0) and math.isnan(worker.plan_t1))
+
+    def _watch_clocks(self, now: float) -> float:
+        """Set the stop of each planning run whose clock limit is spent; return when to look again."""
+        nearest = math.inf
+        for worker in self._workers:
+            if not self._planning(worker):
+                continue
+            assert worker.task is not None
+            budget = worker.task.budget
+            cpu_left = math.inf if budget.cpu_s is None else budget.cpu_s - (worker.cpu.read() - worker.plan_c0)
+            if cpu_left <= 0.0:
+                worker.stopped_by = "cpu_time"
+            elif budget.time_s is not None and now - worker.plan_t0 >= budget.time_s:
+                worker.stopped_by = "wall_time"
+            if worker.stopped_by is not None:
+                worker.stop.set(worker.stopped_by)
+                continue
+            if budget.cpu_s is not None:  # a process tree uses at most one CPU second per core and wall second
+                nearest = min(nearest, now + max(CLOCK_POLL_S, cpu_left / _CORES))
+            if budget.time_s is not None:
+                nearest = min(nearest, worker.plan_t0 + budget.time_s)
+        return nearest
 
     def _violation(self, worker: _Worker, what: str) -> None:
         if worker.task is not None:
@@ -554,7 +577,6 @@ class ProcessExecutor(RunExecutor):
                 self._start_failures = 0
                 if worker.group is not None:
                     worker.baseline = frozenset(worker.group.pids())
-                    worker.inner_pid = _python_of(worker.baseline, worker.process.pid or 0)
             elif tag == b"I" and worker.task is None:
                 worker.idle, worker.deadline = True, math.inf
                 if self._left_behind(worker):  # nothing of a run outlives it: the whole tree goes
@@ -568,11 +590,16 @@ class ProcessExecutor(RunExecutor):
                 worker.sent_at = _clock()
                 worker.deadline = worker.sent_at + worker.task.timeout_s
             elif tag == b"P" and worker.task is not None and worker.started_once and math.isnan(worker.plan_t0):
-                worker.plan_t0, worker.plan_c0 = _clock(), self._cpu(worker)
+                worker.plan_t0, worker.plan_c0 = _clock(), worker.cpu.read()
+                self._go_on(worker)
                 self._first_alone = False
+            elif tag == b"E" and worker.task is not None and not math.isnan(worker.plan_t0) \
+                    and math.isnan(worker.plan_t1):
+                self._planned(worker)
+                self._go_on(worker)
             elif tag == b"D" and worker.task is not None:
                 self._finish(worker, self._timed(worker, decode_outcome(body, worker.task.run_key)))
-            elif tag in (b"S", b"P") and worker.task is not None:
+            elif tag in (b"S", b"P", b"E") and worker.task is not None:
                 continue  # repeated announcements change nothing
             else:
                 self._violation(worker, f"unexpected message {bytes(message[:8])!r}")
@@ -620,7 +647,7 @@ class ProcessExecutor(RunExecutor):
                         return
                 self._dispatch()
                 listening = [w for w in self._workers if w.listening]
-                nearest = min((w.deadline for w in listening), default=math.inf)
+                nearest = min(min((w.deadline for w in listening), default=math.inf), self._watch_clocks(_clock()))
                 timeout = None if math.isinf(nearest) else max(0.0, nearest - _clock())
                 ready = set(wait(
                     [self._wake_r, *(w.conn for w in listening), *(w.process.sentinel for w in self._workers)], timeout

@@ -19,8 +19,11 @@ The loop: while the budget lasts, send ``n_ants`` ants (fewer in the last
 iteration if the evaluation budget says so), keep the best walk so far, let
 the variant update the trail, and report ``progress(iteration, evaluations,
 best_cost)`` with the best-so-far cost. One evaluation is one ant walk; one
-iteration is one colony cycle. With an unlimited budget the colony runs the
-``iterations`` parameter (the paper's count).
+iteration is one colony cycle. When the budget sets neither an iteration nor
+an evaluation limit, the colony runs the ``iterations`` parameter (the
+paper's count). A clock limit (``cpu_s``, ``time_s``) is checked between
+colonies only and only stops the loop, so a run that its counts end is the
+same on any machine and load (``docs/timing.md``).
 """
 
 from __future__ import annotations
@@ -45,10 +48,6 @@ from pathzoo_aco.engine.walk import WalkEngine, Walks
 
 __all__ = ["AntColonyPlanner", "ColonyState", "colony_params"]
 
-_FIRST_RATE = 2e6
-"""Assumed ant-steps per second before the first colony has been timed."""
-
-
 def colony_params(*, n_ants: int, iterations: int, alpha: float, beta: float, rho: float,
                   dead_end: str = "backtrack") -> dict[str, Param]:
     """The parameters every colony has, with a variant's defaults.
@@ -56,15 +55,15 @@ def colony_params(*, n_ants: int, iterations: int, alpha: float, beta: float, rh
     Parameters
     ----------
     n_ants, iterations, alpha, beta, rho : number
-        Defaults of the colony size, iteration count (used when the budget is
-        unlimited), trail weight, heuristic weight and evaporation rate.
+        Defaults of the colony size, iteration count (used when the budget
+        sets no iteration or evaluation limit), trail weight, heuristic weight and evaporation rate.
     dead_end : {"backtrack", "die"}
         Default dead-end handling.
     """
     return {
         "n_ants": Param(n_ants, "ants per iteration (m); at most 10,000, as every ant's walk is held in memory",
                         low=1, high=10_000, tune=(5, 100), tune_log=True),
-        "iterations": Param(iterations, "iterations run when the budget sets no limit", low=1),
+        "iterations": Param(iterations, "iterations run when the budget sets no iteration or evaluation limit", low=1),
         "alpha": Param(alpha, "weight of the pheromone trail (α)", low=0.0, tune=(0.0, 5.0)),
         "beta": Param(beta, "weight of the heuristic (β)", low=0.0, tune=(0.0, 10.0)),
         "rho": Param(rho, "evaporation rate (ρ)", low=0.0, high=1.0, high_open=True, tune=(0.01, 0.9)),
@@ -199,7 +198,7 @@ class AntColonyPlanner(Planner):
         engine = self.walk_engine(problem)
         state = self.init_state(problem, rules, trail, engine, rng)
         release_pages(problem.graph)  # set-up read the whole graph; the walks read little of it (docs/graph-cache.md)
-        limit = self.iterations if budget.unlimited else None
+        limit = None if budget.counted else self.iterations
         walk_time = 0.0
         message = ""
         while not clock.exhausted(iterations=state.iteration, evaluations=state.evaluations):
@@ -208,13 +207,9 @@ class AntColonyPlanner(Planner):
             n = self.n_ants
             if budget.evaluations is not None:
                 n = min(n, budget.evaluations - state.evaluations)
-            allowance = 2**62
-            if budget.time_s is not None:
-                rate = engine.total_steps / walk_time if walk_time > 0 else _FIRST_RATE
-                allowance = max(1, int(clock.remaining_time * rate))
             rules = self.before_iteration(state)
             t0 = time.perf_counter()
-            walks = engine.walk(rules, state.trail, n, int(state.rng.integers(2**31 - 1)), allowance)
+            walks = engine.walk(rules, state.trail, n, int(state.rng.integers(2**31 - 1)))
             walk_time += time.perf_counter() - t0
             state.iteration += 1
             state.evaluations += walks.started
