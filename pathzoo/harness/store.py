@@ -38,6 +38,7 @@ import json
 import math
 import re
 import sqlite3
+import time
 from contextlib import contextmanager
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Collection, Iterator
@@ -162,12 +163,12 @@ def _connect(path: Path, *, create: bool) -> sqlite3.Connection:
         # Two harnesses may start on one new file together: both can find it empty here. The write lock
         # (BEGIN IMMEDIATE) puts their schema scripts one after the other, and the second one, finding
         # the tables and the version row there, changes nothing.
-        conn.execute("PRAGMA journal_mode = WAL")
         conn.executescript(
             "BEGIN IMMEDIATE;" + _SCHEMA
             + f"INSERT INTO pathzoo_schema SELECT {SCHEMA_VERSION} WHERE NOT EXISTS (SELECT 1 FROM pathzoo_schema);"
             + "COMMIT;"
         )
+        _use_wal(conn)
     elif "pathzoo_schema" not in tables:
         conn.close()
         raise ResultsDatabaseError(f"{path}: not a pathzoo results database (it has no pathzoo_schema table)")
@@ -182,6 +183,23 @@ def _connect(path: Path, *, create: bool) -> sqlite3.Connection:
             )
     conn.execute("PRAGMA synchronous = NORMAL")
     return conn
+
+
+def _use_wal(conn: sqlite3.Connection, timeout_s: float = 60.0) -> None:
+    """Put the file in WAL mode (kept in the file), retrying while another connection holds it.
+
+    SQLite answers "database is locked" at once, without its busy timeout,
+    when the journal mode changes while another harness has the new file
+    open, so the change is retried for up to ``timeout_s``.
+    """
+    deadline = time.monotonic() + timeout_s
+    while conn.execute("PRAGMA journal_mode").fetchone()[0] != "wal":
+        try:
+            conn.execute("PRAGMA journal_mode = WAL")
+        except sqlite3.OperationalError as exc:
+            if "locked" not in str(exc) or time.monotonic() > deadline:
+                raise
+            time.sleep(0.01)
 
 
 @contextmanager
