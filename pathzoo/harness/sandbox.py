@@ -106,12 +106,14 @@ def sandbox_problem() -> str:
 def worker_numba_cache(planner_id: str) -> Path:
     """The numba cache directory of one planner's sandboxed workers (the only cache they may write).
 
-    Under ``$PATHZOO_CACHE_DIR`` (else ``$XDG_CACHE_HOME/pathzoo``, else
-    ``~/.cache/pathzoo``) in ``sandbox-numba/<planner id>``: a planner can
-    poison only its own compiled code, never the judge's, the harness's or
-    another planner's.
+    Under ``$NUMBA_CACHE_DIR`` when it is set (so a user's choice of numba
+    cache, an empty one included, holds for the planners too), else under
+    ``$PATHZOO_CACHE_DIR`` (else ``$XDG_CACHE_HOME/pathzoo``, else
+    ``~/.cache/pathzoo``), in ``sandbox-numba/<planner id>``: a planner can
+    write only there, so it can poison only its own compiled code, never the
+    judge's, the harness's or another planner's.
     """
-    root = os.environ.get("PATHZOO_CACHE_DIR")
+    root = os.environ.get("NUMBA_CACHE_DIR") or os.environ.get("PATHZOO_CACHE_DIR")
     if root:
         base = Path(root)
     else:
