@@ -324,15 +324,22 @@ def warm_up_for(task: "RunTask", planner: Any) -> None:
     the run needs (:func:`pathzoo.core.warmup.warm_up`); being another
     object, it keeps whatever the planner caches on a scenario away from
     the measured runs. Errors are left to the measured run.
+
+    The warm-up has the run's own wall limit when the run has one (a
+    program planner, :mod:`pathzoo.plugins.external`, sets its deadline from
+    it, and under the inline executor nothing else would stop a program
+    that never answers); otherwise only the count limit of
+    :data:`~pathzoo.core.warmup.WARM_UP_BUDGET`.
     """
-    from pathzoo.core.warmup import warm_up  # not at the top: the harness imports this module before it needs numba
+    from pathzoo.core.warmup import WARM_UP_BUDGET, warm_up  # not at the top: imported before numba is needed
 
     key = (task.planner.id, task.params_hash, task.scenario.cache_key)
     with _scenario_lock:
         if key in _warmed_for:
             return
         _warmed_for.add(key)
-    warm_up(planner, task.scenario.kind, on=_twin(task.scenario))
+    budget = WARM_UP_BUDGET if task.budget.time_s is None else replace(WARM_UP_BUDGET, time_s=task.budget.time_s)
+    warm_up(planner, task.scenario.kind, budget, on=_twin(task.scenario))
 
 
 # --------------------------------------------------------------------- runs
