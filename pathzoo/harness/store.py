@@ -41,7 +41,7 @@ import sqlite3
 import time
 from contextlib import contextmanager
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Collection, Iterator
+from typing import TYPE_CHECKING, Any, Collection, Iterator, Mapping
 
 import numpy as np
 
@@ -217,6 +217,16 @@ def _blob(arr: np.ndarray | None) -> bytes | None:
     return None if arr is None else np.ascontiguousarray(arr, dtype=np.float64).tobytes()
 
 
+def _metrics_json(metrics: Mapping[str, float]) -> str:
+    """The metrics as a JSON object, NaN (not computed, not solved) as ``null``: standard JSON that SQLite reads."""
+    return json.dumps({k: None if math.isnan(float(v)) else float(v) for k, v in metrics.items()})
+
+
+def _metrics_of(text: str) -> dict[str, float]:
+    """The metrics of :func:`_metrics_json` (and of older files, which wrote NaN), ``null`` read as NaN."""
+    return {k: math.nan if v is None else float(v) for k, v in json.loads(text).items()}
+
+
 def _real(value: float) -> float | None:
     return None if value is None or math.isnan(value) else float(value)
 
@@ -350,7 +360,7 @@ class ResultStore:
             "versions": json.dumps(dict(record.versions), sort_keys=True),
             "started_at": record.started_at,
             "finished_at": utc_now(),
-            "metrics": json.dumps({k: float(v) for k, v in record.metrics.items()}),
+            "metrics": _metrics_json(record.metrics),
             "label": label,
             "isolated": int(bool(record.isolated)),
             "sandboxed": int(bool(record.sandboxed)),
@@ -429,7 +439,7 @@ def read_runs(db: str | Path, experiment: str | None = None, run_keys: "Collecti
     frame["sandboxed"] = frame["sandboxed"].astype(bool)
     for col in ("wall_time_s", "cpu_time_s", "iterations", "evaluations"):
         frame[col] = pd.to_numeric(frame[col], errors="coerce").astype(float)
-    metrics = [json.loads(r[-1]) for r in rows]
+    metrics = [_metrics_of(r[-1]) for r in rows]
     ids: dict[str, None] = {}
     for m in metrics:
         ids.update(dict.fromkeys(m))
@@ -527,7 +537,7 @@ def read_record(db: str | Path, experiment: str, run_key: str) -> RunRecord:
         path=path,
         times=times,
         history=tuple(HistoryPoint(i, e, nan if c is None else c, t) for i, e, c, t in hist),
-        metrics=json.loads(row["metrics"]),
+        metrics=_metrics_of(row["metrics"]),
         versions=json.loads(row["versions"]),
         started_at=row["started_at"],
         isolated=bool(row.get("isolated", 1)),
