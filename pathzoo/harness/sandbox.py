@@ -175,7 +175,10 @@ def sandboxed_command(command: Sequence[str], *, procs_files: Sequence[str], scr
     for root in hidden:
         if os.path.isdir(root):
             args += ["--tmpfs", root]
-    for path in _visible_again([*sys.path, *readable], hidden):
+    # the interpreter's environment (a venv's pyvenv.cfg and bin/) as well as its import path: a venv made
+    # under a hidden directory such as /tmp (CI's is) must still start Python with its site-packages
+    python = [sys.prefix, sys.exec_prefix, os.path.dirname(os.path.abspath(sys.executable))]
+    for path in _visible_again([*python, *sys.path, *readable], hidden):
         args += ["--ro-bind", path, path]
     for writable in (scratch, numba_cache):
         args += ["--bind", str(writable), str(writable)]

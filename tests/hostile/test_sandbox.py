@@ -209,3 +209,19 @@ def test_dask_runs_planners_in_the_sandbox_too(attackers, tmp_path):
     assert _grandchildren() == []
     assert set(_hostile_rows(runs).status) == {"invalid"}
     _assert_rival_clean(tmp_path, runs)
+
+
+def test_a_harness_in_a_venv_under_a_hidden_directory_describes_its_planners(tmp_path):
+    """CI's venv lives under /tmp, which the sandbox hides: its Python must still start with its site-packages."""
+    venv = tmp_path / "venv"  # pytest's tmp_path is under the temporary directory, hidden in the sandbox
+    subprocess.run([sys.executable, "-m", "venv", "--without-pip", str(venv)], check=True)
+    site = next((venv / "lib").glob("python*/site-packages"))
+    import site as this_site  # the new venv sees this environment's packages (editable installs included)
+
+    dirs = [p for p in this_site.getsitepackages() if Path(p).is_dir()]
+    (site / "here.pth").write_text(f"import site; list(map(site.addsitedir, {dirs!r}))\n")
+    script = ("from pathzoo.harness.planner_info import describe\n"
+              "print(describe([('exact.astar', {})])[0].version)\n")
+    done = subprocess.run([str(venv / "bin" / "python"), "-c", script], capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert done.stdout.strip() == get_registry().get("planners", "exact.astar").obj.version
