@@ -10,14 +10,17 @@ storing). The estimate of :meth:`RunTimes.eta` has three parts:
    gets the mean effect);
 2. the overhead of a run is what the harness's clock shows beyond the
    planning times: ``(parallel x elapsed - sum of planning times) / runs``,
-   over the runs finished since the first one (the start-up before it,
-   workers starting and compiling, is paid once);
+   over the runs finished after the pilot once there are a few of them,
+   else since the first run finished (the start-up before it, workers
+   starting and compiling, is paid once). Pilot runs are costlier than the
+   rest: each meets a new planner and scenario (a sandboxed worker of its
+   own configuration, a warm-up), where most later runs repeat a pair;
 3. the time left is the sum over the remaining runs of overhead plus
    predicted planning time, divided by the runs executing at once.
 
 The model can only know scenarios and planners it has seen, so the harness
-runs a pilot first (:func:`pilot_first`): about a tenth of the runs, spread
-over every scenario and planner, before the rest in their usual order.
+runs a pilot first (:func:`pilot_first`): about 7 % of the runs,
+spread over every scenario and planner, before the rest in their usual order.
 """
 
 from __future__ import annotations
@@ -30,8 +33,14 @@ from typing import Callable, Hashable, Iterable, Sequence, TypeVar
 
 __all__ = ["RunTimes", "pilot_first", "PILOT_FRACTION"]
 
-PILOT_FRACTION = 0.1
+PILOT_FRACTION = 0.07
 """Share of an experiment's runs put first by :func:`pilot_first`."""
+
+STEADY_RUNS = 4
+"""Runs per executing slot that must finish after the pilot before their clock alone gives the overhead.
+
+The pilot is over, for this count, once a run of a pair already seen has
+finished: the pilot holds each (planner, scenario) pair once."""
 
 _FLOOR_S = 1e-3
 """Planning times are floored at this before taking logs (exact planners on tiny maps report ~0)."""
@@ -60,16 +69,26 @@ class RunTimes:
     first_finished: float | None = None
     finished_after_first: int = 0
     plan_s_after_first: float = 0.0
+    pilot_finished: float | None = None
+    finished_after_pilot: int = 0
+    plan_s_after_pilot: float = 0.0
 
     def add(self, planner: str, scenario: str, plan_s: float) -> None:
         """Record a run of ``planner`` on ``scenario`` that finished now, having planned for ``plan_s`` seconds."""
         seconds = max(float(plan_s), 0.0) if math.isfinite(plan_s) else 0.0
+        repeat = (planner, scenario) in self.plan_s
         self.plan_s[(planner, scenario)].append(seconds)
+        now = self.clock()
         if self.first_finished is None:
-            self.first_finished = self.clock()
+            self.first_finished = now
         else:
             self.finished_after_first += 1
             self.plan_s_after_first += seconds
+        if self.pilot_finished is not None:
+            self.finished_after_pilot += 1
+            self.plan_s_after_pilot += seconds
+        elif repeat:  # the pilot runs each pair once: the first repeated pair starts the steady state
+            self.pilot_finished = now
 
     @property
     def count(self) -> int:
@@ -77,11 +96,15 @@ class RunTimes:
         return sum(len(v) for v in self.plan_s.values())
 
     def overhead_s(self) -> float:
-        """Seconds a run costs beyond its planning time, from the clock since the first run finished."""
-        if self.first_finished is None or self.finished_after_first == 0:
+        """Seconds a run costs beyond its planning time, from the clock since the pilot (else the first run) ended."""
+        slots = max(int(self.parallel), 1)
+        if self.pilot_finished is not None and self.finished_after_pilot >= STEADY_RUNS * slots:
+            since, runs, planned = self.pilot_finished, self.finished_after_pilot, self.plan_s_after_pilot
+        elif self.first_finished is not None and self.finished_after_first > 0:
+            since, runs, planned = self.first_finished, self.finished_after_first, self.plan_s_after_first
+        else:
             return 0.0
-        busy = max(int(self.parallel), 1) * (self.clock() - self.first_finished)
-        return max(busy - self.plan_s_after_first, 0.0) / self.finished_after_first
+        return max(slots * (self.clock() - since) - planned, 0.0) / runs
 
     def effects(self) -> tuple[dict[str, float], dict[str, float], float]:
         """``(planner effects, scenario effects, mean)`` of the log planning time, fitted by alternating means."""

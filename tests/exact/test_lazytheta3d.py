@@ -7,13 +7,11 @@ import math
 import numpy as np
 import pytest
 
-from pathzoo import Budget, Scenario, Status, make_planner
+from pathzoo import Scenario
 from pathzoo.grid.lazy_theta3d import lazy_theta_path
 from pathzoo.grid.reference import anyangle_bound_3d, reference_length
-from pathzoo.metrics import LengthRatioAnyAngleBound
 from pathzoo.rules import validate_path
 from pathzoo.testing import check_scenario
-from tests.metrics.test_builtin_metrics import record
 
 
 def _length(path: np.ndarray) -> float:
@@ -51,14 +49,3 @@ def test_line_of_sight_respects_the_pitch_limit():
     assert validate_path(sc, path)  # every segment within 30 degrees
     steep = _volume(occ, (0.5, 4.5, 0.5), (7.5, 4.5, 0.5), pitch=90.0)
     assert _length(lazy_theta_path(steep)) < _length(path)  # the limit made it longer: it was enforced
-
-
-def test_metric_is_one_for_the_bound_and_may_not_exceed_the_grid_path():
-    sc = check_scenario("air3d")
-    metric = LengthRatioAnyAngleBound()
-    planner = make_planner("exact.lazytheta3d").plan(sc, budget=Budget(), rng=np.random.default_rng(0))
-    assert planner.status is Status.SOLVED
-    assert metric.compute(sc, record(planner.path)) == pytest.approx(1.0)
-    grid = make_planner("exact.astar").plan(sc, budget=Budget(), rng=np.random.default_rng(0))
-    assert metric.compute(sc, record(grid.path)) >= 1.0
-    assert math.isnan(metric.compute(check_scenario("grid2d"), record(planner.path[:, :2])))

@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from pathzoo.harness.eta import RunTimes, pilot_first
+from pathzoo.harness.eta import PILOT_FRACTION, RunTimes, pilot_first
 
 MEASURED = Path(__file__).with_name("default_run_times.csv")
 
@@ -128,7 +128,9 @@ def test_an_unseen_pair_costs_its_planner_and_scenario_effects():
 def test_pilot_spreads_over_every_scenario_and_keeps_the_rest_in_order():
     order = [(p, s, i) for s in "ABCDE" for p in "pqrstuvw" for i in range(5)]  # 200 runs
     tasks = pilot_first(order, lambda t: (t[0], t[1]))
-    pilot, rest = tasks[:20], tasks[20:]
+    k = next(i for i in range(len(tasks)) if tasks[i:] == [t for t in order if t not in tasks[:i]])
+    pilot, rest = tasks[:k], tasks[k:]
+    assert k >= PILOT_FRACTION * len(order) and len(set(pilot)) == k
     assert sorted(tasks) == sorted(order)
     assert {s for _, s, _ in pilot} == set("ABCDE") and {p for p, _, _ in pilot} == set("pqrstuvw")
     assert [s for _, s, _ in pilot] == sorted(s for _, s, _ in pilot)  # scenario by scenario: one load each
