@@ -36,7 +36,7 @@ __all__ = ["RunTimes", "pilot_first", "PILOT_FRACTION"]
 PILOT_FRACTION = 0.07
 """Share of an experiment's runs put first by :func:`pilot_first`."""
 
-STEADY_RUNS = 4
+STEADY_RUNS = 1
 """Runs per executing slot that must finish after the pilot before their clock alone gives the overhead.
 
 The pilot is over, for this count, once a run of a pair already seen has

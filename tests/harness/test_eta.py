@@ -135,3 +135,17 @@ def test_pilot_spreads_over_every_scenario_and_keeps_the_rest_in_order():
     assert {s for _, s, _ in pilot} == set("ABCDE") and {p for p, _, _ in pilot} == set("pqrstuvw")
     assert [s for _, s, _ in pilot] == sorted(s for _, s, _ in pilot)  # scenario by scenario: one load each
     assert rest == [t for t in order if t not in pilot]
+
+
+def test_after_the_pilot_the_overhead_comes_from_the_later_runs_alone():
+    """Pilot runs each meet a new pair (a sandboxed worker, a warm-up); the runs after it repeat pairs, cheaply."""
+    clock = Clock()
+    times = RunTimes(parallel=1, clock=clock)
+    for k in range(6):  # the pilot: six new pairs, 5 s of overhead each beyond 1 s of planning
+        clock.now += 6.0
+        times.add(f"p{k}", "s", 1.0)
+    assert times.overhead_s() == pytest.approx(5.0)
+    for k in range(4):  # repeats: 0.5 s of overhead beyond 1 s of planning
+        clock.now += 1.5
+        times.add(f"p{k}", "s", 1.0)
+    assert times.overhead_s() == pytest.approx(0.5)
