@@ -33,7 +33,6 @@ import contextlib
 import multiprocessing as mp
 import os
 import signal
-import sys
 import threading
 from multiprocessing import popen_forkserver, popen_spawn_posix, resource_tracker, spawn
 from multiprocessing.connection import Connection

@@ -101,19 +101,13 @@ def describe_loaded(cls: Any, params: Mapping[str, Any]) -> PlannerInfo:
 
 
 def _unloaded(planner_id: str) -> bool:
-    """Whether the planner is declared lazily and its module was never imported here.
-
-    A program planner (:class:`~pathzoo.plugins.external.ExternalPlanner`) is
-    described here: its class is pathzoo's own bridge, built from the
-    declaration without running the program, which runs only in a worker.
-    """
+    """Whether the planner is declared lazily and loading it here would import its module
+    (:attr:`~pathzoo.plugins.entries.LazyClass.import_pending`)."""
     from pathzoo.plugins.entries import LazyClass
-    from pathzoo.plugins.external import ExternalPlanner
     from pathzoo.plugins.manager import get_registry
 
     provided = get_registry().get("planners", planner_id).provided
-    return (isinstance(provided, LazyClass) and not isinstance(provided, ExternalPlanner)
-            and "_loaded" not in provided.__dict__)
+    return isinstance(provided, LazyClass) and provided.import_pending
 
 
 def _hand_registered() -> tuple[tuple[str, str], ...]:

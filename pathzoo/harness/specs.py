@@ -180,7 +180,7 @@ class PlannerSpec:
         from pathzoo.plugins.manager import get_registry
 
         provided = get_registry().get("planners", self.id).provided
-        if isinstance(provided, LazyClass) and "_loaded" not in provided.__dict__:
+        if isinstance(provided, LazyClass) and provided.import_pending:
             return b""
         return planner_by_value(self.planner_class)
 

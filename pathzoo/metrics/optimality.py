@@ -19,7 +19,20 @@ if TYPE_CHECKING:
 __all__ = ["LengthRatio", "LengthRatioAnyAngle", "LengthRatioAnyAngleBound", "ArrivalRatio"]
 
 
-class LengthRatio(PathMetric):
+class _LengthOverReference(PathMetric):
+    """A path's length (3-D pieces, as the judge cuts them) over a reference length of the scenario."""
+
+    @staticmethod
+    def reference(scenario: "Scenario") -> float:
+        """The reference length (NaN where there is none)."""
+        raise NotImplementedError
+
+    def measure(self, scenario: "Scenario", path: np.ndarray, record: "RunRecord") -> float:
+        """``length / reference``; 1 when both are 0, NaN without a reference."""
+        return _ratio(float(path_pieces(scenario, path)[0].sum()), self.reference(scenario))
+
+
+class LengthRatio(_LengthOverReference):
     """Path length divided by the reference length (1 = as short as the graph optimum).
 
     The reference is :func:`pathzoo.grid.reference.reference_length`: the
@@ -33,13 +46,10 @@ class LengthRatio(PathMetric):
     unit = "1"
     direction = "min"
     summary = "length / exact graph optimum (any-angle paths may be < 1)"
-
-    def measure(self, scenario: "Scenario", path: np.ndarray, record: "RunRecord") -> float:
-        """``length / reference``; 1 when both are 0, NaN without a reference."""
-        return _ratio(float(path_pieces(scenario, path)[0].sum()), reference_length(scenario))
+    reference = staticmethod(reference_length)
 
 
-class LengthRatioAnyAngle(PathMetric):
+class LengthRatioAnyAngle(_LengthOverReference):
     """Path length divided by the exact any-angle optimum (1 = as short as any valid path can be).
 
     The reference is :func:`pathzoo.grid.reference.anyangle_length`, the
@@ -53,13 +63,10 @@ class LengthRatioAnyAngle(PathMetric):
     unit = "1"
     direction = "min"
     summary = "length / exact any-angle optimum (grid2d up to 4096x4096; never below 1)"
-
-    def measure(self, scenario: "Scenario", path: np.ndarray, record: "RunRecord") -> float:
-        """``length / any-angle optimum``; 1 when both are 0, NaN without one."""
-        return _ratio(float(path_pieces(scenario, path)[0].sum()), anyangle_length(scenario))
+    reference = staticmethod(anyangle_length)
 
 
-class LengthRatioAnyAngleBound(PathMetric):
+class LengthRatioAnyAngleBound(_LengthOverReference):
     """Path length divided by the Lazy Theta* length in air volumes (an upper bound on the any-angle optimum).
 
     The reference is :func:`pathzoo.grid.reference.anyangle_bound_3d`. It is
@@ -71,10 +78,7 @@ class LengthRatioAnyAngleBound(PathMetric):
     unit = "1"
     direction = "min"
     summary = "length / Lazy Theta* length (air3d; an upper bound on the any-angle optimum, may be < 1)"
-
-    def measure(self, scenario: "Scenario", path: np.ndarray, record: "RunRecord") -> float:
-        """``length / bound``; NaN without one."""
-        return _ratio(float(path_pieces(scenario, path)[0].sum()), anyangle_bound_3d(scenario))
+    reference = staticmethod(anyangle_bound_3d)
 
 
 class ArrivalRatio(PathMetric):

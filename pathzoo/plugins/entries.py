@@ -78,6 +78,11 @@ class LazyClass:
     absent: ClassVar[Mapping[str, Any]] = {}
     """What a declared field is compared with when the class lacks the attribute."""
 
+    @property
+    def import_pending(self) -> bool:
+        """Whether :meth:`load` would import the declared module, running its code (it has not been loaded here)."""
+        return "_loaded" not in self.__dict__
+
     def load(self) -> type:
         """Import the class, and check it against the declaration (once; later calls return it at once).
 
@@ -148,6 +153,11 @@ class LazyPlanner(LazyClass):
     requires: Mapping[str, str] = field(default_factory=dict)
     path_model: str = "grid"
     hybrid: bool = False
+
+    @property
+    def folders(self) -> tuple[str, ...]:
+        """Folders of files the planner reads at run time besides the scenario (none; see ``ExternalPlanner``)."""
+        return ()
 
     def __post_init__(self) -> None:
         if self.path_model not in PATH_MODELS:

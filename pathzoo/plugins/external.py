@@ -113,6 +113,11 @@ class ExternalPlanner(LazyPlanner):
                                                    and os.path.isfile(arg)]
         return tuple(sorted({os.path.dirname(f) for f in files}))
 
+    @property
+    def import_pending(self) -> bool:
+        """False: building the class runs pathzoo's own bridge, never the program (that runs only in a worker)."""
+        return False
+
     def load(self) -> type:
         """The planner class (built by ``pathzoo_external.declared.planner_class`` on first use, then kept)."""
         loaded = self.__dict__.get("_loaded")

@@ -404,11 +404,11 @@ class ProcessExecutor(RunExecutor):
         self._workers.remove(worker)
 
     def _see_files(self, tasks: "list[RunTask]") -> None:
-        """Note the directories of the tasks' scenario files and program planners' files (:mod:`~pathzoo.plugins.external`).
+        """Note the directories of the tasks' scenario files and of the files their planners read (``LazyPlanner.folders``).
 
         Sandboxed workers started from now on can read them.
         """
-        from pathzoo.plugins.external import ExternalPlanner
+        from pathzoo.plugins.entries import LazyPlanner
         from pathzoo.plugins.manager import get_registry
 
         self._readable_dirs.update(os.path.dirname(os.path.abspath(t.scenario.location)) for t in tasks
@@ -416,7 +416,7 @@ class ProcessExecutor(RunExecutor):
         registry = get_registry()
         for planner_id in {t.planner.id for t in tasks}:
             entry = registry.planners.get(planner_id)
-            if entry is not None and isinstance(entry.provided, ExternalPlanner):
+            if entry is not None and isinstance(entry.provided, LazyPlanner):
                 self._readable_dirs.update(entry.provided.folders)
 
     def _start_workers(self) -> None:
