@@ -301,19 +301,13 @@ def main() -> None:
     print(f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} CPUs; CPU seconds", file=sys.stderr)
     with docs_table(args.write_docs, "aco-engine.md", "speed.py"):
         if "astar" in args.only:
-            print("### exact.astar against pathfinding's A* and SciPy's Dijkstra (targets)
-")
+            print("### exact.astar against pathfinding's A* and SciPy's Dijkstra (targets)\n")
             astar_rows(args.astar_problems, args.repeats)
         if "planners" in args.only:
-            print("### The papers' settings (information)
-")
+            print("### The papers' settings (information)\n")
             rows = ROWS + (() if args.quick else BIG_ROWS)
             planner_rows(tuple(row for row in rows if args.rows in row[0]), args.repeats)
-        print("
-### Absolute figures (information)
-
-| figure | measured |
-|---|---|")
+        print("\n### Absolute figures (information)\n\n| figure | measured |\n|---|---|")
         if "list" in args.only:
             list_planners_time()
         if "dsaco" in args.only:
