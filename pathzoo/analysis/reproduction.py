@@ -325,9 +325,9 @@ def build_experiments(
 
 
 def _param_names(planner_id: str) -> set[str]:
-    from pathzoo.plugins.manager import get_registry
+    from pathzoo.harness.planner_info import info_of
 
-    return set(get_registry().planners[planner_id].obj.params)
+    return set(info_of(planner_id, {}).declared)
 
 
 def _label_runs(paper: PaperData, runs: pd.DataFrame, experiment: Any) -> pd.DataFrame:

@@ -6,7 +6,7 @@ import abc
 import hashlib
 import json
 import math
-from dataclasses import dataclass
+from dataclasses import asdict, dataclass, fields
 from typing import TYPE_CHECKING, Any, Callable, ClassVar, Mapping, Sequence
 
 import numpy as np
@@ -78,6 +78,38 @@ class Param:
         left = "(" if self.low_open or self.low is None else "["
         right = ")" if self.high_open or self.high is None else "]"
         return f"{self.kind.__name__} in {left}{lo}, {hi}{right}"
+
+    def to_json(self) -> dict[str, Any]:
+        """The declaration as JSON values (for a harness that knows the planner only by description)."""
+        out = asdict(self)
+        for key in ("choices", "tune"):
+            if out[key] is not None:
+                out[key] = list(out[key])
+        return out
+
+    @classmethod
+    def from_json(cls, data: Any) -> "Param":
+        """The declaration :meth:`to_json` wrote.
+
+        Raises
+        ------
+        ValueError
+            ``data`` is not such a declaration (unknown or missing fields, values of the wrong type).
+        """
+        plain = (bool, int, float, str, type(None))
+        if not isinstance(data, Mapping) or set(data) != {f.name for f in fields(cls)}:
+            raise ValueError("a parameter declaration with other fields")
+        number = (int, float, type(None))
+        choices, tune = data["choices"], data["tune"]
+        if not (isinstance(data["default"], plain) and isinstance(data["doc"], str)
+                and all(isinstance(data[k], number) and not isinstance(data[k], bool) for k in ("low", "high"))
+                and all(isinstance(data[k], bool) for k in ("low_open", "high_open", "nullable", "tune_log"))
+                and (choices is None or (isinstance(choices, list) and all(isinstance(c, plain) for c in choices)))
+                and (tune is None or (isinstance(tune, list) and len(tune) == 2
+                                      and all(isinstance(t, (int, float)) and not isinstance(t, bool) for t in tune)))):
+            raise ValueError("a parameter declaration with a value of the wrong type")
+        return cls(**{**data, "choices": None if choices is None else tuple(choices),
+                      "tune": None if tune is None else (tune[0], tune[1])})
 
     def validate(self, owner: str, name: str, value: Any) -> Any:
         """Return ``value`` coerced to the parameter's type, or raise.

@@ -414,7 +414,7 @@ class Experiment:
             source=_source,
         )
         if not experiment.pairs():
-            supported = sorted({k for p in experiment.planners for k in p.planner_class.kinds})
+            supported = sorted({k for p in experiment.planners for k in p.kinds})
             given = sorted({s.kind for s in experiment.scenarios})
             raise InvalidExperimentError(
                 f"nothing to run: no planner supports any of the scenarios (the planners support "

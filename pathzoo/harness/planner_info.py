@@ -8,8 +8,9 @@ harness never imports it: :func:`describe` asks a child process
 (``python -m pathzoo.harness.planner_info``, in the OS sandbox where there
 is one, :mod:`pathzoo.harness.sandbox`) to build each configuration and
 answer, as JSON on its standard output, the version, the validated
-parameters with their defaults filled in, and the configuration's name
-(:func:`~pathzoo.core.planner.config_name`). Nothing from the child is
+parameters with their defaults filled in, the configuration's name
+(:func:`~pathzoo.core.planner.config_name`) and the parameter declarations
+(:meth:`~pathzoo.core.planner.Param.to_json`). Nothing from the child is
 unpickled, and an error comes back as the name of a pathzoo error class and
 its message, raised again here.
 
@@ -35,6 +36,7 @@ from typing import Any, Mapping, Sequence
 
 from pathzoo.core import errors
 from pathzoo.core.errors import InvalidExperimentError, InvalidParameterError, PathzooError
+from pathzoo.core.planner import Param
 
 __all__ = ["PlannerInfo", "describe", "describe_loaded", "info_of", "prefetch", "DESCRIBE_TIMEOUT_S"]
 
@@ -59,6 +61,8 @@ class PlannerInfo:
         The scenario kinds it supports.
     name : str
         ``id(param=value, ...)`` for the parameters off their defaults.
+    declared : mapping of str to Param
+        The planner's parameter declarations (bounds, choices, tuning ranges), for ``pathzoo tune``.
     """
 
     id: str
@@ -66,6 +70,7 @@ class PlannerInfo:
     params: Mapping[str, Any]
     kinds: frozenset[str]
     name: str
+    declared: Mapping[str, Param]
 
 
 _cache: dict[tuple[str, str], PlannerInfo] = {}
@@ -97,7 +102,7 @@ def describe_loaded(cls: Any, params: Mapping[str, Any]) -> PlannerInfo:
     planner = cls(**params)
     values = planner.get_params()
     return PlannerInfo(planner.id, planner.version, values, frozenset(cls.kinds),
-                       config_name(planner.id, values, cls.params))
+                       config_name(planner.id, values, cls.params), dict(cls.params))
 
 
 def _unloaded(planner_id: str) -> bool:
@@ -190,7 +195,7 @@ def describe(requests: Sequence[tuple[str, Mapping[str, Any]]],
             if "error" in answer:
                 raise _error(answer)
             info = PlannerInfo(key[0], str(answer["version"]), dict(answer["params"]), frozenset(answer["kinds"]),
-                               str(answer["name"]))
+                               str(answer["name"]), answer["declared"])
             with _lock:
                 _cache[key] = _cache[_key(info.id, info.params)] = info
     with _lock:
@@ -228,8 +233,11 @@ def _ask_child(requests: list[tuple[str, dict[str, Any]]],
             raise ValueError("not one answer per configuration")
         for answer in answers:
             if "error" not in answer and not (isinstance(answer.get("params"), dict)
-                                              and isinstance(answer.get("kinds"), list)):
-                raise ValueError("an answer without params or kinds")
+                                              and isinstance(answer.get("kinds"), list)
+                                              and isinstance(answer.get("declared"), dict)):
+                raise ValueError("an answer without params, kinds or declarations")
+            if "error" not in answer:
+                answer["declared"] = {str(n): Param.from_json(d) for n, d in answer["declared"].items()}
     except (UnicodeDecodeError, ValueError) as exc:
         tail = done.stderr.decode("utf-8", "replace").strip().splitlines()[-1:] or [f"exit code {done.returncode}"]
         raise InvalidExperimentError(f"the planners could not be described ({exc}; {tail[0]})") from None
@@ -255,7 +263,7 @@ def _main() -> None:
         try:
             info = describe_loaded(registry.get("planners", planner_id).obj, params)
             answers.append({"version": info.version, "params": _plain(info.params), "kinds": sorted(info.kinds),
-                            "name": info.name})
+                            "name": info.name, "declared": {n: p.to_json() for n, p in info.declared.items()}})
         except PathzooError as exc:
             answers.append({"error": type(exc).__name__, "message": str(exc)})
         except Exception as exc:  # noqa: BLE001 - a planner's own check that raised something else

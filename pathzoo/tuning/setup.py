@@ -150,7 +150,8 @@ def load_tuning(path: str | Path, *, trials: int | None = None) -> TuningSetup:
                 )
     spaces = []
     for i, (spec, search) in enumerate(zip(experiment.planners, searches or [None] * len(experiment.planners))):
-        cls = spec.planner_class
+        declared = spec.info.declared  # described in the sandbox: tuning imports no planner here
         where = f"{src}: field planner[{i}].search"
-        spaces.append(default_space(cls) if search is None else parse_space(search, cls, where))
+        spaces.append(default_space(spec.id, declared) if search is None
+                      else parse_space(search, spec.id, declared, where))
     return TuningSetup(experiment, train_specs, test_specs, tuple(spaces), n_trials)

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Mapping
 
 from pathzoo.core.errors import InvalidExperimentError, PathzooError
-from pathzoo.core.planner import Param, Planner
+from pathzoo.core.planner import Param
 
 if TYPE_CHECKING:
     import optuna
@@ -103,13 +103,17 @@ def _declared(name: str, param: Param, where: str) -> SearchRange:
     )
 
 
-def default_space(planner: type[Planner]) -> dict[str, SearchRange]:
-    """The parameters of ``planner`` that declare a tuning range, with those ranges."""
-    return {name: _declared(name, p, planner.id) for name, p in planner.params.items() if p.tune is not None}
+def default_space(planner_id: str, declared: Mapping[str, Param]) -> dict[str, SearchRange]:
+    """The parameters among a planner's ``declared`` ones that declare a tuning range, with those ranges.
+
+    ``declared`` is the planner's :attr:`~pathzoo.core.planner.Planner.params`, or, without importing
+    the planner, :attr:`pathzoo.harness.planner_info.PlannerInfo.declared`.
+    """
+    return {name: _declared(name, p, planner_id) for name, p in declared.items() if p.tune is not None}
 
 
-def parse_space(table: Any, planner: type[Planner], where: str) -> dict[str, SearchRange]:
-    """Read a ``[planner.search]`` table (format in the module docstring).
+def parse_space(table: Any, planner_id: str, declared: Mapping[str, Param], where: str) -> dict[str, SearchRange]:
+    """Read a ``[planner.search]`` table (format in the module docstring) for the planner's ``declared`` parameters.
 
     Raises
     ------
@@ -121,10 +125,10 @@ def parse_space(table: Any, planner: type[Planner], where: str) -> dict[str, Sea
         raise InvalidExperimentError(f"{where}: must be a table of parameter ranges")
     out: dict[str, SearchRange] = {}
     for name, spec in table.items():
-        param = planner.params.get(name)
+        param = declared.get(name)
         if param is None:
-            allowed = ", ".join(sorted(planner.params)) or "none"
-            raise InvalidExperimentError(f"{where}.{name}: {planner.id} has no such parameter; allowed: {allowed}")
+            allowed = ", ".join(sorted(declared)) or "none"
+            raise InvalidExperimentError(f"{where}.{name}: {planner_id} has no such parameter; allowed: {allowed}")
         if spec == "declared":
             out[name] = _declared(name, param, where)
         elif isinstance(spec, Mapping):

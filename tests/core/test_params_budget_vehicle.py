@@ -125,3 +125,22 @@ def test_an_attached_clock_stop_replaces_the_budget_clocks():
     stop.said = "cpu_time"
     assert clock.exhausted() and clock.stopped_by == "cpu_time"
     assert Budget(time_s=1.0, stop=stop) == Budget(time_s=1.0)  # not part of the budget's value
+
+
+def test_param_declarations_survive_json_and_wrong_ones_are_refused():
+    import json
+
+    from pathzoo.plugins.manager import get_registry
+
+    registry = get_registry()
+    for pid in registry.planners:  # every declaration the harness may be told by a planner's description
+        if registry.get("planners", pid).unavailable:
+            continue
+        for name, param in registry.get("planners", pid).obj.params.items():
+            assert Param.from_json(json.loads(json.dumps(param.to_json()))) == param, (pid, name)
+    good = Param(0.5, "x", low=0.0, high=1.0, choices=None, tune=(0.1, 0.9)).to_json()
+    for bad in ({**good, "extra": 1}, {k: v for k, v in good.items() if k != "doc"}, {**good, "low": "0"},
+                {**good, "tune": [0.1]}, {**good, "nullable": 1}, {**good, "choices": [[1]]}, {**good, "default": {}},
+                [good]):
+        with pytest.raises(ValueError):
+            Param.from_json(bad)

@@ -11,7 +11,7 @@ import dataclasses
 import numpy as np
 
 from pathzoo import Budget, Planner, PlanResult, Scenario, Status
-from pathzoo.core.planner import ProgressCallback
+from pathzoo.core.planner import Param, ProgressCallback
 from pathzoo.core.status import RunStatus
 from pathzoo.harness import runner
 
@@ -32,6 +32,7 @@ class ImportTime(Planner):
     id = "sandbox.import_time"
     summary = "import-time payload"
     kinds = frozenset({"grid2d"})
+    params = {"spin": Param(1, "unused; declares a tuning range for the tuning test", low=1, high=10, tune=(1, 3))}
 
     def plan(self, scenario: Scenario, *, budget: Budget, rng: np.random.Generator,
              progress: ProgressCallback | None = None) -> PlanResult:

@@ -162,7 +162,7 @@ def test_tuning_file_errors_name_the_field(tuning_file, tmp_path):
 def test_search_ranges_are_parsed_and_checked():
     mmas = get_registry().get("planners", "aco.mmas").obj
     space = parse_space({"alpha": [0.5, 2], "n_ants": {"low": 5, "high": 50, "log": True},
-                         "dead_end": ["die", "backtrack"], "rho": "declared"}, mmas, "f")
+                         "dead_end": ["die", "backtrack"], "rho": "declared"}, mmas.id, mmas.params, "f")
     assert (space["alpha"].low, space["alpha"].high, space["alpha"].integer) == (0.5, 2.0, False)
     assert space["n_ants"].integer and space["n_ants"].log
     assert space["dead_end"].choices == ("die", "backtrack")
@@ -177,7 +177,7 @@ def test_search_ranges_are_parsed_and_checked():
     }
     for name, spec in bad.items():
         with pytest.raises(InvalidExperimentError, match=f"f.{name}"):
-            parse_space({name: spec}, mmas, "f")
+            parse_space({name: spec}, mmas.id, mmas.params, "f")
 
 
 EXPERIMENT = """
@@ -267,7 +267,7 @@ def test_every_declared_tuning_range_is_valid_and_defaults_are_unchanged():
     declared = 0
     for pid in registry.planners:
         cls = registry.get("planners", pid).obj
-        space = default_space(cls)  # raises for a range outside the bounds
+        space = default_space(pid, cls.params)  # raises for a range outside the bounds
         declared += len(space)
         for name, r in space.items():
             assert cls.params[name].tune == (r.low, r.high)
