@@ -6,8 +6,8 @@ TOML format (every key but the planners and scenarios is optional)::
     name = "arena"              # default: the file's stem
     seed = 0                    # experiment seed; each run's seed derives from it
     seeds = 10                  # seed indices 0..9, or an explicit list [0, 4, 7]
-    budget = { cpu_s = 2.0 }    # iterations, evaluations, cpu_s, time_s (default time_s = 10)
-    timeout_s = 60              # hard wall limit per run (default budget time + 30 s)
+    budget = { cpu_s = 2.0 }    # iterations, evaluations, cpu_s, time_s (default cpu_s = 10)
+    timeout_s = 60              # hard wall limit per run (default time_s + 30 s, else 300 s)
     jobs = 4                    # worker processes (default: number of CPUs)
     db = "results.sqlite"       # result database, relative to this file
     scenarios = ["movingai.arena.*", "maps/my_scenario.toml"]
@@ -59,8 +59,9 @@ if TYPE_CHECKING:
 
 __all__ = ["Experiment", "read_toml", "DEFAULT_BUDGET", "TIMEOUT_MARGIN_S", "DEFAULT_TIMEOUT_NO_TIME_S"]
 
-DEFAULT_BUDGET = Budget(time_s=10.0)
-"""Budget when none is given."""
+DEFAULT_BUDGET = Budget(cpu_s=10.0)
+"""Budget when none is given: a CPU-time stop (the planners' own iteration counts decide their results,
+``docs/timing.md``); a wall-time budget would make results depend on the machine's load."""
 TIMEOUT_MARGIN_S = 30.0
 """Default hard limit = ``budget.time_s`` + this margin."""
 DEFAULT_TIMEOUT_NO_TIME_S = 300.0
@@ -313,7 +314,7 @@ class Experiment:
     scenarios: tuple[ScenarioSpec, ...]
     seeds: tuple[int, ...]
     budget: Budget = DEFAULT_BUDGET
-    timeout_s: float = DEFAULT_BUDGET.time_s + TIMEOUT_MARGIN_S  # type: ignore[operator]
+    timeout_s: float = DEFAULT_TIMEOUT_NO_TIME_S
     jobs: int | None = None
     db: Path | None = None
     source: str | None = field(default=None, compare=False)
@@ -349,7 +350,7 @@ class Experiment:
         seeds : int or iterable of int
             Count (indices ``0..n-1``) or explicit seed indices.
         budget : Budget, optional
-            Default ``Budget(time_s=10)``.
+            Default :data:`DEFAULT_BUDGET`, ``Budget(cpu_s=10)``.
         timeout_s : float, optional
             Default ``budget.time_s + 30`` s (300 s without a time budget).
         name, seed : str, int
