@@ -27,7 +27,7 @@ from typing import TYPE_CHECKING, Any, ClassVar, Mapping
 from pathzoo.core.errors import InvalidExperimentError, InvalidParameterError
 from pathzoo.core.planner import Param
 from pathzoo.core.scenario import SCENARIO_KINDS
-from pathzoo.plugins.entries import LazyPlanner, PluginDeclarationError, PluginEntry
+from pathzoo.plugins.entries import PATH_MODELS, LazyPlanner, PluginDeclarationError, PluginEntry
 
 if TYPE_CHECKING:
     from pathzoo.plugins.manager import Registry
@@ -40,7 +40,7 @@ EXPERIMENT_FILES = "experiment files"
 EXTERNAL_FAMILY = "external"
 """The family of the ids of planners declared in experiment files: ``external.<label>``."""
 
-TABLE_KEYS = ("command", "octave", "label", "kinds", "params", "summary")
+TABLE_KEYS = ("command", "octave", "label", "kinds", "params", "summary", "path_model")
 """The keys of a ``[[planner]]`` table that declares an external planner."""
 
 _DEFAULT_KINDS = frozenset({"grid2d"})
@@ -77,6 +77,9 @@ class ExternalPlanner(LazyPlanner):
         run by one GNU Octave process per worker.
     params : mapping of str to Param
         The parameters, sent to the program as ``problem.params``.
+    path_model : {"grid", "anyangle", "timed"}
+        The kind of path the program returns, which picks the optimum its length is compared with
+        (:class:`~pathzoo.plugins.entries.LazyPlanner`; default ``"grid"``).
     """
 
     target: str = "pathzoo_external.declared:planner_class"
@@ -94,6 +97,9 @@ class ExternalPlanner(LazyPlanner):
             raise InvalidParameterError(f"{where}: command must be a list of non-empty strings, got {self.command!r}")
         if self.octave and not self.octave.endswith(".m"):
             raise InvalidParameterError(f"{where}: octave must name a function file ending in .m, got {self.octave!r}")
+        if self.path_model not in PATH_MODELS:
+            raise InvalidParameterError(f"{where}: path_model must be one of {', '.join(PATH_MODELS)}, "
+                                        f"got {self.path_model!r}")
         bad = sorted(set(self.kinds) - set(SCENARIO_KINDS))
         if not self.kinds or bad:
             raise InvalidParameterError(
@@ -196,8 +202,12 @@ class ExternalPlanner(LazyPlanner):
         summary = table.get("summary", f"{label}: {what}")
         if not isinstance(summary, str):
             raise InvalidExperimentError(f"summary must be a string, got {summary!r}")
+        path_model = table.get("path_model", "grid")
+        if path_model not in PATH_MODELS:
+            raise InvalidExperimentError(f"path_model must be one of {', '.join(PATH_MODELS)}, got {path_model!r}")
         try:
             return cls(f"{EXTERNAL_FAMILY}.{_slug(label)}", summary, kinds=frozenset(kinds), command=argv,
+                       path_model=path_model,
                        octave=function, params={name: Param(value, "given in the experiment file")
                                                 for name, value in values.items()})
         except InvalidParameterError as exc:

@@ -37,6 +37,7 @@ def _write(tmp_path: Path, planner: str) -> Path:
     ('command = ["a"]\nparams = { when = 1979-05-27 }\n', "params ['when']: a value must be a string, number"),
     ('command = ["a"]\nid = "x.y"\n', "unknown key(s) ['id']; allowed with command or octave"),
     ('command = ["a"]\nlabel = " "\n', "label must be a non-empty string"),
+    ('command = ["a"]\npath_model = "free"\n', "path_model must be one of grid, anyangle, timed, got 'free'"),
 ])
 def test_bad_tables_name_the_file_and_the_planner(tmp_path, table, error):
     path = _write(tmp_path, table)
@@ -54,7 +55,7 @@ def test_paths_are_relative_to_the_experiment_file_and_params_are_sent(tmp_path)
     spec = exp.planners[0]
     assert (spec.id, spec.name, dict(spec.params)) == ("external.my-planner", "My Planner", {"n": 3, "w": 0.5})
     declaration = get_registry().get("planners", spec.id).provided
-    assert declaration.command == (str(program), "--fast")
+    assert declaration.command == (str(program), "--fast") and declaration.path_model == "grid"
     cls = spec.planner_class
     assert cls.kinds == frozenset({"grid2d"}) and cls.program.files() == [program]
     assert planner_by_value(cls)  # workers cannot import a class made at run time: it travels by value
@@ -135,3 +136,11 @@ def test_one_octave_process_serves_every_run_and_the_seed_decides_the_path():
     assert octave_server().proc.pid == pid  # started once, not once per run
     assert path(0) == first  # same seed, same path, after other runs in the same Octave process
     assert len({str(p) for p in [first, *paths]}) > 1  # the seed picks among the shortest paths
+
+
+def test_a_declared_path_model_picks_the_reference_of_the_analysis(tmp_path):
+    from pathzoo.analysis.path_models import path_models
+
+    path = _write(tmp_path, 'command = ["a"]\nlabel = "any"\npath_model = "anyangle"\n')
+    spec = Experiment.from_toml(path).planners[0]
+    assert path_models([spec.id]) == {spec.id: "anyangle"}
