@@ -102,6 +102,9 @@ def _early_executor(executor: str, data: dict[str, Any], args: argparse.Namespac
     worker for the first ``[[planner]]`` starting; None for other executors or a file whose check will fail anyway."""
     from pathzoo.harness.executors import ProcessExecutor, make_executor
     from pathzoo.harness.sandbox import sandbox_problem
+    from pathzoo.plugins.manager import get_registry
+
+    get_registry()  # discovered once, here, before the worker's start and the metric's check need it
 
     table = data.get("experiment", {})
     planners = data.get("planner")
@@ -122,7 +125,6 @@ def _run(args: argparse.Namespace) -> int:
     from pathzoo.harness.launch import start_server
 
     start_server()  # it imports while this process reads the experiment; the judge is its fork
-    metric_checked = _check_metric(args.metric)  # a mistyped --metric fails before any run, not after every run
     with ExitStack() as stack:
         if args.experiment is None:
             path = stack.enter_context(resources.as_file(resources.files("pathzoo.experiments") / "default.toml"))
@@ -138,6 +140,8 @@ def _run(args: argparse.Namespace) -> int:
         early = _early_executor(executor, data, args)
         if early is not None:
             stack.callback(early.shutdown)  # idempotent: run_experiment shuts it down when it ran
+        # a mistyped --metric fails before any run; checked while a child describes the planners
+        metric_checked = _check_metric(args.metric)
         try:
             exp = Experiment.from_mapping(data, path)  # the file read once
         finally:

@@ -47,6 +47,7 @@ def test_an_experiment_file_describes_its_planners_in_one_child(tmp_path, monkey
         return ask(requests, plugin_modules)
 
     monkeypatch.setattr(planner_info, "_cache", {})
+    monkeypatch.setattr(planner_info, "_unloaded", lambda planner_id: True)  # as in a fresh harness process
     monkeypatch.setattr(planner_info, "_ask_child", counted)
     exp = _experiment(tmp_path, "described")
     assert asked == [["exact.astar", "exact.dijkstra", "exact.thetastar"]]
