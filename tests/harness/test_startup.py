@@ -92,3 +92,30 @@ def test_other_sandboxed_workers_start_once_the_first_run_plans(tmp_path, monkey
     runs = run_experiment(exp, db=tmp_path / "alone.sqlite", executor=ProcessExecutor(2), progress=False)
     assert (runs.status == "solved").all() and runs.sandboxed.all()
     assert len(spawns.configs) == 3 and not any(spawns.beside_first)
+
+
+def test_the_judge_is_forked_without_holding_up_the_first_runs(monkeypatch):
+    import threading
+
+    from pathzoo import Budget
+    from pathzoo.harness import judge_worker
+    from pathzoo.harness.worker import execute_task
+
+    task = Experiment.build(planners=["exact.astar"], scenarios=["gant.fig7"], seeds=1,
+                            budget=Budget(iterations=1)).tasks()[0]
+    outcome = execute_task(task)
+    fork = threading.Event()
+    launch = judge_worker._launch_judge
+
+    def held_up():  # as a fork server that is still importing
+        assert fork.wait(60)
+        return launch()
+
+    monkeypatch.setattr(judge_worker, "_launch_judge", held_up)
+    with judge_worker.JudgeWorker() as judge:
+        judge.prepare(task)  # neither entering nor asking for a warm-up waits for the fork
+        assert judge._conn is None and judge._warm_later == [task]
+        fork.set()
+        record = judge.judge(task, outcome)
+        assert not judge._warm_later
+    assert record.status.value == "solved" and record.valid
