@@ -6,14 +6,20 @@ import argparse
 import dataclasses
 import errno
 import logging
+import os
 import sys
+import threading
+from concurrent.futures import Future
 from contextlib import ExitStack, contextmanager, nullcontext
 from importlib import resources
 from pathlib import Path
-from typing import Any, Iterator
+from typing import TYPE_CHECKING, Any, Iterator
 
 from pathzoo.cli.cmd_leaderboard import add_table_options, isolation_note, render_leaderboard
 from pathzoo.cli.errors import CommandError
+
+if TYPE_CHECKING:
+    from pathzoo.harness.executors import RunExecutor
 
 __all__ = ["add_parser", "add_execution_options", "executor_of", "positive_int", "status_list"]
 
@@ -74,14 +80,51 @@ def _harness_info_on_stderr() -> Iterator[None]:
         logger.setLevel(level)
 
 
+def _check_metric(metric: str) -> "Future[None]":
+    """Check ``--metric`` in a thread (the check imports pandas and the metrics), so that the start goes on meanwhile."""
+    done: Future[None] = Future()
+
+    def check() -> None:
+        try:
+            from pathzoo.analysis.frame import metric_info
+
+            metric_info(metric)
+            done.set_result(None)
+        except BaseException as exc:  # noqa: BLE001 - raised again where the command waits for the check
+            done.set_exception(exc)
+
+    threading.Thread(target=check, name="pathzoo-check-metric", daemon=True).start()
+    return done
+
+
+def _early_executor(executor: str, data: dict[str, Any], args: argparse.Namespace) -> "RunExecutor | None":
+    """The process executor, built before the experiment is (its planners described in a child meanwhile), with a
+    worker for the first ``[[planner]]`` starting; None for other executors or a file whose check will fail anyway."""
+    from pathzoo.harness.executors import ProcessExecutor, make_executor
+    from pathzoo.harness.sandbox import sandbox_problem
+    from pathzoo.plugins.manager import get_registry
+
+    get_registry()  # discovered once, here, before the worker's start and the metric's check need it
+
+    table = data.get("experiment", {})
+    planners = data.get("planner")
+    jobs = args.jobs or (table.get("jobs") if isinstance(table, dict) else None) or os.cpu_count() or 1
+    if executor != "process" or isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1:
+        return None
+    if args.require_sandbox and sandbox_problem():  # refused by run_experiment, after the file's own errors
+        return None
+    pool = make_executor(executor, jobs, require_sandbox=args.require_sandbox)
+    first = planners[0].get("id") if isinstance(planners, list) and planners and isinstance(planners[0], dict) else None
+    if isinstance(first, str) and isinstance(pool, ProcessExecutor):
+        pool.start_worker(first)
+    return pool
+
+
 def _run(args: argparse.Namespace) -> int:
     executor = executor_of(args)
-    from pathzoo.analysis.frame import metric_info
-
-    metric_info(args.metric)  # a mistyped --metric fails now, not after every run
     from pathzoo.harness.launch import start_server
 
-    start_server()  # it imports while this process reads the experiment; the judge and the workers are its forks
+    start_server()  # it imports while this process reads the experiment; the judge is its fork
     with ExitStack() as stack:
         if args.experiment is None:
             path = stack.enter_context(resources.as_file(resources.files("pathzoo.experiments") / "default.toml"))
@@ -91,19 +134,31 @@ def _run(args: argparse.Namespace) -> int:
                 raise CommandError(f"{path} is a directory; give an experiment TOML file")
             if not path.is_file():
                 raise FileNotFoundError(errno.ENOENT, "no such experiment file", str(path))
-        from pathzoo.harness.experiment import Experiment, resolve_seeds
+        from pathzoo.harness.experiment import Experiment, read_toml, resolve_seeds
+
+        data = read_toml(path)
+        early = _early_executor(executor, data, args)
+        if early is not None:
+            stack.callback(early.shutdown)  # idempotent: run_experiment shuts it down when it ran
+        # a mistyped --metric fails before any run; checked while a child describes the planners
+        metric_checked = _check_metric(args.metric)
+        try:
+            exp = Experiment.from_mapping(data, path)  # the file read once
+        finally:
+            metric_checked.result()
         from pathzoo.harness.runner import DEFAULT_DB, run_experiment
 
-        exp = Experiment.from_toml(path)
-    if args.seeds is not None:
-        exp = dataclasses.replace(exp, seeds=resolve_seeds(args.seeds))
-    db = args.db or exp.db or DEFAULT_DB
-    try:
-        with _harness_info_on_stderr() if args.verbose else nullcontext():
-            runs = run_experiment(exp, db=db, jobs=args.jobs, executor=executor, progress=not args.no_progress,
-                                  retry=args.retry, require_sandbox=args.require_sandbox)
-    except KeyboardInterrupt:
-        raise CommandError(f"interrupted; finished runs are stored in {db}, run the same command again to resume") from None
+        if args.seeds is not None:
+            exp = dataclasses.replace(exp, seeds=resolve_seeds(args.seeds))
+        db = args.db or exp.db or DEFAULT_DB
+        try:
+            with _harness_info_on_stderr() if args.verbose else nullcontext():
+                runs = run_experiment(exp, db=db, jobs=args.jobs, executor=early or executor,
+                                      progress=not args.no_progress, retry=args.retry,
+                                      require_sandbox=args.require_sandbox)
+        except KeyboardInterrupt:
+            raise CommandError(f"interrupted; finished runs are stored in {db}, run the same command again to resume") \
+                from None
     skipped = len(exp.skipped())
     unrun = f"; {skipped} planner x scenario pair(s) not run, the planner not supporting the scenario's kind" + (
         "" if args.verbose else " (-v lists them)") if skipped else ""

@@ -481,6 +481,9 @@ class Experiment:
             raise bad("planner", "must be [[planner]] tables")
         planners: list[PlannerSpec] = []
         base = path.resolve().parent
+        prefetch([(t["id"], t.get("params", {})) for t in planner_tables  # all in one child, not one child each
+                  if isinstance(t.get("id"), str) and isinstance(t.get("params", {}), dict)
+                  and "command" not in t and "octave" not in t])
         for i, table in enumerate(planner_tables):
             if "command" in table or "octave" in table:
                 planners.append(checked(f"planner[{i}]", lambda: _external_spec(table, base)))

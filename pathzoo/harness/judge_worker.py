@@ -33,6 +33,7 @@ plugin's import-time code never runs where verdicts are made.
 from __future__ import annotations
 
 import signal
+import threading
 import time
 import warnings
 from dataclasses import replace
@@ -68,10 +69,10 @@ def _launch_judge() -> "tuple[BaseProcess, Connection]":
 
     With ``forkserver`` this returns once the server has forked it, so after
     the server's imports (:func:`~pathzoo.harness.launch.start_server`
-    starts those early).
+    starts those early, and must have been called from a thread that lives
+    as long as the server should).
     """
     method = default_start_method()
-    start_server(method)  # from this thread: the server dies with the thread that started it
     ctx: Any = NoMainContext(method)
     parent, child = ctx.Pipe(duplex=True)
     # daemonic: it must never hold the harness's exit
@@ -163,6 +164,10 @@ class JudgeWorker:
         self._conn: Connection | None = None
         self._ready = False
         self._held = HeldScenarios()
+        self._lock = threading.Lock()
+        self._launching: threading.Thread | None = None
+        self._launch_error: BaseException | None = None
+        self._warm_later: list[RunTask] = []
 
     def __enter__(self) -> "JudgeWorker":
         self._launch()  # it starts while the first runs execute
@@ -172,14 +177,48 @@ class JudgeWorker:
         self.close()
 
     def _launch(self) -> None:
-        """Start the judge process if there is none, without waiting for its "ready"."""
-        if self._conn is None:
-            self._process, self._conn = _launch_judge()
-            self._ready, self._held = False, HeldScenarios()
+        """Start the judge process if there is none, waiting neither for the server to fork it nor for its "ready".
+
+        The fork is asked for in a thread: with ``forkserver`` it comes only
+        once the server has done its imports, and the first runs need not
+        wait for that to be queued. Warm-ups asked for meanwhile
+        (:meth:`prepare`) are sent as soon as the judge is there.
+        """
+        with self._lock:
+            if self._conn is not None or self._launching is not None:
+                return
+            start_server(default_start_method())  # from this thread: the server dies with the thread that started it
+            self._ready, self._held, self._launch_error = False, HeldScenarios(), None
+            self._launching = threading.Thread(target=self._connect, name="pathzoo-judge-launch", daemon=True)
+            self._launching.start()
+
+    def _connect(self) -> None:
+        """In the launching thread: fork the judge, then send it the warm-ups asked for meanwhile."""
+        try:
+            process, conn = _launch_judge()
+        except BaseException as exc:  # noqa: BLE001 - raised again by _launched, in the harness's thread
+            self._launch_error = exc
+            return
+        with self._lock:
+            self._process, self._conn = process, conn
+            for task in self._warm_later:
+                self._send_warm(task)
+            self._warm_later.clear()
+
+    def _launched(self) -> None:
+        """Wait for a launch in progress (raising what it raised)."""
+        launching = self._launching
+        if launching is not None:
+            launching.join()
+            self._launching = None
+            self._warm_later.clear()  # sent, or for a judge that never came
+            if self._launch_error is not None:
+                raise self._launch_error
 
     def _start(self) -> Connection:
         """The connection to a judge process that said it is ready."""
         self._launch()
+        self._launched()
         assert self._conn is not None
         if not self._ready:
             if self._receive(SETUP_TIMEOUT_S) != ("ready",):
@@ -189,6 +228,7 @@ class JudgeWorker:
         return self._conn
 
     def _stop(self) -> None:
+        self._launched()
         if self._process is not None and self._process.pid is not None:
             self._process.kill()
             self._process.join()
@@ -212,6 +252,13 @@ class JudgeWorker:
         its setup limit.
         """
         self._launch()
+        with self._lock:
+            if self._conn is None:  # still being forked: sent once it is
+                self._warm_later.append(task)
+            else:
+                self._send_warm(task)
+
+    def _send_warm(self, task: "RunTask") -> None:
         assert self._conn is not None
         try:
             self._conn.send(("warm", self._for_judge(task)))
@@ -221,6 +268,10 @@ class JudgeWorker:
 
     def close(self) -> None:
         """Stop the judge process."""
+        try:
+            self._launched()
+        except Exception:  # noqa: BLE001 - a judge that could not start has nothing to stop
+            pass
         if self._conn is not None and self._process is not None:
             try:
                 self._conn.send(None)

@@ -32,13 +32,18 @@ import tempfile
 import threading
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Mapping, Sequence
+from types import ModuleType
+from typing import TYPE_CHECKING, Any, Mapping, Sequence
 
 from pathzoo.core import errors
 from pathzoo.core.errors import InvalidExperimentError, InvalidParameterError, PathzooError
 from pathzoo.core.planner import Param
 
-__all__ = ["PlannerInfo", "describe", "describe_loaded", "info_of", "prefetch", "DESCRIBE_TIMEOUT_S"]
+if TYPE_CHECKING:
+    from pathzoo.plugins.manager import Registry
+
+__all__ = ["PlannerInfo", "describe", "describe_loaded", "extra_plugin_modules", "info_of", "prefetch",
+           "DESCRIBE_TIMEOUT_S"]
 
 DESCRIBE_TIMEOUT_S = 300.0
 """Limit on the child that imports and describes the planners."""
@@ -115,8 +120,26 @@ def _unloaded(planner_id: str) -> bool:
     return isinstance(provided, LazyClass) and provided.import_pending
 
 
+def extra_plugin_modules(registry: "Registry") -> tuple[tuple[str, str], ...]:
+    """``(name, module)`` of plugins registered by hand (not entry points) that workers must import.
+
+    Entry-point plugins are told apart by what the registry recorded at
+    discovery, not by the entry points installed now, so a distribution
+    uninstalled since discovery is not mistaken for a hand-registered module.
+    Only module plugins can be re-imported by name; a plugin object that is
+    not an importable module stays unknown to workers, and its planners crash
+    there with an "unknown planner" message (the ``inline`` executor works).
+    """
+    return tuple(
+        (name, plugin.__name__)
+        for name, plugin in registry.pm.list_name_plugin()
+        if name not in registry.entry_point_plugins
+        and isinstance(plugin, ModuleType)
+        and plugin.__name__ != "__main__"
+    )
+
+
 def _hand_registered() -> tuple[tuple[str, str], ...]:
-    from pathzoo.harness.runner import extra_plugin_modules
     from pathzoo.plugins.manager import get_registry
 
     return extra_plugin_modules(get_registry())
@@ -176,7 +199,7 @@ def describe(requests: Sequence[tuple[str, Mapping[str, Any]]],
         The configurations.
     plugin_modules : tuple of (name, module)
         Plugins registered by hand in this process, for the child to register
-        too (:func:`pathzoo.harness.runner.extra_plugin_modules`).
+        too (:func:`extra_plugin_modules`).
 
     Raises
     ------

@@ -21,7 +21,6 @@ import warnings
 from collections import Counter
 from concurrent.futures import FIRST_COMPLETED, Future, wait
 from pathlib import Path
-from types import ModuleType
 from typing import TYPE_CHECKING, Any, Iterator
 
 from pathzoo.core.errors import InvalidExperimentError
@@ -31,6 +30,7 @@ from pathzoo.harness.bounds import bound_outcome
 from pathzoo.harness.eta import RunTimes, pilot_first
 from pathzoo.harness.judge import unjudged
 from pathzoo.harness.judge_worker import JUDGE_TIMEOUT_S, JudgeWorker
+from pathzoo.harness.planner_info import extra_plugin_modules
 from pathzoo.harness.store import ResultStore, read_runs
 
 if TYPE_CHECKING:
@@ -48,25 +48,6 @@ DEFAULT_DB = "pathzoo-results.sqlite"
 """Result database used when neither the call nor the experiment names one."""
 
 log = logging.getLogger("pathzoo.harness")
-
-
-def extra_plugin_modules(registry: "Registry") -> tuple[tuple[str, str], ...]:
-    """``(name, module)`` of plugins registered by hand (not entry points) that workers must import.
-
-    Entry-point plugins are told apart by what the registry recorded at
-    discovery, not by the entry points installed now, so a distribution
-    uninstalled since discovery is not mistaken for a hand-registered module.
-    Only module plugins can be re-imported by name; a plugin object that is
-    not an importable module stays unknown to workers, and its planners crash
-    there with an "unknown planner" message (the ``inline`` executor works).
-    """
-    return tuple(
-        (name, plugin.__name__)
-        for name, plugin in registry.pm.list_name_plugin()
-        if name not in registry.entry_point_plugins
-        and isinstance(plugin, ModuleType)
-        and plugin.__name__ != "__main__"
-    )
 
 
 def _call_hook(registry: "Registry", name: str, **kwargs: Any) -> None:

@@ -68,12 +68,14 @@ is sent to each worker once; later tasks on it refer to it by digest
 (:func:`~pathzoo.harness.worker.keep_payload`).
 
 Unsandboxed workers all start when the executor is built (sandboxed ones when
-a run of their configuration is queued), and the runner keeps one run per
+a run of their configuration is queued, or earlier for a planner named to
+:meth:`ProcessExecutor.start_worker`), and the runner keeps one run per
 worker queued here (:attr:`lookahead`), so a worker goes from one run to
 the next without waiting for the harness. The very first run goes alone,
-though: the other workers get nothing until it starts planning or ends, so that its setup
-(plugins, planner class, scenario, warm-up) shares the cores with the judge's
-start only, and the first result comes sooner.
+though: the other workers get nothing, and no other sandboxed worker starts,
+until it starts planning or ends, so that its setup (interpreter, plugins,
+planner class, scenario, warm-up) shares the cores with the judge's start
+only, and the first result comes sooner.
 """
 
 from __future__ import annotations
@@ -291,6 +293,7 @@ class ProcessExecutor(RunExecutor):
         self._start_failures = 0
         self._lock = threading.Lock()
         self._pending: deque[tuple[RunTask, Future[RunOutcome]]] = deque()
+        self._early: list[str] = []  # planner ids of start_worker, for the monitor to start
         self._workers: list[_Worker] = []
         self._first_alone = self.capacity > 1  # see _dispatch
         self._closing = False
@@ -309,6 +312,22 @@ class ProcessExecutor(RunExecutor):
             self._pending.append((task, future))
         self._wake_w.send(None)
         return future
+
+    def start_worker(self, planner_id: str) -> None:
+        """Start a sandboxed worker for ``planner_id`` now, before its configuration is known.
+
+        Call it while the experiment is still being read (its planners
+        described, :mod:`~pathzoo.harness.planner_info`): the worker's
+        interpreter starts meanwhile, and the first queued run of that
+        planner, whatever its parameters, takes it (it then runs that
+        configuration only). Nothing when the workers are not sandboxed
+        (they all start with the executor) or the pool is full.
+        """
+        if not self.sandboxed:
+            return
+        with self._lock:
+            self._early.append(planner_id)
+        self._wake_w.send(None)
 
     def prepare(self, tasks: "list[RunTask]") -> None:
         """Note where the experiment's scenario files are (a sandboxed worker sees only those directories)."""
@@ -408,26 +427,41 @@ class ProcessExecutor(RunExecutor):
 
         Sandboxed workers started from now on can read them.
         """
+        self._readable_dirs.update(os.path.dirname(os.path.abspath(t.scenario.location)) for t in tasks
+                                   if t.scenario.source == "file")
+        for planner_id in {t.planner.id for t in tasks}:
+            self._see_planner(planner_id)
+
+    def _see_planner(self, planner_id: str) -> None:
+        """Note the folders the planner reads (``LazyPlanner.folders``), for the sandboxed workers started from now on."""
         from pathzoo.plugins.entries import LazyPlanner
         from pathzoo.plugins.manager import get_registry
 
-        self._readable_dirs.update(os.path.dirname(os.path.abspath(t.scenario.location)) for t in tasks
-                                   if t.scenario.source == "file")
-        registry = get_registry()
-        for planner_id in {t.planner.id for t in tasks}:
-            entry = registry.planners.get(planner_id)
-            if entry is not None and isinstance(entry.provided, LazyPlanner):
-                self._readable_dirs.update(entry.provided.folders)
+        entry = get_registry().planners.get(planner_id)
+        if entry is not None and isinstance(entry.provided, LazyPlanner):
+            self._readable_dirs.update(entry.provided.folders)
 
     def _start_workers(self) -> None:
-        """Start workers for the queued runs that no idle or starting worker of their configuration will take."""
-        starting = Counter(w.config for w in self._workers if not w.was_ready)
+        """Start the workers asked for by :meth:`start_worker`, then those for the queued runs that no idle or starting
+        worker of their configuration will take; only the first queued run's until it plans (see :meth:`_dispatch`)."""
         with self._lock:
+            early, self._early = self._early, []
             queued = [task for task, _ in self._pending]
-        for task in queued:
+        for planner_id in early:
+            if len(self._workers) < self.capacity and not self._closing:
+                with self._lock:
+                    self._see_planner(planner_id)
+                self._spawn((planner_id, ""))
+        if self._first_alone and any(w.task is not None for w in self._workers):
+            return
+        starting = Counter(w.config for w in self._workers if not w.was_ready)
+        for task in queued[:1] if self._first_alone else queued:
             config = configuration(task)
             if starting[config] > 0:
                 starting[config] -= 1
+                continue
+            if starting[(config[0], "")] > 0:  # started early for this planner: it takes this configuration
+                starting[(config[0], "")] -= 1
                 continue
             if starting[None] > 0 and not self.sandboxed:
                 starting[None] -= 1
@@ -452,8 +486,8 @@ class ProcessExecutor(RunExecutor):
         with self._lock:
             for i, (task, future) in enumerate(self._pending):
                 config = configuration(task)
-                worker = next((w for w in self._workers if w.idle and w.task is None and w.config == config
-                               and self._sees(w, task)), None)
+                worker = next((w for w in self._workers if w.idle and w.task is None
+                               and w.config in (config, (config[0], "")) and self._sees(w, task)), None)
                 if worker is None and not self.sandboxed:
                     worker = next((w for w in self._workers if w.idle and w.task is None and w.config is None), None)
                 if worker is not None:

@@ -1,0 +1,121 @@
+"""The start of an experiment: planners described in one child, an early sandboxed worker, the first run alone."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from pathzoo.harness import planner_info
+from pathzoo.harness.executors import ProcessExecutor
+from pathzoo.harness.experiment import Experiment
+from pathzoo.harness.runner import run_experiment
+from pathzoo.harness.sandbox import sandbox_problem
+
+EXPERIMENT = """
+[experiment]
+name = "{name}"
+seeds = 1
+budget = {{ iterations = 1 }}
+scenarios = ["movingai.random-32-32-20.b10.13"]
+
+[[planner]]
+id = "exact.astar"
+
+[[planner]]
+id = "exact.dijkstra"
+
+[[planner]]
+id = "exact.thetastar"
+"""
+
+sandboxed = pytest.mark.skipif(bool(sandbox_problem()), reason=f"no OS sandbox here: {sandbox_problem()}")
+
+
+def _experiment(tmp_path: Path, name: str) -> Experiment:
+    path = tmp_path / f"{name}.toml"
+    path.write_text(EXPERIMENT.format(name=name))
+    return Experiment.from_toml(path)
+
+
+def test_an_experiment_file_describes_its_planners_in_one_child(tmp_path, monkeypatch):
+    asked: list[list[str]] = []
+    ask = planner_info._ask_child
+
+    def counted(requests, plugin_modules):
+        asked.append([planner_id for planner_id, _ in requests])
+        return ask(requests, plugin_modules)
+
+    monkeypatch.setattr(planner_info, "_cache", {})
+    monkeypatch.setattr(planner_info, "_unloaded", lambda planner_id: True)  # as in a fresh harness process
+    monkeypatch.setattr(planner_info, "_ask_child", counted)
+    exp = _experiment(tmp_path, "described")
+    assert asked == [["exact.astar", "exact.dijkstra", "exact.thetastar"]]
+    assert [p.id for p in exp.planners] == ["exact.astar", "exact.dijkstra", "exact.thetastar"]
+
+
+class _Spawns:
+    """Records each sandboxed worker start: its configuration, and whether it started while the first run had
+    not planned yet with another worker there already."""
+
+    def __init__(self, monkeypatch: pytest.MonkeyPatch) -> None:
+        self.configs: list[tuple[str, str] | None] = []
+        self.beside_first: list[bool] = []
+        spawn = ProcessExecutor._spawn
+
+        def recorded(executor: ProcessExecutor, config: tuple[str, str] | None):  # type: ignore[no-untyped-def]
+            self.configs.append(config)
+            self.beside_first.append(executor._first_alone and bool(executor._workers))
+            return spawn(executor, config)
+
+        monkeypatch.setattr(ProcessExecutor, "_spawn", recorded)
+
+
+@sandboxed
+def test_an_early_worker_takes_the_first_run_of_its_planner(tmp_path, monkeypatch):
+    exp = _experiment(tmp_path, "early")
+    spawns = _Spawns(monkeypatch)
+    pool = ProcessExecutor(1)
+    pool.start_worker("exact.astar")
+    runs = run_experiment(exp, db=tmp_path / "early.sqlite", executor=pool, progress=False)
+    assert (runs.status == "solved").all() and runs.sandboxed.all()
+    astar = next(p for p in exp.planners if p.id == "exact.astar")
+    assert spawns.configs[0] == ("exact.astar", "")
+    assert ("exact.astar", astar.params_hash) not in spawns.configs  # the early worker ran it: no second one
+    assert len(spawns.configs) == 3
+
+
+@sandboxed
+def test_other_sandboxed_workers_start_once_the_first_run_plans(tmp_path, monkeypatch):
+    exp = _experiment(tmp_path, "alone")
+    spawns = _Spawns(monkeypatch)
+    runs = run_experiment(exp, db=tmp_path / "alone.sqlite", executor=ProcessExecutor(2), progress=False)
+    assert (runs.status == "solved").all() and runs.sandboxed.all()
+    assert len(spawns.configs) == 3 and not any(spawns.beside_first)
+
+
+def test_the_judge_is_forked_without_holding_up_the_first_runs(monkeypatch):
+    import threading
+
+    from pathzoo import Budget
+    from pathzoo.harness import judge_worker
+    from pathzoo.harness.worker import execute_task
+
+    task = Experiment.build(planners=["exact.astar"], scenarios=["gant.fig7"], seeds=1,
+                            budget=Budget(iterations=1)).tasks()[0]
+    outcome = execute_task(task)
+    fork = threading.Event()
+    launch = judge_worker._launch_judge
+
+    def held_up():  # as a fork server that is still importing
+        assert fork.wait(60)
+        return launch()
+
+    monkeypatch.setattr(judge_worker, "_launch_judge", held_up)
+    with judge_worker.JudgeWorker() as judge:
+        judge.prepare(task)  # neither entering nor asking for a warm-up waits for the fork
+        assert judge._conn is None and judge._warm_later == [task]
+        fork.set()
+        record = judge.judge(task, outcome)
+        assert not judge._warm_later
+    assert record.status.value == "solved" and record.valid
