@@ -545,7 +545,7 @@ class WalkEngine:
         else:  # the generic kernel keeps each ant's node and heading between calls
             cur = np.zeros(n_ants, dtype=np.int64)
             prev = np.zeros(n_ants, dtype=np.int64)
-        if local:
+        if local and rules.tau_exp != 1.0:  # powers are kept only for another exponent than 1
             self._number_colony(trail.x.size)
         _seed(seed)
         while True:
