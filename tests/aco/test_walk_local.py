@@ -122,11 +122,14 @@ def test_same_walks_with_q0_a_sum_rule_and_a_pure_decay():
     problem = ColonyProblem(walled_grid())
     g = problem.graph
     _assert_same(problem, _rules(problem, q0=0.9), _trail(problem))
+    ties = WalkRules.product(1.0, np.ones(g.n_edges), 1.0, q0=0.9, local_keep=0.9, max_steps=10**9)
+    _assert_same(problem, ties, Pheromone(g.n_edges, 1.0))  # equal weights: q0 takes the first of the heaviest
     _assert_same(problem, WalkRules.additive(0.4, 1.0 / g.length, 0.6, np.full(g.n_edges, 0.5), max_steps=10**9,
                                              local_keep=0.8), _trail(problem, True, (0.01, 1.0)))
     zero = Pheromone(problem.n_nodes, 0.0, on_nodes=True)  # every trail 0: the heuristic-only fallback
-    got = _assert_same(problem, _rules(problem, 3.0, local_add=0.0), zero)
-    assert np.all(got["flags1"] == REACHED)
+    for q0 in (0.0, 0.5):  # the heaviest of the heuristic-only candidates too
+        got = _assert_same(problem, _rules(problem, 3.0, local_add=0.0, q0=q0), zero)
+        assert np.all(got["flags1"] == REACHED)
 
 
 @pytest.mark.slow

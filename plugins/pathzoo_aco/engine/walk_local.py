@@ -88,6 +88,8 @@ def local_colony(indices, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, w_add,
             nc = 0
             n_open = 0  # allowed neighbours, whatever their weight
             total_w = 0.0
+            best_w = -1.0
+            best_i = 0
             for q in range(e0, e1):
                 j = adj_node[q]
                 if stamp[j] == wid:  # most neighbours on a long walk: test before touching the trail
@@ -122,6 +124,9 @@ def local_colony(indices, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, w_add,
                 if use_turn:
                     w *= f
                 if w > 0.0:
+                    heavier = w > best_w  # the first of the heaviest, kept without a branch for the q0 rule
+                    best_w = w if heavier else best_w
+                    best_i = nc if heavier else best_i
                     cand_q[nc] = q
                     cand_w[nc] = w
                     total_w += w
@@ -129,6 +134,10 @@ def local_colony(indices, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, w_add,
             if nc == 0 and n_open > 0:  # maybe every trail is 0: weigh the allowed edges by the heuristic alone
                 nc, total_w = heuristic_candidates(e0, e1, adj_node, adj_offset, w_mul, w_add, turn, pv, stamp, wid,
                                                    cand_q, cand_w)
+                for i in range(nc):
+                    if cand_w[i] > best_w:
+                        best_w = cand_w[i]
+                        best_i = i
             if nc == 0:  # dead end
                 flag, c, d, pv = step_back(backtrack, d, pv, indices, stack_e, stack_prev, start, no_prev, use_turn)
                 if flag != RUNNING:
@@ -141,7 +150,10 @@ def local_colony(indices, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, w_add,
                     if not on_nodes and adj_edge is None:  # the edge trail in list order
                         prefetch(x, ahead)
                         prefetch(x, ahead + 7)  # its first eight entries span one or two lines
-                pick = cand_q[choose(cand_w, nc, total_w, q0)]
+                if q0 > 0.0 and np.random.random() < q0:  # :func:`choose`'s draws, its heaviest found in the scan
+                    pick = cand_q[best_i]
+                else:
+                    pick = cand_q[choose(cand_w, nc, total_w, 0.0)]
                 c, sel, d, pv = take_edge(pick, d, pv, adj_node, adj_edge, adj_offset, horizontal, use_turn, stamp,
                                           wid, stack_e, stack_prev)
                 if do_local:
