@@ -18,7 +18,9 @@ over the ant-steps they made, so set-up (tables, trails, the path) does not
 count. IACA and DSACO's step rule run on their papers' maps (on 8room_000 the
 first fails and the second stops after one colony), with the floor timed on
 that map's graph. Each figure is the minimum of ``--repeats`` runs of
-``--floor-colonies`` colonies, printed beside its target (issue 26): at most 3x the floor for AS, MMAS, G-Ant and DSACO under
+``--floor-colonies`` colonies, its floor the minimum of as many floor walks
+timed one before each run (so that both see the same load on a shared
+machine), printed beside its target (issue 26): at most 3x the floor for AS, MMAS, G-Ant and DSACO under
 the graph rule, at most 5x for ACS, IACA, DSACO under the paper's step rule
 and FGDACO's timed walks (GGACO is shown for information).
 
@@ -143,14 +145,18 @@ def floor_walk(indptr: np.ndarray, indices: np.ndarray, start: int, n_steps: int
     return node
 
 
-def floor_ns(scenario: Scenario, n_steps: int, repeats: int) -> float:
+FLOOR_STEPS = 20_000_000
+"""Steps of one timed floor walk."""
+
+
+def floor_ns(scenario: Scenario, n_steps: int, repeats: int, seed: int = 0) -> float:
     """CPU nanoseconds per step of :func:`floor_walk` on the scenario's graph (minimum of ``repeats``)."""
     g = scenario.graph
     floor_walk(g.indptr, g.indices, scenario.start_node, 10, 0)
     best = math.inf
     for r in range(repeats):
         started = time.process_time()
-        floor_walk(g.indptr, g.indices, scenario.start_node, n_steps, r)
+        floor_walk(g.indptr, g.indices, scenario.start_node, n_steps, seed + r)
         best = min(best, time.process_time() - started)
     return 1e9 * best / n_steps
 
@@ -190,33 +196,32 @@ def walk_cpu() -> Iterator[list[float]]:
             setattr(owner, name, fn)
 
 
-def walk_ns(planner_id: str, scenario: Scenario, colonies: int, repeats: int, **params) -> float:
-    """CPU ns per ant-step of the compiled walks over ``colonies`` colonies (minimum of ``repeats`` runs)."""
-    run(planner_id, scenario, 1, n_ants=1, **params)  # compile or load the kernels
-    best = math.inf
-    for _ in range(repeats):
-        with walk_cpu() as spent:
-            result, _, _ = run(planner_id, scenario, colonies, **params)
-        if result.extras["ant_steps"]:
-            best = min(best, 1e9 * spent[0] / result.extras["ant_steps"])
-    return best
+def colony_ns(planner_id: str, scenario: Scenario, colonies: int, **params) -> float:
+    """CPU ns per ant-step of the compiled walks of one run of ``colonies`` colonies (kernels compiled already)."""
+    with walk_cpu() as spent:
+        result, _, _ = run(planner_id, scenario, colonies, **params)
+    steps = result.extras["ant_steps"]
+    return 1e9 * spent[0] / steps if steps else math.inf
 
 
 def floor_table(colonies: int, repeats: int) -> None:
     """Each colony's ns per ant-step beside the floor's, measured in this process on the same graph."""
     print("## ns per ant-step against the floor\n")
     print("| colony | scenario | ns per ant-step | floor (ns) | x floor | target | met |\n|---|---|---|---|---|---|---|")
-    floors: dict[str, tuple[Scenario, float]] = {}
+    scenarios: dict[str | None, Scenario | None] = {}
     for label, pid, sid, params, target in FLOOR_ROWS:
-        if sid not in floors:
-            scenario = room512() if sid is None else registered(sid)
-            if scenario is None:
-                print(f"| {label} | {sid} not installed | | | | | |")
-                continue
-            scenario.graph
-            floors[sid] = scenario, floor_ns(scenario, 20_000_000, repeats)
-        scenario, floor = floors[sid]
-        ns = walk_ns(pid, scenario, colonies, repeats, **params)
+        if sid not in scenarios:
+            scenarios[sid] = room512() if sid is None else registered(sid)
+        scenario = scenarios[sid]
+        if scenario is None:
+            print(f"| {label} | {sid} not installed | | | | | |")
+            continue
+        scenario.graph
+        run(pid, scenario, 1, n_ants=1, **params)  # compile or load the kernels
+        floor, ns = math.inf, math.inf
+        for r in range(repeats):  # the floor beside each run, so both see the same load on a shared machine
+            floor = min(floor, floor_ns(scenario, FLOOR_STEPS, 1, seed=r))
+            ns = min(ns, colony_ns(pid, scenario, colonies, **params))
         ratio = ns / floor
         verdict = "-" if target is None else ("yes" if ratio <= target else "no")
         shown = "information" if target is None else f"<= {target:g}x"

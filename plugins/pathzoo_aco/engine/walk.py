@@ -28,6 +28,7 @@ from pathzoo_aco.engine.pheromone import Pheromone
 from pathzoo_aco.engine.prefetch import AHEAD, prefetch
 from pathzoo_aco.engine.problem import ColonyProblem
 from pathzoo_aco.engine.rules import WalkRules
+from pathzoo_aco.engine.walk_local import local_colony
 from pathzoo_aco.engine.walk_weighted import Adjacency, choose, unsigned_lists, weighted_colony
 
 __all__ = ["Walks", "WalkEngine", "REACHED", "STUCK", "STEP_CAP", "EXHAUSTED", "ABORTED", "OUTRUN"]
@@ -422,6 +423,10 @@ class WalkEngine:
         self.offset_id = problem.offset_id_small  # moves: compact
         self.indices = problem.indices32  # half the memory traffic of the int64 CSR arrays
         self.weights = np.zeros(0)  # per-colony weights of the listed edges (see :func:`_fill_weights`)
+        self.powers = np.zeros(0)  # trail powers kept by :func:`local_colony`, valid where stamped with the colony
+        self.power_stamp = np.zeros(0, dtype=np.int32)
+        self.colony = 0
+        self.lists: tuple = (None, ())  # an adjacency and its lists as the specialised kernels read them
         self.total_steps = 0
 
     def adjacency(self, rules: WalkRules) -> Adjacency:
@@ -480,6 +485,14 @@ class WalkEngine:
                       trail.on_nodes, rules.tau_exp)
         return self.weights
 
+    def _number_colony(self, entries: int) -> None:
+        """A new number for the coming colony of :func:`local_colony`, so the powers it keeps start invalid."""
+        if self.power_stamp.size != entries or self.colony >= 2**31 - 1:
+            self.powers = np.zeros(entries)
+            self.power_stamp = np.zeros(entries, dtype=np.int32)
+            self.colony = 0
+        self.colony += 1
+
     def walk(self, rules: WalkRules, trail: Pheromone, n_ants: int, seed: int,
              allowance: int = 2**62) -> Walks:
         """Send ``n_ants`` ants from the start; the trail is changed in place by local rules.
@@ -500,11 +513,11 @@ class WalkEngine:
         """
         p = self.problem
         if not rules.race:  # a byte per node (a quarter of the cache footprint of int32), int32 for > 255 ants
-            dtype = np.uint8 if n_ants <= 255 else np.int32
+            dtype, largest = (np.uint8, 255) if n_ants <= 255 else (np.int32, 2**31 - 1)
             if self.stamps.dtype != dtype:
                 self.stamps = np.zeros_like(self.stamps, dtype=dtype)
                 self.walk_base = 1
-            if self.walk_base + n_ants > np.iinfo(dtype).max + 1:  # the walk ids would overflow: start afresh
+            if self.walk_base + n_ants > largest + 1:  # the walk ids would overflow: start afresh
                 self.stamps[:] = 0
                 self.walk_base = 1
         if rules.race and len(self.race_stamps) < n_ants:
@@ -515,23 +528,40 @@ class WalkEngine:
             prevs = np.zeros((n_ants, 256 if rules.turn.size else 1), dtype=np.int64)
         else:
             stacks, prevs = self.stack_e, self.stack_prev
-        cur = np.zeros(n_ants, dtype=np.int64)
         depth = np.zeros(n_ants, dtype=np.int64)
-        prev = np.zeros(n_ants, dtype=np.int64)
         steps = np.zeros(n_ants, dtype=np.int64)
-        flags = np.full(n_ants, FRESH, dtype=np.int8)
+        flags = np.empty(n_ants, dtype=np.int8)
+        flags.fill(FRESH)
         counters = np.zeros(4, dtype=np.int64)
         offsets = np.zeros(n_ants + 1, dtype=np.int64)
         adjacency = self.adjacency(rules)
         weights = self.colony_weights(rules, trail)
         weighted = weights is not None and not rules.race  # the common case, compiled on its own (walk_weighted.py)
-        lists = unsigned_lists(p, self.indices, adjacency) if weighted else ()
+        local = weights is None and not rules.race and rules.pre_add.size == 0  # local updates (walk_local.py)
+        if weighted or local:
+            if self.lists[0] is not adjacency:  # the same lists serve every colony of a run
+                self.lists = (adjacency, unsigned_lists(p, self.indices, adjacency))
+            lists = self.lists[1]
+        else:  # the generic kernel keeps each ant's node and heading between calls
+            cur = np.zeros(n_ants, dtype=np.int64)
+            prev = np.zeros(n_ants, dtype=np.int64)
+        if local and rules.tau_exp != 1.0:  # powers are kept only for another exponent than 1
+            self._number_colony(trail.x.size)
         _seed(seed)
         while True:
             if weighted:
                 status = weighted_colony(
                     *lists, weights, p.horizontal_offsets, rules.turn,
                     rules.q0, p.start, p.goal, rules.backtrack, rules.max_steps, allowance, self.walk_base,
+                    self.stamps[0], stacks[0], prevs[0], self.cand_w, depth, steps, flags, counters,
+                    self.flat, offsets,
+                )
+            elif local:
+                status = local_colony(
+                    *lists, p.horizontal_offsets, rules.turn, trail.x, trail.scale, trail.lo, trail.hi,
+                    trail.on_nodes, rules.tau_exp, rules.q0, rules.local_keep, rules.local_add,
+                    self.powers, self.power_stamp, self.colony,
+                    p.start, p.goal, rules.backtrack, rules.max_steps, allowance, self.walk_base,
                     self.stamps[0], stacks[0], prevs[0], self.cand_w, depth, steps, flags, counters,
                     self.flat, offsets,
                 )
