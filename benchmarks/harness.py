@@ -49,6 +49,12 @@ printed first, and the CPU figures are the ones to compare.
   is the sandbox's fixed cost per run (target: under 20 CPU ms); the
   sandboxed worker's start (a new interpreter in bubblewrap, once per
   planner configuration and worker) is part of the start-up, not of it.
+- *scenario integrity check*: in this process, on a 512x512 MovingAI map
+  (``movingai.8room_000``), the worker's check after each run
+  (:meth:`pathzoo.harness.sealed.ScenarioSeal.intact` on the sealed
+  scenario) against ``exact.astar``'s ``plan()`` on the same scenario
+  (CPU time, minimum of repeats), with the full byte digest the check
+  replaces beside it for information.
 - *short runs*: ``--short`` runs of ``aco.as`` (1000 iterations, about 0.15 CPU s each) on the same
   problem at jobs=1 and jobs=2, where the planner's time dominates: the
   throughput ratio the target is about.
@@ -82,6 +88,8 @@ JOBS_RATIO_TARGET = 1.8
 TINY_SCENARIO = "movingai.random-32-32-20.b10.13"
 SHORT_ITERATIONS = 1000
 SANDBOX_COST_TARGET_MS = 20.0
+INTEGRITY_SCENARIO = "movingai.8room_000.b144.1430"
+INTEGRITY_TARGET = 0.05
 
 _TINY_SCRIPT = """
 import sys, time
@@ -333,6 +341,39 @@ def sandbox_cost(tmp: Path, n: int, few: int) -> None:
           f"| {cost:.1f} CPU ms | < {SANDBOX_COST_TARGET_MS:g} ms | {verdict(cost < SANDBOX_COST_TARGET_MS)} |")
 
 
+def _min_cpu_s(call: "Callable[[], object]", repeats: int) -> float:
+    """The least CPU time of ``repeats`` calls (the least disturbed by other load)."""
+    best = float("inf")
+    for _ in range(repeats):
+        c0 = time.process_time()
+        call()
+        best = min(best, time.process_time() - c0)
+    return best
+
+
+def integrity_check(repeats: int = 30) -> None:
+    """Print the per-run scenario check's CPU time as a fraction of A*'s ``plan()`` on a 512x512 map."""
+    import numpy as np
+
+    from pathzoo import Budget, make_planner
+    from pathzoo.harness.digest import scenario_digest, warm
+    from pathzoo.harness.sealed import seal
+    from pathzoo.plugins.manager import get_registry
+
+    scenario = warm(get_registry().get("scenarios", INTEGRITY_SCENARIO).obj.load())
+    full = _min_cpu_s(lambda: scenario_digest(scenario), 3)
+    sealed = seal(scenario)
+    planner = make_planner("exact.astar")
+    planner.plan(scenario, budget=Budget(), rng=np.random.default_rng(0))  # numba's code loaded
+    plan = _min_cpu_s(lambda: planner.plan(scenario, budget=Budget(), rng=np.random.default_rng(0)), repeats)
+    check = _min_cpu_s(sealed.intact, repeats * 10)
+    ratio = check / plan
+    print(f"| scenario integrity check per run ({INTEGRITY_SCENARIO}, {'x'.join(map(str, scenario.shape))}, "
+          f"{sealed.sealed} arrays sealed: the check {check * 1e6:.0f} CPU us, `exact.astar` `plan()` "
+          f"{plan * 1e3:.2f} CPU ms; the full byte digest it replaces {full * 1e3:.1f} ms) | {ratio:.1%} of `plan()` "
+          f"| <= {INTEGRITY_TARGET:.0%} | {verdict(ratio <= INTEGRITY_TARGET)} |")
+
+
 def verdict(ok: bool) -> str:
     return "met" if ok else "not met"
 
@@ -354,8 +395,12 @@ def main() -> None:
     parser.add_argument("--external", type=positive_int, default=40,
                         help="runs of each 1 ms planner behind the external protocol (default 40)")
     parser.add_argument("--sandbox-only", action="store_true", help="only the sandbox's cost per run")
+    parser.add_argument("--integrity-only", action="store_true", help="only the scenario integrity check")
     add_write_docs_option(parser, "harness.md")
     args = parser.parse_args()
+    if args.integrity_only:
+        integrity_check()
+        return
     if args.sandbox_only:
         with tempfile.TemporaryDirectory(prefix="pathzoo-harness-bench-") as name:
             sandbox_cost(Path(name), args.tiny, max(1, args.tiny // 4))
@@ -404,6 +449,7 @@ def main() -> None:
         else:
             print("| external protocol cost per run | skipped: needs cc and octave-cli | - | - |")
         sandbox_cost(tmp, args.tiny, few)
+        integrity_check()
         s1, _, scpu = tiny(tmp, 1, args.short, "aco.as", SHORT_ITERATIONS)
         s2, _, _ = tiny(tmp, 2, args.short, "aco.as", SHORT_ITERATIONS)
         print(throughput_row(f"{args.short} short runs (`aco.as`, {SHORT_ITERATIONS} iterations, `plan()` "
