@@ -28,20 +28,42 @@ __all__ = ["scenario_digest", "warm"]
 _MAX_DEPTH = 6
 
 
+_TAGS: dict[type, bytes] = {}
+_FIELDS: dict[type, "tuple[str, ...] | None"] = {}
+
+
+def _tag(kind: type) -> bytes:
+    """``b"<module.qualname>"`` of a type (kept per type: the walk meets the same few types every time)."""
+    tag = _TAGS.get(kind)
+    if tag is None:
+        tag = _TAGS[kind] = f"<{kind.__module__}.{kind.__qualname__}>".encode()
+    return tag
+
+
+def _fields(kind: type) -> "tuple[str, ...] | None":
+    """The field names of a dataclass type, None for any other type (kept per type, as first seen)."""
+    if kind not in _FIELDS:
+        _FIELDS[kind] = tuple(f.name for f in dataclasses.fields(kind)) if dataclasses.is_dataclass(kind) else None
+    return _FIELDS[kind]
+
+
 def _feed(h: Any, value: Any, by_identity: frozenset[int], depth: int = 0) -> None:
     kind = type(value)
-    h.update(f"<{kind.__module__}.{kind.__qualname__}>".encode())
+    h.update(_tag(kind))
     if depth > _MAX_DEPTH:
         h.update(repr(id(value)).encode())
-    elif isinstance(value, np.ndarray):
+        return
+    if isinstance(value, np.ndarray):
         h.update(f"{value.dtype.str}{value.shape}".encode())
         if id(value) in by_identity:  # its bytes cannot change (pathzoo.harness.sealed): which memory, seen how
             h.update(f"{id(value)} {value.ctypes.data} {value.strides} {value.flags.num}".encode())
         else:
             h.update(np.ascontiguousarray(value).view(np.uint8).data if value.size else b"")
-    elif dataclasses.is_dataclass(value) and not isinstance(value, type):
-        names = [f.name for f in dataclasses.fields(value)]
-        extra = sorted(k for k in getattr(value, "__dict__", {}) if k not in names)
+        return
+    names = _fields(kind)
+    if names is not None:
+        namespace = getattr(value, "__dict__", {})
+        extra = sorted(k for k in namespace if k not in names)
         for name in (*names, *extra):
             h.update(name.encode())
             _feed(h, getattr(value, name), by_identity, depth + 1)
