@@ -17,7 +17,7 @@ code, so nothing they send is unpickled: they send short tagged byte strings
   :data:`~pathzoo.harness.worker.SETUP_TIMEOUT_S`, and is recorded as ``crash``;
 - ``P`` (planning, after the warm-up, before the measured planner is built):
   the planning clocks start; ``E`` (``plan()`` returned, before the worker's
-  digest of the scenario): they end. The worker waits for the harness's
+  check of the scenario): they end. The worker waits for the harness's
   ``G`` after each, so the clocks are read while it waits. Wall time is the harness's
   ``time.perf_counter`` from ``P`` to ``E``, CPU time that of the worker's
   process tree (:class:`~pathzoo.harness.cpu_clock.ProcessTreeCpu`; for a
