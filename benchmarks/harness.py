@@ -31,7 +31,8 @@ printed first, and the CPU figures are the ones to compare.
 - *default experiment, cold*: ``pathzoo run`` of the bundled default
   experiment with an empty ``NUMBA_CACHE_DIR``, so every numba function is
   compiled during the run.
-- *tiny runs*: ``--tiny`` runs of ``exact.astar`` (one iteration) on a 32x32
+- *tiny runs*: (CPU read from a cgroup of the run's own where cgroups are
+  writable, so no process's time is missed) ``--tiny`` runs of ``exact.astar`` (one iteration) on a 32x32
   MovingAI problem at jobs=1 and jobs=2: runs per wall second, their ratio,
   and the harness's cost per run (wall and CPU per run, minus the planner's
   own ``plan()`` time as stored). A tiny run costs the harness (worker,
@@ -50,10 +51,17 @@ printed first, and the CPU figures are the ones to compare.
   run; the largest Octave run shows that Octave's start-up is in no run.
 - *sandbox*: the per-run overhead above, measured again with the workers
   in the OS sandbox (``docs/sandbox.md``) and without it: the difference
-  is the sandbox's fixed cost per run (target: under 20 CPU ms); the
+  is the sandbox's fixed cost per run (target: under 20 CPU ms), and the
+  unsandboxed overhead is the harness's own cost per run (target: 2 CPU ms); the
   sandboxed worker's start (a new interpreter in bubblewrap, once per
   planner configuration and worker) is part of the start-up, not of it.
-- *short runs*: ``--short`` runs of ``aco.as`` (1000 iterations, about 0.15 CPU s each) on the same
+- *scenario integrity check*: in this process, on a 512x512 MovingAI map
+  (``movingai.8room_000``), the worker's check after each run
+  (:meth:`pathzoo.harness.sealed.ScenarioSeal.intact` on the sealed
+  scenario) against ``exact.astar``'s ``plan()`` on the same scenario
+  (CPU time, minimum of repeats), with the full byte digest the check
+  replaces beside it for information.
+- *short runs*: ``--short`` runs of ``aco.as`` (2000 iterations, about 0.1 CPU s each) on the same
   problem at jobs=1 and jobs=2, where the planner's time dominates: the
   throughput ratio the target is about.
 """
@@ -85,14 +93,32 @@ IMPORT_REFERENCE = "import numpy, scipy, numba"
 DEFAULT_COLD_TARGET_S = 60.0
 JOBS_RATIO_TARGET = 1.8
 TINY_SCENARIO = "movingai.random-32-32-20.b10.13"
-SHORT_ITERATIONS = 1000
+SHORT_ITERATIONS = 2000
 SANDBOX_COST_TARGET_MS = 20.0
+HARNESS_COST_TARGET_MS = 2.0
+INTEGRITY_SCENARIO = "movingai.8room_000.b144.1430"
+INTEGRITY_TARGET = 0.05
 
 _TINY_SCRIPT = """
 import sys, time
+import pathzoo
 from pathzoo import Budget
 from pathzoo.harness import Experiment, run_experiment
 from pathzoo.harness.executors import ProcessExecutor
+from pathzoo.harness.cgroup import CGROUP_ROOT, _own_groups
+from pathzoo.plugins.manager import get_registry
+usage = CGROUP_ROOT / "cpuacct" / _own_groups().get("cpuacct", "/").lstrip("/") / "cpuacct.usage"
+marks = []  # after each stored run: the tree's CPU seconds (its cgroup's) and the run's stored plan() CPU
+
+class Marks:
+    @pathzoo.hookimpl
+    def pathzoo_run_finished(self, record):
+        try:
+            marks.append((int(usage.read_text()) / 1e9, record.cpu_time_s))
+        except (OSError, ValueError):
+            pass
+
+get_registry().add_plugin(Marks(), "benchmark-marks")
 exp = Experiment.build(name="tiny", planners=[{planner!r}], scenarios=[{scenario!r}], seeds={n},
                        budget=Budget(iterations={iterations}, time_s=5.0))
 t0 = time.perf_counter()
@@ -104,7 +130,10 @@ done = sorted(datetime.datetime.fromisoformat(r[0]).timestamp()
               for r in sqlite3.connect({db!r}).execute("SELECT finished_at FROM runs"))
 skip = {n} // 4  # steady state: runs stored after the first quarter (start-up and warm-up excluded)
 steady = ({n} - 1 - skip) / (done[-1] - done[skip])
-print(steady, wall, runs["wall_time_s"].sum(), runs["cpu_time_s"].sum())
+# the tree's CPU per run after the first quarter, minus the stored plan() CPU of those runs (NaN without a cgroup)
+per_run = ((marks[-1][0] - marks[skip][0] - sum(c for _, c in marks[skip + 1:])) / ({n} - 1 - skip)
+           if len(marks) == {n} else float("nan"))
+print(per_run, steady, wall, runs["wall_time_s"].sum(), runs["cpu_time_s"].sum())
 """
 
 _FIRST_SCRIPT = """
@@ -134,19 +163,36 @@ class TreeUsage:
     cpu_s: float
     stdout: str
     steady_rate: float = float("nan")
+    steady_cpu_per_run: float = float("nan")
+    """CPU seconds of the whole tree per run after the first quarter, minus ``plan()``'s (from its cgroup)."""
 
 
 def run_tree(cmd: list[str], *, env: dict[str, str] | None = None, cwd: str | None = None,
-             stop_when: "Callable[[float], bool] | None" = None, timeout_s: float = 1800.0) -> TreeUsage:
+             stop_when: "Callable[[float], bool] | None" = None, timeout_s: float = 1800.0,
+             exact: bool = False) -> TreeUsage:
     """Run ``cmd`` and add up the CPU time of its process tree (sampled every 0.05 s).
 
     ``stop_when`` is polled too, with the tree's CPU seconds so far; when it
     returns True the command gets SIGINT (as Ctrl-C would) and the
-    measurement ends when it has exited.
+    measurement ends when it has exited. With ``exact`` (where cgroups are
+    writable) the total is read from a cgroup the command starts in
+    (``cpuacct.usage``: every process of the tree, ended ones and the
+    sandboxed workers' nested groups included) instead of the samples.
     """
+    from pathzoo.harness.cgroup import ProcessGroup, cgroup_problem
+
+    group = ProcessGroup(f"bench{time.monotonic_ns()}", memory_bytes=1 << 40, max_tasks=1 << 20) \
+        if exact and not cgroup_problem() else None
+
+    def join_group() -> None:
+        for path in group.procs_files if group is not None else ():
+            with open(path, "w") as f:
+                f.write(str(os.getpid()))
+
     last: dict[int, float] = {}
     t0 = time.perf_counter()
-    proc = subprocess.Popen(cmd, env=env, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
+    proc = subprocess.Popen(cmd, env=env, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True,
+                            preexec_fn=join_group if group is not None else None)
     out: list[str] = []
     reader = threading.Thread(target=lambda: out.append(proc.stdout.read()), daemon=True)  # type: ignore[union-attr]
     reader.start()
@@ -171,7 +217,11 @@ def run_tree(cmd: list[str], *, env: dict[str, str] | None = None, cwd: str | No
         time.sleep(0.05)
     wall = time.perf_counter() - t0
     reader.join()
-    return TreeUsage(wall, sum(last.values()), "".join(out))
+    cpu = sum(last.values())
+    if group is not None:
+        cpu = group.cpu_seconds()
+        group.remove()
+    return TreeUsage(wall, cpu, "".join(out))
 
 
 def stored_runs(db: Path) -> int:
@@ -256,10 +306,11 @@ def tiny(tmp: Path, jobs: int, n: int, planner: str = "exact.astar", iterations:
     db = tmp / f"{planner}-{jobs}{name}.sqlite"
     script = _TINY_SCRIPT.format(planner=planner, iterations=iterations, scenario=TINY_SCENARIO, n=n, db=str(db),
                                  jobs=jobs, sandbox=sandbox)
-    usage = run_tree([sys.executable, "-c", script], cwd=str(tmp))
-    steady, wall, plan_wall, plan_cpu = map(float, usage.stdout.split()[-4:])
+    usage = run_tree([sys.executable, "-c", script], cwd=str(tmp), exact=True)
+    per_run, steady, wall, plan_wall, plan_cpu = map(float, usage.stdout.split()[-5:])
     usage.wall_s = wall  # the harness's part only: imports and the experiment's construction excluded
     usage.steady_rate = steady
+    usage.steady_cpu_per_run = per_run
     return usage, plan_wall, plan_cpu
 
 
@@ -355,10 +406,58 @@ def sandbox_cost(tmp: Path, n: int, few: int) -> None:
         per_run[sandbox] = ((many.cpu_s - some.cpu_s - (cpu_many - cpu_some)) / (n - few) * 1e3,
                             (many.wall_s - some.wall_s) / (n - few) * 1e3, some.cpu_s)
     cost = per_run[True][0] - per_run[False][0]
+    steady = {sandbox: tiny(tmp, 1, n, name=f"steady-{sandbox}", sandbox=sandbox)[0].steady_cpu_per_run * 1e3
+              for sandbox in (False, True)}
+    print(f"| harness CPU per run, sandbox apart (jobs=1, unsandboxed workers, {n} tiny runs: the CPU of the whole "
+          f"process tree, read from its cgroup, per run after the first quarter, minus the runs' `plan()` CPU: "
+          f"harness, judge and worker; {steady[True]:.1f} ms with sandboxed workers, so the sandbox's own cost is "
+          f"{steady[True] - steady[False]:.1f} ms) | {steady[False]:.2f} CPU ms | <= {HARNESS_COST_TARGET_MS:g} ms "
+          f"| {verdict(steady[False] <= HARNESS_COST_TARGET_MS)} |")
     print(f"| the sandbox's fixed cost per run (per-run overhead at jobs=1: {per_run[True][0]:.1f} CPU ms, "
           f"{per_run[True][1]:.1f} ms wall sandboxed; {per_run[False][0]:.1f} CPU ms, {per_run[False][1]:.1f} ms wall "
           f"not; {few} runs with start-up: {per_run[True][2]:.2f} CPU s sandboxed, {per_run[False][2]:.2f} not) "
           f"| {cost:.1f} CPU ms | < {SANDBOX_COST_TARGET_MS:g} ms | {verdict(cost < SANDBOX_COST_TARGET_MS)} |")
+
+
+def _min_cpu_s(call: "Callable[[], object]", repeats: int) -> float:
+    """The least CPU time of ``repeats`` calls (the least disturbed by other load)."""
+    best = float("inf")
+    for _ in range(repeats):
+        c0 = time.process_time()
+        call()
+        best = min(best, time.process_time() - c0)
+    return best
+
+
+def integrity_check(repeats: int = 30) -> None:
+    """Print the per-run scenario check's CPU time as a fraction of A*'s ``plan()`` on a 512x512 map."""
+    import numpy as np
+
+    from pathzoo import Budget, make_planner
+    from pathzoo.harness.digest import scenario_digest, warm
+    from pathzoo.harness.sealed import seal
+    from pathzoo.plugins.manager import get_registry
+
+    scenario = warm(get_registry().get("scenarios", INTEGRITY_SCENARIO).obj.load())
+    full = _min_cpu_s(lambda: scenario_digest(scenario), 3)
+    sealed = seal(scenario)
+    planner = make_planner("exact.astar")
+    planner.plan(scenario, budget=Budget(), rng=np.random.default_rng(0))  # numba's code loaded
+    plan = _min_cpu_s(lambda: planner.plan(scenario, budget=Budget(), rng=np.random.default_rng(0)), repeats)
+    check = _min_cpu_s(sealed.intact, repeats * 10)
+    ratio = check / plan
+    print(f"| scenario integrity check per run ({INTEGRITY_SCENARIO}, {'x'.join(map(str, scenario.shape))}, "
+          f"{sealed.sealed} arrays sealed: the check {check * 1e6:.0f} CPU us, `exact.astar` `plan()` "
+          f"{plan * 1e3:.2f} CPU ms; the full byte digest it replaces {full * 1e3:.1f} ms) | {ratio:.1%} of `plan()` "
+          f"| <= {INTEGRITY_TARGET:.0%} | {verdict(ratio <= INTEGRITY_TARGET)} |")
+
+
+def short_runs(tmp: Path, n: int) -> None:
+    """Print the throughput ratio of jobs=2 to jobs=1 on ``n`` short ``aco.as`` runs."""
+    s1, _, scpu = tiny(tmp, 1, n, "aco.as", SHORT_ITERATIONS)
+    s2, _, _ = tiny(tmp, 2, n, "aco.as", SHORT_ITERATIONS)
+    print(throughput_row(f"{n} short runs (`aco.as`, {SHORT_ITERATIONS} iterations, `plan()` "
+                         f"{scpu / n * 1e3:.0f} CPU ms each)", n, s1, s2))
 
 
 def verdict(ok: bool) -> str:
@@ -385,8 +484,18 @@ def main() -> None:
     parser.add_argument("--first-only", action="store_true", help="only the first result of `pathzoo run`")
     parser.add_argument("--first-repeats", type=positive_int, default=3,
                         help="warm first-result attempts, each with an import-line reference (default 3)")
+    parser.add_argument("--integrity-only", action="store_true", help="only the scenario integrity check")
+    parser.add_argument("--short-only", action="store_true", help="only the short runs at jobs=1 and jobs=2")
     add_write_docs_option(parser, "harness.md")
     args = parser.parse_args()
+    if args.integrity_only:
+        integrity_check()
+        return
+    if args.short_only:
+        print(f"load average {os.getloadavg()[0]:.2f}", file=sys.stderr)
+        with tempfile.TemporaryDirectory(prefix="pathzoo-harness-bench-") as name:
+            short_runs(Path(name), args.short)
+        return
     if args.sandbox_only:
         with tempfile.TemporaryDirectory(prefix="pathzoo-harness-bench-") as name:
             sandbox_cost(Path(name), args.tiny, max(1, args.tiny // 4))
@@ -432,10 +541,8 @@ def main() -> None:
         else:
             print("| external protocol cost per run | skipped: needs cc and octave-cli | - | - |")
         sandbox_cost(tmp, args.tiny, few)
-        s1, _, scpu = tiny(tmp, 1, args.short, "aco.as", SHORT_ITERATIONS)
-        s2, _, _ = tiny(tmp, 2, args.short, "aco.as", SHORT_ITERATIONS)
-        print(throughput_row(f"{args.short} short runs (`aco.as`, {SHORT_ITERATIONS} iterations, `plan()` "
-                             f"{scpu / args.short * 1e3:.0f} CPU ms each)", args.short, s1, s2))
+        integrity_check()
+        short_runs(tmp, args.short)
 
 
 if __name__ == "__main__":

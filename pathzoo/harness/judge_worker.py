@@ -37,10 +37,11 @@ import threading
 import time
 import warnings
 from dataclasses import replace
-from multiprocessing.connection import Connection, wait
+from multiprocessing.connection import Connection
 from typing import TYPE_CHECKING, Any
 
 from pathzoo.harness.launch import NoMainContext, default_start_method, die_with_harness, harness_alive, start_server
+from pathzoo.harness.poller import Poller
 from pathzoo.harness.specs import HeldScenarios
 from pathzoo.harness.worker import (SETUP_TIMEOUT_S, describe_exception, ensure_plugins, keep_payload, load_cached,
                                     quiet_registry)
@@ -168,6 +169,7 @@ class JudgeWorker:
         self._launching: threading.Thread | None = None
         self._launch_error: BaseException | None = None
         self._warm_later: list[RunTask] = []
+        self._poller = Poller()
 
     def __enter__(self) -> "JudgeWorker":
         self._launch()  # it starts while the first runs execute
@@ -288,7 +290,7 @@ class JudgeWorker:
             left = deadline - _clock()
             if left <= 0:
                 return "timeout"
-            ready = wait([self._conn, self._process.sentinel], left)
+            ready = self._poller.wait([self._conn, self._process.sentinel], left)
             if self._conn in ready:
                 try:
                     return self._conn.recv()

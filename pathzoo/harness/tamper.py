@@ -71,13 +71,21 @@ class ModuleFingerprint:
         self._modules: dict[str, int] = {}
         self._owners: dict[int, tuple[str, Any, dict[str, Any]]] = {}
         self._clean: _CleanState | None = None
+        self._seen_modules = -1
 
     def _snap(self, label: str, owner: Any) -> None:
         self._owners[id(owner)] = (label, owner, _attributes(owner))
         self._clean = None
 
     def update(self) -> "ModuleFingerprint":
-        """Snapshot the modules loaded since the last call (and their classes)."""
+        """Snapshot the modules loaded since the last call (and their classes).
+
+        Nothing to do while ``sys.modules`` has as many entries as at the last
+        call: a module removed since makes :meth:`changed` examine everything.
+        """
+        if len(sys.modules) == self._seen_modules:
+            return self
+        self._seen_modules = len(sys.modules)
         for name, module in list(sys.modules.items()):
             if module is None or name in self._modules:
                 continue
@@ -152,11 +160,16 @@ _TAGS = _tags_readable()
 
 
 def _dict_of(namespace: Any) -> "dict[str, Any] | None":
-    """The dict behind a module's namespace or a class's ``mappingproxy``; None if there is no plain one."""
+    """The dict behind a module's namespace or a class's ``mappingproxy``; None if there is none.
+
+    A dict subclass counts (``ctypes`` types keep their namespace in one):
+    it carries the version tag at the same place, and moves it on every
+    change made through the dict's own storage.
+    """
     if type(namespace) is dict:
         return namespace
     inner = gc.get_referents(namespace) if type(namespace) is types.MappingProxyType else []
-    return inner[0] if len(inner) == 1 and type(inner[0]) is dict else None
+    return inner[0] if len(inner) == 1 and isinstance(inner[0], dict) else None
 
 
 class _CleanState:

@@ -10,17 +10,19 @@ planner code ever ran, on a scenario that process loaded itself.
 Scenarios are cached per process (a small LRU, keyed by
 :attr:`ScenarioSpec.cache_key`) and their shared geometry (blocked cells,
 neighbourhood graph, clearance, every cached property) is built when they
-are loaded, before any clock starts, so no planner pays for it. The full
-digest of a cached scenario (:func:`pathzoo.harness.digest.scenario_digest`)
-is taken at load and again after each run: a planner that changed or
-replaced any part of it is flagged (``scenario_modified``, judged
-``invalid``) and the scenario is evicted, so the next run loads a fresh one.
+are loaded, before any clock starts, so no planner pays for it. Its arrays
+are then moved into sealed read-only memory (:mod:`pathzoo.harness.sealed`),
+so no write can change them (numpy refuses, a raw write faults), and after
+each run the worker checks what a planner could still change: a planner
+that rebound or replaced any part of the scenario, or changed a small
+field, is flagged (``scenario_modified``, judged ``invalid``) and the
+scenario is evicted, so the next run loads a fresh one.
 Monkeypatching is caught by :mod:`pathzoo.harness.tamper` and makes the
 executor replace the worker.
 
 The planning clocks start just before the planner is built (its
 constructor is planning work) and end when ``plan()`` returns, before the
-scenario's digest and any other harness work (``docs/timing.md``). The times
+scenario's check and any other harness work (``docs/timing.md``). The times
 measured here (``time.perf_counter`` and ``time.process_time`` inside the
 planner's process) are only a fallback: the process and Dask executors time
 runs with their own clocks, outside this process. A budget with a clock
@@ -51,8 +53,9 @@ from pathzoo.core.results import HistoryPoint, PlanResult
 from pathzoo.core.status import Status
 from pathzoo.harness.bounds import bound_outcome, bound_text
 from pathzoo.harness.clock_stop import InProcessClockStop
-from pathzoo.harness.digest import scenario_digest, warm
+from pathzoo.harness.digest import warm
 from pathzoo.harness.provenance import PEAK_RSS_KEY, host, loaded_distributions, peak_rss_mb, reset_peak_rss
+from pathzoo.harness.sealed import ScenarioSeal, seal
 
 if TYPE_CHECKING:
     from pathzoo.core.scenario import Scenario
@@ -118,7 +121,8 @@ class RunOutcome:
     timed_out : bool
         The executor stopped the run at its hard limit.
     scenario_modified : bool
-        The planner changed the scenario's arrays.
+        The planner rebound, replaced or changed part of the scenario
+        (:meth:`~pathzoo.harness.sealed.ScenarioSeal.intact`).
     versions : dict
         Versions of pathzoo, Python, numpy, the planner's distribution and the
         libraries loaded in the worker, with the CPU, core count and the run's
@@ -242,7 +246,7 @@ def quiet_registry() -> Any:
 
 
 # ---------------------------------------------------------------- scenarios
-_scenarios: "OrderedDict[tuple[str, str, str, str], tuple[Scenario, str]]" = OrderedDict()
+_scenarios: "OrderedDict[tuple[str, str, str, str], tuple[Scenario, ScenarioSeal]]" = OrderedDict()
 _scenario_lock = threading.Lock()
 _payloads: dict[str, bytes] = {}
 
@@ -261,15 +265,15 @@ def keep_payload(spec: "ScenarioSpec") -> None:
         _payloads.setdefault(spec.digest, spec.payload)
 
 
-def load_cached(spec: "ScenarioSpec", size: int = SCENARIO_CACHE_SIZE) -> "tuple[Scenario, str]":
-    """Load a scenario once per process (LRU of ``size``), geometry warmed; returns it with its load-time digest.
+def load_cached(spec: "ScenarioSpec", size: int = SCENARIO_CACHE_SIZE) -> "tuple[Scenario, ScenarioSeal]":
+    """Load a scenario once per process (LRU of ``size``), geometry warmed and arrays sealed; returns it with its seal.
 
     A scenario object sent by reference is loaded from the bytes
     :func:`keep_payload` kept.
     """
-    def make() -> "tuple[Scenario, str]":
+    def make() -> "tuple[Scenario, ScenarioSeal]":
         scenario = _load(spec)
-        return scenario, scenario_digest(scenario)
+        return scenario, seal(scenario)
 
     return _lru(_scenarios, spec.cache_key, size, make)
 
@@ -312,8 +316,13 @@ _TWINS = 2
 
 
 def _twin(spec: "ScenarioSpec") -> "Scenario":
-    """A second copy of a scenario, loaded as the runs' copy is (same types and flags), for warm-ups only."""
-    return _lru(_twins, spec.cache_key, _TWINS, lambda: _load(spec))
+    """A second copy of a scenario, loaded and sealed as the runs' copy is (same types and flags), for warm-ups only."""
+    def make() -> "Scenario":
+        scenario = _load(spec)
+        seal(scenario)  # the twin's arrays go where the run's do: numba meets the same array types
+        return scenario
+
+    return _lru(_twins, spec.cache_key, _TWINS, make)
 
 
 def warm_up_for(task: "RunTask", planner: Any) -> None:
@@ -433,7 +442,7 @@ def _execute(task: "RunTask", report: Report, stop: ClockStop | None) -> RunOutc
             raise RuntimeError(
                 f"{task.planner.id} is version {planner.version} in this worker, {task.planner_version} in the harness"
             )
-        scenario, digest = load_cached(task.scenario)
+        scenario, sealed = load_cached(task.scenario)
         versions = _versions(task)
     except Exception as exc:
         return RunOutcome(task.run_key, message="run setup failed: " + describe_exception(exc), crash=True,
@@ -467,7 +476,7 @@ def _execute(task: "RunTask", report: Report, stop: ClockStop | None) -> RunOutc
         report("planned")
     stopped_by = _stopped_by(task, budget.stop, result)
     versions = _provenance(versions)
-    modified = scenario_digest(scenario) != digest
+    modified = not sealed.intact()
     if modified:
         evict(task.scenario)
     common: dict[str, Any] = dict(

@@ -33,20 +33,20 @@ def test_a_child_process_is_charged(forged, tmp_path):
     assert run["cpu_time_s"] >= 0.4  # the worker itself burns nothing: the child's CPU time is in the stored one
 
 
-def test_the_scenario_digest_after_the_run_is_not_charged(forged, tmp_path, monkeypatch):
-    from pathzoo.harness import worker
+def test_the_scenario_check_after_the_run_is_not_charged(forged, tmp_path, monkeypatch):
+    from pathzoo.harness.sealed import ScenarioSeal
 
-    digest = worker.scenario_digest
+    intact = ScenarioSeal.intact
 
-    def slow_digest(scenario):
+    def slow_check(self):
         end = time.process_time() + 0.5
         while time.process_time() < end:
             pass
-        return digest(scenario)
+        return intact(self)
 
-    monkeypatch.setattr(worker, "scenario_digest", slow_digest)  # inline: the worker's code runs in this process
+    monkeypatch.setattr(ScenarioSeal, "intact", slow_check)  # inline: the worker's code runs in this process
     run = _run(forged, tmp_path, {"step_cpu_s": 0.0}, Budget(iterations=1), "inline")
-    assert run["status"] == "solved" and run["cpu_time_s"] < 0.25  # 0.5 s burnt per digest, none of it stored
+    assert run["status"] == "solved" and run["cpu_time_s"] < 0.25  # 0.5 s burnt per check, none of it stored
 
 
 @pytest.mark.parametrize("executor", ["process", "inline"])

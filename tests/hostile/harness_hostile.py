@@ -267,8 +267,105 @@ class Flaky(_Hostile):
         return PlanResult(Status.SOLVED, path=reference_path(scenario).path.copy(), iterations=1, evaluations=1)
 
 
+def observe(scenario: Scenario) -> str:
+    """What a planner sees of the scenario: the numbers an attack on it would change."""
+    graph = scenario.graph
+    return (f"occupied {int(scenario.occupancy.sum())} blocked {int(scenario.blocked.sum())} edges {graph.n_edges} "
+            f"length {float(graph.length.sum())!r} energy {float(graph.energy.sum())!r} "
+            f"clearance {float(scenario.clearance.sum())!r} {scenario.clearance.shape} "
+            f"speed {scenario.vehicle.cruise_speed!r} metadata {sorted(scenario.metadata)}")
+
+
+def _write_zeros(arr: np.ndarray) -> None:
+    import ctypes
+
+    ctypes.memset(arr.ctypes.data, 0, arr.nbytes)
+
+
+def _attack_ctypes_flags(arr: np.ndarray) -> None:
+    """Set the array's WRITEABLE flag in its C struct (numpy would refuse), then write through numpy."""
+    import ctypes
+
+    flags = ctypes.c_int.from_address(id(arr) + 64)  # PyArrayObject: refcount, type, data, nd, dims, strides, base, descr
+    flags.value |= 0x0400  # NPY_ARRAY_WRITEABLE
+    assert arr.flags.writeable
+    arr[...] = False
+
+
+def _attack_mprotect(arr: np.ndarray) -> None:
+    """Ask the kernel to make the array's pages writable, then write through a raw pointer."""
+    import ctypes
+    import mmap
+
+    libc = ctypes.CDLL(None, use_errno=True)
+    start = arr.ctypes.data // mmap.PAGESIZE * mmap.PAGESIZE
+    libc.mprotect(ctypes.c_void_p(start), ctypes.c_size_t(arr.ctypes.data + arr.nbytes - start), 3)
+    _write_zeros(arr)
+
+
+def _attack_proc_mem(arr: np.ndarray) -> None:
+    with open("/proc/self/mem", "r+b", buffering=0) as mem:
+        mem.seek(arr.ctypes.data)
+        mem.write(bytes(arr.nbytes))
+
+
+def _rebind_occupancy(s: Scenario) -> None:
+    object.__setattr__(s, "occupancy", np.zeros_like(s.occupancy))
+    s.__dict__["blocked"] = np.zeros_like(s.blocked)
+
+
+def _set_writeable(s: Scenario) -> None:
+    s.blocked.flags.writeable = True
+    s.blocked[...] = False
+
+
+SCENARIO_ATTACKS = {
+    "setflags": _set_writeable,
+    "copyto": lambda s: np.copyto(s.graph.energy, 0.0),
+    "inplace": lambda s: s.graph.energy.__imul__(0.0),
+    "rebind": _rebind_occupancy,
+    "graph_array": lambda s: object.__setattr__(s.graph, "length", np.zeros_like(s.graph.length)),
+    "metadata": lambda s: s.metadata.__setitem__("poison", 1),
+    "vehicle": lambda s: object.__setattr__(s.vehicle, "cruise_speed", 1000.0),
+    "shape": lambda s: setattr(s.clearance, "shape", (-1,)),
+    "ctypes": lambda s: _write_zeros(s.blocked),
+    "ctypes_flags": lambda s: _attack_ctypes_flags(s.blocked),
+    "mprotect": lambda s: _attack_mprotect(s.blocked),
+    "proc_mem": lambda s: _attack_proc_mem(s.blocked),
+}
+"""Ways to change the cached scenario that later runs of a worker see (``hostile.overwrite``'s ``how``)."""
+
+ATTACKED: set[str] = set()
+"""The attacks made in this process (each planner attacks once, in its first run)."""
+
+
+class Overwrite(Planner):
+    """Reports what it sees of the scenario (as a ``FAILED`` run's message), attacking it in its first run in a process.
+
+    The harness's untimed warm-up (on a twin of the scenario) is not attacked.
+
+    A harness that lets the attack through silently stores a later
+    ``failed`` run whose message differs from the first one's.
+    """
+
+    id = "hostile.overwrite"
+    kinds = KINDS
+    summary = "changes the cached scenario once"
+    params = {"how": Param("setflags", "the attack", choices=tuple(SCENARIO_ATTACKS))}
+
+    def plan(self, scenario: Scenario, *, budget: Budget, rng: np.random.Generator,
+             progress: ProgressCallback | None = None) -> PlanResult:
+        from pathzoo.core.warmup import WARM_UP_BUDGET
+
+        seen = observe(scenario)
+        if self.how not in ATTACKED and budget.iterations != WARM_UP_BUDGET.iterations:  # not the warm-up's twin
+            ATTACKED.add(self.how)
+            SCENARIO_ATTACKS[self.how](scenario)
+        return PlanResult(Status.FAILED, iterations=1, evaluations=1, message=seen)
+
+
 PLANNERS = [PatchValidator, DropObstacles, ReplaceGraph, PatchClass, PatchClock, SpamStarted, Counts, Message,
-            ExitAlways, HugePath, Flaky, PatchAllClocks]
+            ExitAlways, HugePath, Flaky, PatchAllClocks, Overwrite]
 
 
 @hookimpl

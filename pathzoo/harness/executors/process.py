@@ -17,7 +17,7 @@ code, so nothing they send is unpickled: they send short tagged byte strings
   :data:`~pathzoo.harness.worker.SETUP_TIMEOUT_S`, and is recorded as ``crash``;
 - ``P`` (planning, after the warm-up, before the measured planner is built):
   the planning clocks start; ``E`` (``plan()`` returned, before the worker's
-  digest of the scenario): they end. The worker waits for the harness's
+  check of the scenario): they end. The worker waits for the harness's
   ``G`` after each, so the clocks are read while it waits. Wall time is the harness's
   ``time.perf_counter`` from ``P`` to ``E``, CPU time that of the worker's
   process tree (:class:`~pathzoo.harness.cpu_clock.ProcessTreeCpu`; for a
@@ -91,8 +91,8 @@ from collections import Counter, deque
 from concurrent.futures import Future
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from multiprocessing.connection import Connection, wait
-from typing import TYPE_CHECKING, Any
+from multiprocessing.connection import Connection
+from typing import TYPE_CHECKING, Any, Callable
 
 from pathzoo.core.errors import PathzooError
 from pathzoo.core.budget import StopReason
@@ -100,6 +100,7 @@ from pathzoo.harness.clock_stop import SharedClockStop
 from pathzoo.harness.cpu_clock import ProcessTreeCpu, process_cpu_time
 from pathzoo.harness.executors.base import RunExecutor
 from pathzoo.harness.cgroup import ProcessGroup
+from pathzoo.harness.poller import Poller
 from pathzoo.harness.launch import (NoMainContext, SandboxedProcess, default_start_method, die_with_harness,
                                     harness_alive, start_server)
 from pathzoo.harness.sandbox import SandboxLimits, SandboxUnavailableError, sandbox_problem, sandboxed_command, \
@@ -156,9 +157,10 @@ def _worker_main(conn: Connection, alive: Connection, stop_flag: Any, sandboxed:
         if task is None:
             return
         keep_payload(task.scenario)  # the executor counts it as held from now on
-        if not _run(conn, task, stop):
+        outcome = execute_task(task, _reporter(conn), stop=stop)
+        changed = fingerprint.changed()  # before the outcome: it and the verdict on the process go out together
+        if not _send_outcome(conn, task, outcome):
             return
-        changed = fingerprint.changed()
         if changed:
             conn.send_bytes(b"T" + ", ".join(changed).encode("utf-8", "replace")[:1000])
             return
@@ -166,15 +168,19 @@ def _worker_main(conn: Connection, alive: Connection, stop_flag: Any, sandboxed:
         conn.send_bytes(b"I")
 
 
-def _run(conn: Connection, task: "RunTask", stop: SharedClockStop) -> bool:
-    """Run one task and send its outcome; False when the harness is gone."""
+def _reporter(conn: Connection) -> "Callable[[str], None]":
+    """The ``report`` callback of :func:`~pathzoo.harness.worker.execute_task`: send the event, wait for ``G``."""
 
     def report(event: str) -> None:
         conn.send_bytes(_EVENTS[event])
         if event != "started":  # wait until the harness has read its clocks: no CPU of ours falls outside them
             conn.recv_bytes(1)
 
-    outcome = execute_task(task, report, stop=stop)
+    return report
+
+
+def _send_outcome(conn: Connection, task: "RunTask", outcome: RunOutcome) -> bool:
+    """Send a run's outcome; False when the harness is gone."""
     try:
         conn.send_bytes(b"D" + encode_outcome(outcome))
     except (EOFError, OSError):
@@ -298,6 +304,7 @@ class ProcessExecutor(RunExecutor):
         self._first_alone = self.capacity > 1  # see _dispatch
         self._closing = False
         self._wake_r, self._wake_w = self._ctx.Pipe(duplex=False)
+        self._poller = Poller()  # the monitor's: one poll object for all its waits
         self.lookahead = self.capacity
         self._thread = threading.Thread(target=self._monitor, name="pathzoo-process-executor", daemon=True)
         self._thread.start()
@@ -683,7 +690,7 @@ class ProcessExecutor(RunExecutor):
                 listening = [w for w in self._workers if w.listening]
                 nearest = min(min((w.deadline for w in listening), default=math.inf), self._watch_clocks(_clock()))
                 timeout = None if math.isinf(nearest) else max(0.0, nearest - _clock())
-                ready = set(wait(
+                ready = set(self._poller.wait(
                     [self._wake_r, *(w.conn for w in listening), *(w.process.sentinel for w in self._workers)], timeout
                 ))
                 if self._wake_r in ready:
