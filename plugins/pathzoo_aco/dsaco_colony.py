@@ -11,7 +11,11 @@ the same colony with three changes that leave every result bit-identical:
   through, in the original order, built the first time an ant stands on that
   node with that heading, appended one list after another and kept per
   scenario and configuration (:class:`MoveTable`). A step reads one run of
-  records, so no edge is refused by the turn table inside the walk;
+  records, so no edge is refused by the turn table inside the walk. Without
+  a turn limit every list is the node's adjacency, read in place;
+- **one trail for a whole list** when every trail leaving the node reads the
+  same (no deposit on them yet, or all at ``τmin``): the trail and its power
+  are computed once for the node, not per edge (:attr:`ColonyRun.node_even`);
 - **records linked to the next list**: a record whose move sets the
   heading leads to one list only (its target's, for that heading), so it
   learns where that list lies the first time an ant takes it, and later ants
@@ -20,7 +24,9 @@ the same colony with three changes that leave every result bit-identical:
   chooses again on the node before; the candidates it had there, less the
   nodes stamped since, are what reading the list again would give, so they
   are taken from the walk's levels instead (:class:`ColonyRun`). Under the
-  paper's step rule about half of all steps are such steps back;
+  paper's step rule about half of all steps are such steps back. The first
+  of the heaviest candidates (eq. 14's deterministic choice) is noted while
+  they are listed, so that choice reads nothing more;
 - **one call for many iterations**: the walks, the fitness (eq. 20) and the
   flight constraints (eqs. 2-3) by the kernels of
   :mod:`pathzoo_aco.dsaco_fitness`, the best-so-far walk, evaporation and
@@ -71,13 +77,17 @@ class MoveTable:
     first time an ant stands on ``c`` with a heading of class ``k`` and
     appended to the record arrays, so the lists a walk reads lie one after
     another in memory, each in one run of cache lines, and no edge the turn
-    limit refuses is ever read.
+    limit refuses is ever read. Without a turn table (every move allowed) a
+    list would copy the node's adjacency, so there are no records: the walk
+    reads the adjacency in place.
 
     Attributes
     ----------
     adj_ptr, node, weight, move : ndarray
-        The adjacency (the walk engine's, of the rules): CSR pointer, and per
-        position the target node, weight ``weight_mul`` and move id.
+        The adjacency (the walk engine's, of the rules): CSR pointer (as
+        uint32 when the positions fit: half the cache lines, and no read
+        checks for a negative index), and per position the target node,
+        weight ``weight_mul`` and move id.
     edge : ndarray of int
         Per adjacency position its graph edge id; empty when they are equal.
     move_class : ndarray of int64, shape (K + 1,)
@@ -87,12 +97,12 @@ class MoveTable:
     head : ndarray of int32 or int64, shape (nodes * classes, 2)
         Per list (row ``c * classes + k``): its first record and its length
         plus 1; ``(0, 0)`` until built (allocated zeroed: pages cost memory
-        only once a list on them is built).
+        only once a list on them is built) No rows without a turn table.
     to_rec : structured ndarray with fields ``node``, ``place``, ``weight``
         The records: target node, adjacency position and weight, side by side
         (the fields a step reads for every candidate: one run of memory).
         Allocated for every list there could be and written only as lists are
-        built, so untouched pages cost no memory.
+        built, so untouched pages cost no memory. Empty without a turn table.
     to_move : ndarray
         Per record its move (read for the chosen one only).
     to_next : ndarray of int64
@@ -139,6 +149,8 @@ class MoveTable:
         degree = int(np.diff(adj_ptr).max(initial=0))
         index = np.int32 if max(records, len(adj_node)) < 2**31 - 1 else np.int64
         edge = np.zeros(0, dtype=np.int64) if adj_edge is None else adj_edge
+        if len(adj_node) < 2**32 - 1:  # unsigned 32-bit list pointers: half the cache lines, no negative-index fix-up
+            adj_ptr = adj_ptr.astype(np.uint32)
         return cls(adj_ptr, adj_node, w_mul, adj_offset, edge, move_class, class_row,
                    np.zeros((n_nodes * len(class_row) if turn.size else 0, 2), dtype=index),
                    np.empty(records, dtype=np.dtype([("node", adj_node.dtype), ("place", index),
@@ -213,12 +225,14 @@ class ColonyRun:
         """A run before its first iteration, on ``n_nodes`` nodes with at most ``max_degree`` moves each,
         with the stored ``trail`` and its scale."""
         room = 2 * max(max_degree, min(n_nodes * max_degree, _LEVEL_ROOM))
+        even = trail.size > 0 and trail.min() == trail.max()  # every entry the same
         return cls(np.array([scale]), np.array([np.inf]), np.zeros(max(n_nodes, 1), dtype=np.int64),
                    np.zeros(5, dtype=np.int64), np.zeros(n_nodes, dtype=np.uint8),
                    np.zeros(n_nodes + 1, dtype=np.int64), np.zeros(n_nodes + 1, dtype=np.int64),
                    np.zeros(room, dtype=np.int64), np.zeros(room), np.zeros(n_nodes + 1, dtype=np.int64),
                    np.zeros(n_nodes + 1, dtype=np.int64), np.zeros(n_nodes + 1, dtype=np.bool_),
-                   np.full(n_nodes, trail.max(initial=0.0)), np.full(n_nodes, trail.min(initial=0.0) == trail.max(initial=0.0)))
+                   np.full(n_nodes, trail.max(initial=0.0)),
+                   np.full(n_nodes, even))
 
 
 @numba.njit(cache=True)
@@ -263,17 +277,21 @@ def _trail_power(t, tau_exp, lo, lo_pow):
 
 @numba.njit(cache=True)
 def _walk_ant(wid, adj_ptr, node, weight, move, horizontal, turn, move_class, class_row, head, to_rec, to_move,
-              rec_node, rec_place, rec_weight, to_next, filled, x, node_max, node_even, scale, lo, hi, tau_exp, q0, start, goal, backtrack, max_steps, stamp,
+              rec_node, rec_place, rec_weight, to_next, filled, x, node_max, node_even, scale, lo, hi, tau_exp, q0,
+              start, goal, backtrack, max_steps, stamp,
               stack, stack_prev, cand, cand_w, level_first, level_count, level_more):
     """One ant from ``start``; returns ``(outcome, depth, steps)``, the adjacency positions it took in
     ``stack[:depth]``.
 
     Step for step :func:`pathzoo_aco.engine.walk._colony` for one ant walking
     alone, reading the records of (node, heading) instead of the node's whole
-    adjacency. The candidates of every node on the walk are kept, one level
-    per depth in ``cand``/``cand_w``; a step back on a node after a dead end
-    takes them again less those stamped since, rather than reading the list
-    again (see :class:`ColonyRun`).
+    adjacency: ``rec_node``, ``rec_place`` and ``rec_weight`` are the fields
+    of ``to_rec``, or without a turn table the adjacency's targets and weights
+    (``rec_place`` empty: a list position is its own place). ``wid`` is the
+    walk's stamp (see :attr:`ColonyRun.stamps`). The candidates of every node
+    on the walk are kept, one level per depth in ``cand``/``cand_w``; a step
+    back on a node after a dead end takes them again less those stamped
+    since, rather than reading the list again (see :class:`ColonyRun`).
     """
     use_turn = turn.shape[0] > 0
     no_prev = turn.shape[0] - 1 if use_turn else 0
@@ -346,7 +364,8 @@ def _walk_ant(wid, adj_ptr, node, weight, move, horizontal, turn, move_class, cl
                 if stamp[rec_node[r]] == wid:
                     continue
                 if per_edge:
-                    tp = _trail_power(_trail(scale, x[r if not use_turn else rec_place[r]], lo, hi, bounded), tau_exp, lo, lo_pow)
+                    tp = _trail_power(_trail(scale, x[r if not use_turn else rec_place[r]], lo, hi, bounded),
+                                      tau_exp, lo, lo_pow)
                 n_open += 1
                 w = tp * rec_weight[r]
                 if w > 0.0:
@@ -443,10 +462,11 @@ def _colony_run(adj_ptr, node, weight, move, edge, move_class, class_row, head, 
             wid = (counters[1] + a) % 255  # walks are counted over the run; a byte stamp tells 255 apart
             if wid == 0:  # a new round of stamps: forget the last one's
                 stamps[:] = 0
-            flag, d, n = _walk_ant(np.uint8(wid + 1), adj_ptr, node, weight, move, horizontal, turn, move_class, class_row, head,
-                                   to_rec, to_move, rec_node, rec_place, rec_weight, to_next, filled, x, node_max, node_even, scale[0], lo, hi, tau_exp,
-                                   q0s[it - first], start, goal, backtrack, max_steps, stamps, stack, stack_prev,
-                                   cand, cand_w, level_first, level_count, level_more)
+            flag, d, n = _walk_ant(np.uint8(wid + 1), adj_ptr, node, weight, move, horizontal, turn, move_class,
+                                   class_row, head, to_rec, to_move, rec_node, rec_place, rec_weight, to_next,
+                                   filled, x, node_max, node_even, scale[0], lo, hi, tau_exp, q0s[it - first],
+                                   start, goal, backtrack, max_steps, stamps, stack, stack_prev, cand, cand_w,
+                                   level_first, level_count, level_more)
             started += 1
             counters[2] += n
             if flag == REACHED:
@@ -536,9 +556,10 @@ def run_colony(table: MoveTable, horizontal: np.ndarray, turn: np.ndarray, fitne
     if turn.size:  # the records' fields
         records = (t.to_rec["node"], t.to_rec["place"], t.to_rec["weight"])
     else:  # every list is the node's adjacency
-        records = (t.node, np.zeros(0, dtype=t.to_rec["place"].dtype), t.weight)
+        targets = t.node.view(np.uint32) if t.node.dtype == np.int32 else t.node  # unsigned: no negative-index fix-up
+        records = (targets, np.zeros(0, dtype=t.to_rec["place"].dtype), t.weight)
     _colony_run(t.adj_ptr, t.node, t.weight, t.move, t.edge, t.move_class, t.class_row, t.head, t.to_rec, t.to_move,
-                *records, t.to_next, t.filled, horizontal, turn, *fitness, x, run.scale, lo, hi, rho, tau_exp, q, start, goal,
-                backtrack, max_steps, seeds, q0s, ps, ants, first, stop_at, run.best_cost, run.best_edges,
+                *records, t.to_next, t.filled, horizontal, turn, *fitness, x, run.scale, lo, hi, rho, tau_exp, q, start,
+                goal, backtrack, max_steps, seeds, q0s, ps, ants, first, stop_at, run.best_cost, run.best_edges,
                 run.counters, run.stamps, run.stack, run.stack_prev, run.cand, run.cand_w, run.level_first,
                 run.level_count, run.level_more, run.node_max, run.node_even)
