@@ -12,7 +12,9 @@ the same colony with three changes that leave every result bit-identical:
   node with that heading, appended one list after another and kept per
   scenario and configuration (:class:`MoveTable`). A step reads one run of
   records, so no edge is refused by the turn table inside the walk. Without
-  a turn limit every list is the node's adjacency, read in place;
+  a turn limit every list is the node's adjacency, read in place, and the
+  lists of the nodes an ant may step to are asked of the cache before it
+  draws (:func:`~pathzoo_aco.engine.prefetch.prefetch`);
 - **one trail for a whole list** when every trail leaving the node reads the
   same (no deposit on them yet, or all at ``τmin``): the trail and its power
   are computed once for the node, not per edge (:attr:`ColonyRun.node_even`);
@@ -54,6 +56,7 @@ import numpy as np
 
 from pathzoo_aco.dsaco_fitness import infeasible_walks, walk_fitness
 from pathzoo_aco.engine import EXHAUSTED, REACHED, STEP_CAP, STUCK
+from pathzoo_aco.engine.prefetch import prefetch
 
 __all__ = ["MoveTable", "ColonyRun", "run_colony"]
 
@@ -407,6 +410,11 @@ def _walk_ant(wid, adj_ptr, node, weight, move, horizontal, turn, move_class, cl
             known = 0
             via = -1
         else:
+            if not use_turn:  # the next node is one of these: ask the cache for its list while the choice is made
+                for i in range(p0, p0 + nc):
+                    ahead = adj_ptr[rec_node[cand[i]]]
+                    prefetch(rec_weight, ahead)
+                    prefetch(rec_node, ahead)
             if q0 > 0.0 and np.random.random() < q0:
                 sel = top
             else:
