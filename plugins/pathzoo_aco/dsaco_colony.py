@@ -11,7 +11,13 @@ the same colony with three changes that leave every result bit-identical:
   through, in the original order, built the first time an ant stands on that
   node with that heading, appended one list after another and kept per
   scenario and configuration (:class:`MoveTable`). A step reads one run of
-  records, so no edge is refused by the turn table inside the walk;
+  records, so no edge is refused by the turn table inside the walk. Without
+  a turn limit every list is the node's adjacency, read in place, and the
+  lists of the nodes an ant may step to are asked of the cache before it
+  draws (:func:`~pathzoo_aco.engine.prefetch.prefetch`);
+- **one trail for a whole list** when every trail leaving the node reads the
+  same (no deposit on them yet, or all at ``τmin``): the trail and its power
+  are computed once for the node, not per edge (:attr:`ColonyRun.node_even`);
 - **records linked to the next list**: a record whose move sets the
   heading leads to one list only (its target's, for that heading), so it
   learns where that list lies the first time an ant takes it, and later ants
@@ -20,7 +26,9 @@ the same colony with three changes that leave every result bit-identical:
   chooses again on the node before; the candidates it had there, less the
   nodes stamped since, are what reading the list again would give, so they
   are taken from the walk's levels instead (:class:`ColonyRun`). Under the
-  paper's step rule about half of all steps are such steps back;
+  paper's step rule about half of all steps are such steps back. The first
+  of the heaviest candidates (eq. 14's deterministic choice) is noted while
+  they are listed, so that choice reads nothing more;
 - **one call for many iterations**: the walks, the fitness (eq. 20) and the
   flight constraints (eqs. 2-3) by the kernels of
   :mod:`pathzoo_aco.dsaco_fitness`, the best-so-far walk, evaporation and
@@ -48,11 +56,13 @@ import numpy as np
 
 from pathzoo_aco.dsaco_fitness import infeasible_walks, walk_fitness
 from pathzoo_aco.engine import EXHAUSTED, REACHED, STEP_CAP, STUCK
+from pathzoo_aco.engine.prefetch import prefetch
 
 __all__ = ["MoveTable", "ColonyRun", "run_colony"]
 
-_LEVEL_ROOM = 16384
-"""Candidates kept for the nodes along a walk (:class:`ColonyRun`); deeper levels that do not fit are read again."""
+_LEVEL_ROOM = 1 << 22
+"""At most this many candidates kept for the nodes along a walk (:class:`ColonyRun`); deeper levels that do not
+fit are read again. Room for every level of the longest walk (nodes times the largest degree) when that is less."""
 
 _RENORMALISE_BELOW = 1e-150
 """As :data:`pathzoo_aco.engine.pheromone._RENORMALISE_BELOW`: fold the trail's scale back below this."""
@@ -70,13 +80,17 @@ class MoveTable:
     first time an ant stands on ``c`` with a heading of class ``k`` and
     appended to the record arrays, so the lists a walk reads lie one after
     another in memory, each in one run of cache lines, and no edge the turn
-    limit refuses is ever read.
+    limit refuses is ever read. Without a turn table (every move allowed) a
+    list would copy the node's adjacency, so there are no records: the walk
+    reads the adjacency in place.
 
     Attributes
     ----------
     adj_ptr, node, weight, move : ndarray
-        The adjacency (the walk engine's, of the rules): CSR pointer, and per
-        position the target node, weight ``weight_mul`` and move id.
+        The adjacency (the walk engine's, of the rules): CSR pointer (as
+        uint32 when the positions fit: half the cache lines, and no read
+        checks for a negative index), and per position the target node,
+        weight ``weight_mul`` and move id.
     edge : ndarray of int
         Per adjacency position its graph edge id; empty when they are equal.
     move_class : ndarray of int64, shape (K + 1,)
@@ -86,12 +100,12 @@ class MoveTable:
     head : ndarray of int32 or int64, shape (nodes * classes, 2)
         Per list (row ``c * classes + k``): its first record and its length
         plus 1; ``(0, 0)`` until built (allocated zeroed: pages cost memory
-        only once a list on them is built).
+        only once a list on them is built) No rows without a turn table.
     to_rec : structured ndarray with fields ``node``, ``place``, ``weight``
         The records: target node, adjacency position and weight, side by side
         (the fields a step reads for every candidate: one run of memory).
         Allocated for every list there could be and written only as lists are
-        built, so untouched pages cost no memory.
+        built, so untouched pages cost no memory. Empty without a turn table.
     to_move : ndarray
         Per record its move (read for the chosen one only).
     to_next : ndarray of int64
@@ -125,10 +139,10 @@ class MoveTable:
         ones (or ``(0, 0)``: one class, every move allowed)."""
         adj_ptr, adj_node, adj_edge, adj_offset, w_mul = adjacency[:5]
         n_nodes = len(adj_ptr) - 1
-        if turn.size == 0:
+        if turn.size == 0:  # every list is the node's adjacency, read in place: no records
             move_class = np.zeros(1, dtype=np.int64)
             class_row = np.zeros(1, dtype=np.int64)
-            records = len(adj_node)
+            records = 0
         else:
             _, first, inverse = np.unique(turn, axis=0, return_index=True, return_inverse=True)
             move_class = inverse.reshape(-1).astype(np.int64)
@@ -138,8 +152,10 @@ class MoveTable:
         degree = int(np.diff(adj_ptr).max(initial=0))
         index = np.int32 if max(records, len(adj_node)) < 2**31 - 1 else np.int64
         edge = np.zeros(0, dtype=np.int64) if adj_edge is None else adj_edge
+        if len(adj_node) < 2**32 - 1:  # unsigned 32-bit list pointers: half the cache lines, no negative-index fix-up
+            adj_ptr = adj_ptr.astype(np.uint32)
         return cls(adj_ptr, adj_node, w_mul, adj_offset, edge, move_class, class_row,
-                   np.zeros((n_nodes * len(class_row), 2), dtype=index),
+                   np.zeros((n_nodes * len(class_row) if turn.size else 0, 2), dtype=index),
                    np.empty(records, dtype=np.dtype([("node", adj_node.dtype), ("place", index),
                                                      ("weight", w_mul.dtype)])),
                    np.empty(records, dtype=adj_offset.dtype),
@@ -162,8 +178,10 @@ class ColonyRun:
     counters : ndarray of int64, shape (5,)
         Next iteration, walks started, ant steps, length of the best walk, and
         1 once an ant has searched the start's whole component (no turn rule).
-    stamps : ndarray of int32
-        Tabu stamps; walk ``w`` stamps its nodes with ``w``.
+    stamps : ndarray of uint8
+        Tabu stamps; walk ``w`` (counted from 0 over the run) stamps its nodes
+        with ``1 + w mod 255``, and the stamps are cleared before every walk
+        ``w`` with ``w mod 255 = 0``.
     stack, stack_prev : ndarray
         Work space of the walks: the adjacency positions and headings along the walk.
     cand, cand_w, level_first, level_count, level_more : ndarray
@@ -183,6 +201,11 @@ class ColonyRun:
         exactly ``τmin`` (the clamp), so a step from ``c`` skips the trail.
         Most nodes are there a few dozen iterations into a run: only the
         iteration-best walk deposits.
+    node_even : ndarray of bool
+        Per node, whether every stored trail of its edges equals
+        ``node_max`` (true until a deposit on one of them: the trail starts
+        even and evaporation and renormalisation treat every entry alike), so
+        a step from it computes the trail and its power once for the list.
     """
 
     scale: np.ndarray
@@ -198,18 +221,21 @@ class ColonyRun:
     level_count: np.ndarray
     level_more: np.ndarray
     node_max: np.ndarray
+    node_even: np.ndarray
 
     @classmethod
     def start(cls, n_nodes: int, max_degree: int, trail: np.ndarray, scale: float) -> "ColonyRun":
         """A run before its first iteration, on ``n_nodes`` nodes with at most ``max_degree`` moves each,
         with the stored ``trail`` and its scale."""
-        room = 2 * max(max_degree, _LEVEL_ROOM)
+        room = 2 * max(max_degree, min(n_nodes * max_degree, _LEVEL_ROOM))
+        even = trail.size > 0 and trail.min() == trail.max()  # every entry the same
         return cls(np.array([scale]), np.array([np.inf]), np.zeros(max(n_nodes, 1), dtype=np.int64),
-                   np.zeros(5, dtype=np.int64), np.full(n_nodes, -1, dtype=np.int32),
+                   np.zeros(5, dtype=np.int64), np.zeros(n_nodes, dtype=np.uint8),
                    np.zeros(n_nodes + 1, dtype=np.int64), np.zeros(n_nodes + 1, dtype=np.int64),
                    np.zeros(room, dtype=np.int64), np.zeros(room), np.zeros(n_nodes + 1, dtype=np.int64),
                    np.zeros(n_nodes + 1, dtype=np.int64), np.zeros(n_nodes + 1, dtype=np.bool_),
-                   np.full(n_nodes, trail.max(initial=0.0)))
+                   np.full(n_nodes, trail.max(initial=0.0)),
+                   np.full(n_nodes, even))
 
 
 @numba.njit(cache=True)
@@ -235,19 +261,40 @@ def _build_list(c, k, h, adj_ptr, node, weight, move, turn, class_row, head, to_
     filled[0] = r
 
 
+@numba.njit(cache=True, inline="always")
+def _trail(scale, stored, lo, hi, bounded):
+    """The trail a stored value stands for (:class:`~pathzoo_aco.engine.pheromone.Pheromone`'s read)."""
+    t = scale * stored
+    return min(max(t, lo), hi) if bounded else t
+
+
+@numba.njit(cache=True, inline="always")
+def _trail_power(t, tau_exp, lo, lo_pow):
+    """``t ** tau_exp`` as the generic walk computes it (``lo_pow`` is ``lo ** tau_exp``, for trails at ``lo``)."""
+    if tau_exp == 1.0:
+        return t
+    if t <= lo:
+        return lo_pow
+    return t**tau_exp
+
+
 @numba.njit(cache=True)
 def _walk_ant(wid, adj_ptr, node, weight, move, horizontal, turn, move_class, class_row, head, to_rec, to_move,
-              to_next, filled, x, node_max, scale, lo, hi, tau_exp, q0, start, goal, backtrack, max_steps, stamp,
+              rec_node, rec_place, rec_weight, to_next, filled, x, node_max, node_even, scale, lo, hi, tau_exp, q0,
+              start, goal, backtrack, max_steps, stamp,
               stack, stack_prev, cand, cand_w, level_first, level_count, level_more):
     """One ant from ``start``; returns ``(outcome, depth, steps)``, the adjacency positions it took in
     ``stack[:depth]``.
 
     Step for step :func:`pathzoo_aco.engine.walk._colony` for one ant walking
     alone, reading the records of (node, heading) instead of the node's whole
-    adjacency. The candidates of every node on the walk are kept, one level
-    per depth in ``cand``/``cand_w``; a step back on a node after a dead end
-    takes them again less those stamped since, rather than reading the list
-    again (see :class:`ColonyRun`).
+    adjacency: ``rec_node``, ``rec_place`` and ``rec_weight`` are the fields
+    of ``to_rec``, or without a turn table the adjacency's targets and weights
+    (``rec_place`` empty: a list position is its own place). ``wid`` is the
+    walk's stamp (see :attr:`ColonyRun.stamps`). The candidates of every node
+    on the walk are kept, one level per depth in ``cand``/``cand_w``; a step
+    back on a node after a dead end takes them again less those stamped
+    since, rather than reading the list again (see :class:`ColonyRun`).
     """
     use_turn = turn.shape[0] > 0
     no_prev = turn.shape[0] - 1 if use_turn else 0
@@ -261,7 +308,7 @@ def _walk_ant(wid, adj_ptr, node, weight, move, horizontal, turn, move_class, cl
     back = False  # this step is on a node the walk stepped back to
     known = 0  # where the list of the node the ant arrived at starts (<< 16) and its length plus 1; 0: look it up
     via = -1  # the record the ant arrived by, when it should learn where that list is
-    link = to_next.size > 0  # lists' places fit in to_next (see MoveTable)
+    link = use_turn and to_next.size > 0  # lists' places fit in to_next (see MoveTable)
     stamp[start] = wid
     c = start
     level_first[0] = 0
@@ -273,19 +320,28 @@ def _walk_ant(wid, adj_ptr, node, weight, move, horizontal, turn, move_class, cl
         p0 = level_first[d]
         nc = 0
         total_w = 0.0
+        top_w = -1.0  # the first of the heaviest candidates (eq. 14's deterministic choice), found as they are listed
+        top = -1
         scan = True
         if back and level_count[d] >= 0:  # the same candidates as before, less the nodes stamped since
             for i in range(p0, p0 + level_count[d]):
-                if stamp[to_rec[cand[i]].node] == wid:
+                if stamp[rec_node[cand[i]]] == wid:
                     continue
+                w = cand_w[i]
                 cand[p0 + nc] = cand[i]
-                cand_w[p0 + nc] = cand_w[i]
-                total_w += cand_w[i]
+                cand_w[p0 + nc] = w
+                total_w += w
+                if w > top_w:
+                    top_w = w
+                    top = cand[i]
                 nc += 1
             # none left: a dead end, unless some open move weighed 0 (then the heuristic alone may still choose)
             scan = nc == 0 and level_more[d]
         if scan:
-            if known > 0:  # the record the ant came by knows where this list is
+            if not use_turn:  # the list is the node's adjacency
+                r0 = adj_ptr[c]
+                r1 = adj_ptr[c + 1]
+            elif known > 0:  # the record the ant came by knows where this list is
                 r0 = known >> 16
                 r1 = r0 + (known & 0xFFFF) - 1
             else:
@@ -302,40 +358,41 @@ def _walk_ant(wid, adj_ptr, node, weight, move, horizontal, turn, move_class, cl
             cached = p0 + r1 - r0 <= room
             if not cached:  # no room to keep them: written past the levels, scanned again after a dead end
                 p0 = room
-            at_floor = scale * node_max[c] <= lo  # every trail from c reads as lo
+            # one trail power for the whole list when every trail from c reads the same
+            per_edge = not node_even[c] and scale * node_max[c] > lo
+            tp = _trail_power(lo if scale * node_max[c] <= lo else _trail(scale, node_max[c], lo, hi, bounded),
+                              tau_exp, lo, lo_pow)
             n_open = 0
             for r in range(r0, r1):
-                if stamp[to_rec[r].node] == wid:
+                if stamp[rec_node[r]] == wid:
                     continue
-                if at_floor:
-                    t = lo
-                else:
-                    t = scale * x[to_rec[r].place]
-                    if bounded:
-                        t = min(max(t, lo), hi)
+                if per_edge:
+                    tp = _trail_power(_trail(scale, x[r if not use_turn else rec_place[r]], lo, hi, bounded),
+                                      tau_exp, lo, lo_pow)
                 n_open += 1
-                if tau_exp == 1.0:
-                    w = t * to_rec[r].weight
-                elif t <= lo:
-                    w = lo_pow * to_rec[r].weight
-                else:
-                    w = t**tau_exp * to_rec[r].weight
+                w = tp * rec_weight[r]
                 if w > 0.0:
                     cand[p0 + nc] = r
                     cand_w[p0 + nc] = w
                     total_w += w
+                    if w > top_w:
+                        top_w = w
+                        top = r
                     nc += 1
             level_more[d] = n_open > nc
             if nc == 0 and n_open > 0:  # every trail weight underflowed: the heuristic alone
                 level_more[d] = False
                 for r in range(r0, r1):
-                    if stamp[to_rec[r].node] == wid:
+                    if stamp[rec_node[r]] == wid:
                         continue
-                    w = to_rec[r].weight
+                    w = rec_weight[r]
                     if w > 0.0:
                         cand[p0 + nc] = r
                         cand_w[p0 + nc] = w
                         total_w += w
+                        if w > top_w:
+                            top_w = w
+                            top = r
                         nc += 1
             level_count[d] = nc if cached else -1
         else:
@@ -353,14 +410,15 @@ def _walk_ant(wid, adj_ptr, node, weight, move, horizontal, turn, move_class, cl
             known = 0
             via = -1
         else:
-            sel = cand[p0 + nc - 1]
-            if q0 > 0.0 and np.random.random() < q0:
-                best = -1.0
+            if not use_turn:  # the next node is one of these: ask the cache for its list while the choice is made
                 for i in range(p0, p0 + nc):
-                    if cand_w[i] > best:
-                        best = cand_w[i]
-                        sel = cand[i]
+                    ahead = adj_ptr[rec_node[cand[i]]]
+                    prefetch(rec_weight, ahead)
+                    prefetch(rec_node, ahead)
+            if q0 > 0.0 and np.random.random() < q0:
+                sel = top
             else:
+                sel = cand[p0 + nc - 1]
                 u = np.random.random() * total_w
                 acc = 0.0
                 for i in range(p0, p0 + nc):
@@ -368,9 +426,9 @@ def _walk_ant(wid, adj_ptr, node, weight, move, horizontal, turn, move_class, cl
                     if u < acc:
                         sel = cand[i]
                         break
-            c = to_rec[sel].node
+            c = rec_node[sel]
             stamp[c] = wid
-            stack[d] = to_rec[sel].place
+            stack[d] = sel if not use_turn else rec_place[sel]
             fixed = True  # the next list follows from the record alone
             if use_turn:
                 o = to_move[sel]
@@ -389,11 +447,12 @@ def _walk_ant(wid, adj_ptr, node, weight, move, horizontal, turn, move_class, cl
 
 
 @numba.njit(cache=True)
-def _colony_run(adj_ptr, node, weight, move, edge, move_class, class_row, head, to_rec, to_move, to_next, filled,
+def _colony_run(adj_ptr, node, weight, move, edge, move_class, class_row, head, to_rec, to_move, rec_node, rec_place,
+                rec_weight, to_next, filled,
                 horizontal, turn, graph_indices, graph_offset_id, edge_length, height, turn_angle, cells, f1, f2, f3,
                 l_max, l_min, x, scale, lo, hi, rho, tau_exp, q, start, goal, backtrack, max_steps,
                 seeds, q0s, ps, ants, first, stop_at, best_cost, best_edges, counters, stamps, stack, stack_prev, cand,
-                cand_w, level_first, level_count, level_more, node_max):
+                cand_w, level_first, level_count, level_more, node_max, node_even):
     """Iterations ``counters[0]`` to ``stop_at - 1``; the schedule starts at iteration ``first``
     (see :func:`run_colony`)."""
     flat = np.zeros(1024, dtype=np.int64)  # storage places of the iteration's walks
@@ -408,11 +467,14 @@ def _colony_run(adj_ptr, node, weight, move, edge, move_class, class_row, head, 
         started = 0
         exhausted = False
         for a in range(n_ants):
-            wid = counters[1] + a  # walk ids never repeat within a run
-            flag, d, n = _walk_ant(wid, adj_ptr, node, weight, move, horizontal, turn, move_class, class_row, head,
-                                   to_rec, to_move, to_next, filled, x, node_max, scale[0], lo, hi, tau_exp,
-                                   q0s[it - first], start, goal, backtrack, max_steps, stamps, stack, stack_prev,
-                                   cand, cand_w, level_first, level_count, level_more)
+            wid = (counters[1] + a) % 255  # walks are counted over the run; a byte stamp tells 255 apart
+            if wid == 0:  # a new round of stamps: forget the last one's
+                stamps[:] = 0
+            flag, d, n = _walk_ant(np.uint8(wid + 1), adj_ptr, node, weight, move, horizontal, turn, move_class,
+                                   class_row, head, to_rec, to_move, rec_node, rec_place, rec_weight, to_next,
+                                   filled, x, node_max, node_even, scale[0], lo, hi, tau_exp, q0s[it - first],
+                                   start, goal, backtrack, max_steps, stamps, stack, stack_prev, cand, cand_w,
+                                   level_first, level_count, level_more)
             started += 1
             counters[2] += n
             if flag == REACHED:
@@ -460,6 +522,7 @@ def _colony_run(adj_ptr, node, weight, move, edge, move_class, class_row, head, 
                 t = min(max(s * x[e], lo), hi) + amount
                 x[e] = min(max(t, lo), hi) / s
                 node_max[c] = max(node_max[c], x[e])  # e leaves c
+                node_even[c] = False
                 c = node[e]
         if exhausted:
             counters[4] = 1
@@ -498,8 +561,13 @@ def run_colony(table: MoveTable, horizontal: np.ndarray, turn: np.ndarray, fitne
     x, lo, hi, rho = trail
     tau_exp, q, start, goal, backtrack, max_steps = rule
     seeds, q0s, ps, ants = schedule
+    if turn.size:  # the records' fields
+        records = (t.to_rec["node"], t.to_rec["place"], t.to_rec["weight"])
+    else:  # every list is the node's adjacency
+        targets = t.node.view(np.uint32) if t.node.dtype == np.int32 else t.node  # unsigned: no negative-index fix-up
+        records = (targets, np.zeros(0, dtype=t.to_rec["place"].dtype), t.weight)
     _colony_run(t.adj_ptr, t.node, t.weight, t.move, t.edge, t.move_class, t.class_row, t.head, t.to_rec, t.to_move,
-                t.to_next, t.filled, horizontal, turn, *fitness, x, run.scale, lo, hi, rho, tau_exp, q, start, goal,
-                backtrack, max_steps, seeds, q0s, ps, ants, first, stop_at, run.best_cost, run.best_edges,
+                *records, t.to_next, t.filled, horizontal, turn, *fitness, x, run.scale, lo, hi, rho, tau_exp, q, start,
+                goal, backtrack, max_steps, seeds, q0s, ps, ants, first, stop_at, run.best_cost, run.best_edges,
                 run.counters, run.stamps, run.stack, run.stack_prev, run.cand, run.cand_w, run.level_first,
-                run.level_count, run.level_more, run.node_max)
+                run.level_count, run.level_more, run.node_max, run.node_even)

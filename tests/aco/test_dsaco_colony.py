@@ -52,6 +52,9 @@ def _same(a, b):
     ("grid12-turn", {"n_ants": 4}, Budget(iterations=10)),
     ("grid12-wall", {"n_ants": 4}, Budget(iterations=10)),  # an ant proves the goal unreachable: early stop
     ("grid12-wall", {"n_ants": 4, "dead_end": "die"}, Budget(iterations=3)),
+    ("grid12", {"n_ants": 30, "alpha": 1.5}, Budget(iterations=10)),  # lists read in place; 300 walks: stamps wrap
+    ("grid12", {"n_ants": 3, "rho": 0.9}, Budget(iterations=20)),  # deposited, even and floored trails side by side
+    ("grid12-turn", {"n_ants": 30, "alpha": 0.5, "rho": 0.5}, Budget(iterations=10)),  # the same through records
 ])
 def test_compiled_colony_equals_the_generic_loop(scenario_id, params, budget):
     scenario = {"grid12": lambda: _grid(), "grid12-turn": lambda: _grid(turn_deg=45.0),
@@ -202,3 +205,22 @@ def test_without_the_records_links_the_answer_is_the_same(monkeypatch):
     (fast, slow), _, (fast_rng, slow_rng) = _both(planner, pathzoo.load_scenario("dsaco.simple"), Budget(iterations=6))
     _same(fast, slow)
     assert fast_rng == slow_rng
+
+
+def test_byte_stamps_are_cleared_when_they_come_round_again(monkeypatch):
+    import pathzoo_aco.dsaco as dsaco
+
+    planner = pathzoo.make_planner("aco.dsaco", n_ants=4)
+    fresh = planner.plan(_grid(), budget=Budget(iterations=3), rng=np.random.default_rng(4))
+    start = dsaco.ColonyRun.start
+
+    def worn(*args):  # a run whose next walk is its 256th, every node still stamped with the value that walk reuses
+        run = start(*args)
+        run.counters[1] = 255
+        run.stamps[:] = 1
+        return run
+
+    monkeypatch.setattr(dsaco.ColonyRun, "start", worn)
+    again = planner.plan(_grid(), budget=Budget(iterations=3), rng=np.random.default_rng(4))
+    assert again.evaluations == fresh.evaluations + 255 and again.extras["ant_steps"] == fresh.extras["ant_steps"]
+    np.testing.assert_array_equal(again.path, fresh.path)
