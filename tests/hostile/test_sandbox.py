@@ -135,10 +135,11 @@ def test_cpu_time_of_children_is_counted(attackers, tmp_path):
 
 
 def test_memory_and_process_limits(attackers, tmp_path):
-    limits = SandboxLimits(memory_bytes=200 << 20, max_tasks=64)
-    runs = _run([("sandbox.hog", {"mib": 400}), ("sandbox.hog", {"children": 200}, "forks")], tmp_path, "attacked",
-                seeds=1, limits=limits)
-    memory, forks = runs.iloc[0], runs.iloc[1]
+    # each limit on its own: 64 forked interpreters touch enough copy-on-write pages to come near 200 MiB
+    memory = _run([("sandbox.hog", {"mib": 400})], tmp_path, "memory", seeds=1,
+                  limits=SandboxLimits(memory_bytes=200 << 20, max_tasks=64)).iloc[0]
+    forks = _run([("sandbox.hog", {"children": 200}, "forks")], tmp_path, "forks", seeds=1,
+                 limits=SandboxLimits(memory_bytes=2 << 30, max_tasks=64)).iloc[0]
     assert memory.status == "crash" and "out of memory" in memory.message
     started = int(forks.message.split(", ")[1].split()[0])
     assert forks.status == "invalid" and started < 64
