@@ -14,7 +14,9 @@ anything else runs, and ``bwrap`` (bubblewrap, as in Flatpak) then gives it:
   ``/dev/shm`` (so no socket of the harness, its ``forkserver`` or its
   resource tracker is reachable), and two writable directories: the
   worker's scratch directory (its working directory, ``HOME`` and
-  ``TMPDIR``) and the numba cache of its planner (``NUMBA_CACHE_DIR``); the
+  ``TMPDIR``: a memory file system of :attr:`SandboxLimits.scratch_bytes`,
+  whose pages count towards the cgroup's memory, so a planner cannot fill
+  the disk) and the numba cache of its planner (``NUMBA_CACHE_DIR``); the
   directories of ``sys.path`` and of the scenario files under the hidden
   ones are mounted back, read-only;
 - a PID namespace (it sees and can signal only its own processes: not the
@@ -74,10 +76,14 @@ class SandboxLimits:
         Memory of the worker and its children (default 4 GiB).
     max_tasks : int
         Processes and threads (default 512).
+    scratch_bytes : int
+        Size of the worker's scratch directory, a memory file system of its own (default 1 GiB; its pages also
+        count towards ``memory_bytes``).
     """
 
     memory_bytes: int = 4 << 30
     max_tasks: int = 512
+    scratch_bytes: int = 1 << 30
 
 
 @functools.lru_cache(maxsize=1)
@@ -144,7 +150,7 @@ def _visible_again(paths: Iterable[str], hidden: Sequence[str]) -> list[str]:
 
 
 def sandboxed_command(command: Sequence[str], *, procs_files: Sequence[str], scratch: Path, numba_cache: Path,
-                      readable: Iterable[str] = ()) -> list[str]:
+                      readable: Iterable[str] = (), scratch_bytes: int = SandboxLimits.scratch_bytes) -> list[str]:
     """``command`` wrapped to join the cgroup and run inside bubblewrap (see the module docstring).
 
     Parameters
@@ -157,13 +163,16 @@ def sandboxed_command(command: Sequence[str], *, procs_files: Sequence[str], scr
         a short-lived child that needs no limits (its PID namespace dies
         with it).
     scratch : Path
-        The worker's writable working directory (made if missing).
+        The worker's working directory (made if missing): inside, an empty memory file system of
+        ``scratch_bytes`` mounted there, so nothing a planner writes reaches the disk or outlives it.
     numba_cache : Path
         The writable numba cache of its planner (:func:`worker_numba_cache`; made if missing).
     readable : iterable of str
         Paths the worker must read besides ``sys.path`` (the directories of
         the scenario files, with the maps they name); only those under a
         hidden directory need naming.
+    scratch_bytes : int
+        Size of the scratch file system (:attr:`SandboxLimits.scratch_bytes`).
     """
     bwrap = shutil.which("bwrap")
     if bwrap is None:
@@ -180,8 +189,7 @@ def sandboxed_command(command: Sequence[str], *, procs_files: Sequence[str], scr
     python = [sys.prefix, sys.exec_prefix, os.path.dirname(os.path.abspath(sys.executable))]
     for path in _visible_again([*python, *sys.path, *readable], hidden):
         args += ["--ro-bind", path, path]
-    for writable in (scratch, numba_cache):
-        args += ["--bind", str(writable), str(writable)]
+    args += ["--size", str(int(scratch_bytes)), "--tmpfs", str(scratch), "--bind", str(numba_cache), str(numba_cache)]
     args += ["--unshare-all", "--cap-drop", "ALL", "--new-session", "--die-with-parent", "--chdir", str(scratch),
              "--setenv", "HOME", str(scratch), "--setenv", "TMPDIR", str(scratch),
              "--setenv", "NUMBA_CACHE_DIR", str(numba_cache), "--", *command]

@@ -237,12 +237,24 @@ class Network(_Hostile):
 
 
 class Hog(_Hostile):
-    """Touches ``mib`` MiB of memory, or forks ``children`` sleeping children."""
+    """Touches ``mib`` MiB of memory, forks ``children`` sleeping children, or writes ``disk_mib`` MiB to a file."""
 
     id = "sandbox.hog"
-    params = {"mib": Param(0, "memory to touch", low=0), "children": Param(0, "children to fork", low=0)}
+    params = {"mib": Param(0, "memory to touch", low=0), "children": Param(0, "children to fork", low=0),
+              "disk_mib": Param(0, "MiB to write to a file in the working directory", low=0)}
 
     def attack(self, scenario: Scenario) -> str:
+        if self.disk_mib:
+            written = 0
+            try:
+                with open("fill", "wb") as fh:
+                    for _ in range(self.disk_mib):
+                        fh.write(b"\0" * 2**20)
+                        fh.flush()
+                        written += 1
+            except OSError as exc:
+                return f"wrote {written} MiB ({exc.strerror})"
+            return f"wrote {written} MiB"
         block = np.ones(self.mib * 2**20 // 8) if self.mib else None
         started = 0
         for _ in range(self.children):

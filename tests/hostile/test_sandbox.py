@@ -146,6 +146,12 @@ def test_memory_and_process_limits(attackers, tmp_path):
     assert not [p for p in psutil.process_iter(["cmdline"]) if "sandbox.hog" in " ".join(p.info["cmdline"] or [])]
 
 
+def test_the_scratch_directory_is_bounded(attackers, tmp_path):
+    run = _run([("sandbox.hog", {"disk_mib": 80})], tmp_path, "disk", seeds=1,
+               limits=SandboxLimits(scratch_bytes=32 << 20)).iloc[0]
+    assert run.status == "invalid" and run.message.startswith("wrote 3") and "No space left" in run.message
+
+
 def test_killing_the_harness_and_its_parent_reaches_nothing(tmp_path):
     db = tmp_path / "attacked.sqlite"
     script = textwrap.dedent(f"""

@@ -270,7 +270,7 @@ class ProcessExecutor(RunExecutor):
         unsandboxed; ``True``: raise :class:`SandboxUnavailableError` where
         it cannot; ``False``: never.
     limits : SandboxLimits, optional
-        Memory and task limits of each sandboxed worker.
+        Memory, task and scratch limits of each sandboxed worker.
 
     Attributes
     ----------
@@ -388,7 +388,7 @@ class ProcessExecutor(RunExecutor):
                                             name="pathzoo-worker")
             process.sandbox_prefix = sandboxed_command(
                 (), procs_files=group.procs_files, scratch=Path(scratch), numba_cache=worker_numba_cache(config[0]),
-                readable=visible)
+                readable=visible, scratch_bytes=self.limits.scratch_bytes)
         else:
             process = self._ctx.Process(target=_worker_main, args=(child, harness_alive(), flag),
                                         name="pathzoo-worker")
