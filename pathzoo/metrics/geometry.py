@@ -13,22 +13,30 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from pathzoo.grid.paths import path_pieces
+from pathzoo.metrics.path_memo import last_call
 
 if TYPE_CHECKING:
     from pathzoo.core.scenario import Scenario
 
-__all__ = ["TURN_EPS_RAD", "turn_angles", "clearance_samples", "travel_time_energy"]
+__all__ = ["TURN_EPS_RAD", "driven_pieces", "turn_angles", "clearance_samples", "travel_time_energy"]
 
 TURN_EPS_RAD = 1e-6
 """Heading changes at or below this many radians are not turns."""
 
 
+driven_pieces = last_call(path_pieces)
+""":func:`pathzoo.grid.paths.path_pieces` (3-D lengths and slopes of the driven pieces), kept for the path being
+judged (:mod:`~pathzoo.metrics.path_memo`; read-only arrays)."""
+
+
+@last_call
 def turn_angles(path: np.ndarray) -> np.ndarray:
     """Heading change (rad, in ``[0, π]``) at every waypoint joining two non-zero segments.
 
     The angle between the directions of consecutive segments, in the path's own
     dimension (the horizontal heading for ground paths, the 3-D angle for air
-    paths); zero-length segments (repeated waypoints, waits) are skipped.
+    paths); zero-length segments (repeated waypoints, waits) are skipped. The
+    array is read-only: the metrics of one path share it (:mod:`~pathzoo.metrics.path_memo`).
 
     Examples
     --------
@@ -50,8 +58,9 @@ def turn_angles(path: np.ndarray) -> np.ndarray:
     return np.arctan2(cross, dot)
 
 
+@last_call
 def clearance_samples(scenario: "Scenario", path: np.ndarray) -> np.ndarray:
-    """Clearance (m) at points spaced evenly by arc length along the path.
+    """Clearance (m) at points spaced evenly by arc length along the path (a read-only array).
 
     The path of 3-D length ``L`` (in the path's own coordinates) is sampled at
     ``n + 1`` points ``s_k = k L / n`` with ``n = max(1, ceil(2 L / c))`` and
@@ -71,6 +80,7 @@ def clearance_samples(scenario: "Scenario", path: np.ndarray) -> np.ndarray:
     return scenario.clearance[tuple(cells.T)]
 
 
+@last_call
 def travel_time_energy(
     scenario: "Scenario", path: np.ndarray, times: np.ndarray | None = None
 ) -> tuple[float, float]:
@@ -90,7 +100,7 @@ def travel_time_energy(
     """
     vehicle = scenario.vehicle
     pts = np.asarray(path, dtype=np.float64)
-    lengths, slopes = path_pieces(scenario, pts)
+    lengths, slopes = driven_pieces(scenario, pts)
     extra_t, extra_e = vehicle.turn_penalty(turn_angles(pts))
     drive_t = float(lengths.sum()) / vehicle.cruise_speed
     drive_e = float(vehicle.segment_energy(lengths, slopes).sum())

@@ -9,7 +9,7 @@ import numpy as np
 
 from pathzoo.grid.reference import anyangle_bound_3d, anyangle_length, earliest_arrival_s, reference_length
 from pathzoo.metrics.base import PathMetric
-from pathzoo.grid.paths import path_pieces
+from pathzoo.metrics.geometry import driven_pieces
 from pathzoo.rules.timing import path_times
 
 if TYPE_CHECKING:
@@ -29,7 +29,7 @@ class _LengthOverReference(PathMetric):
 
     def measure(self, scenario: "Scenario", path: np.ndarray, record: "RunRecord") -> float:
         """``length / reference``; 1 when both are 0, NaN without a reference."""
-        return _ratio(float(path_pieces(scenario, path)[0].sum()), self.reference(scenario))
+        return _ratio(float(driven_pieces(scenario, path)[0].sum()), self.reference(scenario))
 
 
 class LengthRatio(_LengthOverReference):

@@ -7,8 +7,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from pathzoo.metrics.base import PathMetric
-from pathzoo.grid.paths import path_pieces
-from pathzoo.metrics.geometry import TURN_EPS_RAD, turn_angles
+from pathzoo.metrics.geometry import TURN_EPS_RAD, driven_pieces, turn_angles
 
 if TYPE_CHECKING:
     from pathzoo.core.results import RunRecord
@@ -26,8 +25,8 @@ class Length(PathMetric):
     summary = "path length (3-D on terrain and in air)"
 
     def measure(self, scenario: "Scenario", path: np.ndarray, record: "RunRecord") -> float:
-        """Sum of :func:`~pathzoo.metrics.geometry.path_pieces` lengths."""
-        return float(path_pieces(scenario, path)[0].sum())
+        """Sum of :func:`~pathzoo.metrics.geometry.driven_pieces` lengths."""
+        return float(driven_pieces(scenario, path)[0].sum())
 
 
 class Turns(PathMetric):
@@ -66,5 +65,5 @@ class Smoothness(PathMetric):
 
     def measure(self, scenario: "Scenario", path: np.ndarray, record: "RunRecord") -> float:
         """``Σ |Δψ_i| / L``; 0 for a path of zero length."""
-        length = float(path_pieces(scenario, path)[0].sum())
+        length = float(driven_pieces(scenario, path)[0].sum())
         return float(turn_angles(path).sum()) / length if length > 0 else 0.0
