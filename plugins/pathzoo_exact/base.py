@@ -45,6 +45,17 @@ graphs of at most :data:`SPARE_MAX_NODES` nodes, so a worker never holds a
 big map's arrays (17 bytes per node) after its search. A restarted state is
 what a fresh one would be, so it gives the same search.
 
+Kept per scenario
+-----------------
+What a search needs besides its state depends on the scenario and the
+planner's parameters only: the batch function and its arrays, the start and
+goal cells, whether the end points lie on their cell centres, the
+connectors' verdicts and costs. :meth:`GraphSearchPlanner._prepared` works
+them out on the first ``plan()`` of a configuration on a scenario and keeps
+them beside the scenario (:class:`PreparedSearch`), so that a search on a
+small map costs a few microseconds besides its expansions. The path is then
+built in one compiled pass (:func:`~pathzoo_exact.waypoints.waypoints`).
+
 Budgets
 -------
 Numba code cannot read the clock cheaply, so the search runs in batches of
