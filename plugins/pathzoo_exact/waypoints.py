@@ -76,28 +76,36 @@ def waypoints(
         Whether each end point replaces its cell's centre (else it is joined to it).
     """
     nodes = trace_path(parent, target)
-    if straight_width > 0:
-        nodes = nodes[straight_run_ends(nodes, straight_width)]
     n = nodes.shape[0]
+    if straight_width > 0:  # keep the turns, in place (scalar code: quick to compile in a fresh worker)
+        keep = straight_run_ends(nodes, straight_width)
+        kept = 0
+        for i in range(n):
+            if keep[i]:
+                nodes[kept] = nodes[i]
+                kept += 1
+        n = kept
     d = sizes.shape[0]
     if n == 1 and start_on_centre and goal_on_centre:  # both ends on one centre: still two points
         out = np.empty((2, d))
-        out[0] = start
-        out[1] = goal
+        for a in range(d):
+            out[0, a] = start[a]
+            out[1, a] = goal[a]
         return out
     first = 0 if start_on_centre else 1
     out = np.empty((n + first + (0 if goal_on_centre else 1), d))
-    plane = dims[1] * dims[2]
+    w = dims[2]
+    plane = dims[1] * w
     for i in range(n):
-        layer, rest = divmod(nodes[i], plane)
-        row, col = divmod(rest, dims[2])
-        out[first + i, 0] = (np.float64(col) + 0.5) * sizes[0]
+        layer = nodes[i] // plane
+        rest = nodes[i] - layer * plane
+        row = rest // w
+        out[first + i, 0] = (np.float64(rest - row * w) + 0.5) * sizes[0]
         out[first + i, 1] = (np.float64(row) + 0.5) * sizes[1]
         if d == 3:
             out[first + i, 2] = (np.float64(layer) + 0.5) * sizes[2]
-    out[0] = start  # the start replaces the first centre, or comes before it
-    if goal_on_centre:
-        out[first + n - 1] = goal
-    else:
-        out[first + n] = goal
+    last = first + n - 1 if goal_on_centre else first + n
+    for a in range(d):
+        out[0, a] = start[a]  # the start replaces the first centre, or comes before it
+        out[last, a] = goal[a]
     return out
