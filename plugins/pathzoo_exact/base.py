@@ -45,6 +45,17 @@ graphs of at most :data:`SPARE_MAX_NODES` nodes, so a worker never holds a
 big map's arrays (17 bytes per node) after its search. A restarted state is
 what a fresh one would be, so it gives the same search.
 
+Kept per scenario
+-----------------
+What a search needs besides its state depends on the scenario and the
+planner's parameters only: the batch function and its arrays, the start and
+goal cells, whether the end points lie on their cell centres, the
+connectors' verdicts and costs. :meth:`GraphSearchPlanner._prepared` works
+them out on the first ``plan()`` of a configuration on a scenario and keeps
+them beside the scenario (:class:`PreparedSearch`), so that a search on a
+small map costs a few microseconds besides its expansions. The path is then
+built in one compiled pass (:func:`~pathzoo_exact.waypoints.waypoints`).
+
 Budgets
 -------
 Numba code cannot read the clock cheaply, so the search runs in batches of
@@ -61,9 +72,9 @@ from __future__ import annotations
 import abc
 import math
 import threading
-from typing import Callable, ClassVar, NamedTuple
+from functools import cached_property
+from typing import Any, Callable, ClassVar, Hashable, NamedTuple
 
-import numba
 import numpy as np
 
 from pathzoo.core import Budget, BudgetClock, Planner, PlanResult, ProgressCallback, Scenario, Status
@@ -71,9 +82,11 @@ from pathzoo.core.object_memo import ObjectMemo
 from pathzoo.grid.paths import centre_path, on_centre
 from pathzoo.grid.terrain import segment_profile
 from pathzoo.rules import segment_problem
-from pathzoo_exact.kernel import EXHAUSTED, FOUND, HEAP_FULL, RUNNING, SearchState, trace_path
+from pathzoo_exact.kernel import EXHAUSTED, FOUND, HEAP_FULL, RUNNING, SearchState
+from pathzoo_exact.waypoints import waypoints
 
-__all__ = ["GraphSearchPlanner", "BatchFn", "SPARE_MAX_NODES", "Endpoints", "endpoints", "connector_cost", "straight_run_ends"]
+__all__ = ["GraphSearchPlanner", "BatchFn", "SPARE_MAX_NODES", "Endpoints", "endpoints", "connector_cost",
+           "PreparedSearch"]
 
 BatchFn = Callable[[SearchState, int], int]
 """``batch(state, max_expansions) -> RUNNING | FOUND | EXHAUSTED | HEAP_FULL``."""
@@ -98,28 +111,6 @@ def _search_state(n_nodes: int, source: int, heap_capacity: int) -> SearchState:
 def _keep_spare(state: SearchState) -> None:
     if state.g.shape[0] <= SPARE_MAX_NODES:
         _SPARE.state = state
-
-@numba.njit(cache=True)
-def straight_run_ends(nodes: np.ndarray, width: int) -> np.ndarray:
-    """Mask of the waypoints to keep: both ends and every point where the direction changes.
-
-    Parameters
-    ----------
-    nodes : ndarray of int64, shape (N,)
-        Consecutive flat node ids of a 2-D grid.
-    width : int
-        Columns of the grid.
-    """
-    n = nodes.shape[0]
-    keep = np.ones(n, dtype=np.bool_)
-    for i in range(1, n - 1):
-        r0, c0 = divmod(nodes[i - 1], width)
-        r1, c1 = divmod(nodes[i], width)
-        r2, c2 = divmod(nodes[i + 1], width)
-        ar, ac, br, bc = r1 - r0, c1 - c0, r2 - r1, c2 - c1
-        keep[i] = ar * bc - ac * br != 0 or ar * br + ac * bc <= 0  # a turn, or a reversal
-    return keep
-
 
 class Endpoints(NamedTuple):
     """Where a scenario's search starts and ends, and whether the points sit on their cells' centres."""
@@ -169,6 +160,57 @@ def connector_cost(scenario: Scenario, p0: np.ndarray, p1: np.ndarray, cost: str
     return float(scenario.vehicle.segment_energy(lengths, slopes).sum())
 
 
+class PreparedSearch(NamedTuple):
+    """What one planner configuration's searches on one scenario share, worked out on its first ``plan()``.
+
+    Attributes
+    ----------
+    batch : BatchFn
+        Advances a search by one batch (:meth:`GraphSearchPlanner._make_batch`).
+    source, target : int
+        The start and goal cells' node ids.
+    n_nodes : int
+        Nodes of the graph.
+    straight_width : int
+        Grid columns when straight runs lose their inner waypoints (``grid2d``), else 0.
+    dims : ndarray of int64, shape (3,)
+        Grid shape as ``(layers, rows, columns)``.
+    sizes, start, goal : ndarray of float64
+        Cell sizes, start and goal point, for :func:`~pathzoo_exact.waypoints.waypoints`.
+    start_on_centre, goal_on_centre : bool
+        See :class:`Endpoints`.
+    cost_kind : str
+        The edge cost minimised.
+    connector_problem : str or None
+        Why a connector is not allowed (the first one that is not), or None.
+    connector_costs : tuple of float
+        The connectors' costs, start first, when both are allowed.
+    """
+
+    batch: BatchFn
+    source: int
+    target: int
+    n_nodes: int
+    straight_width: int
+    dims: np.ndarray
+    sizes: np.ndarray
+    start: np.ndarray
+    goal: np.ndarray
+    start_on_centre: bool
+    goal_on_centre: bool
+    cost_kind: str
+    connector_problem: str | None
+    connector_costs: tuple[float, ...]
+
+
+_PREPARED: "ObjectMemo[Scenario, dict[Hashable, PreparedSearch]]" = ObjectMemo()
+
+
+def _clock_limited(budget: Budget) -> bool:
+    """Whether a clock can end a search under ``budget`` (else the search needs no clock at all)."""
+    return budget.stop is not None or budget.cpu_s is not None or budget.time_s is not None
+
+
 class GraphSearchPlanner(Planner, abc.ABC):
     """Base of the exact planners: a best-first search on ``scenario.graph``.
 
@@ -190,6 +232,54 @@ class GraphSearchPlanner(Planner, abc.ABC):
         """The edge cost minimised, ``"length"`` or ``"energy"``."""
         return "length"
 
+    @cached_property
+    def _search_key(self) -> Hashable:
+        """What tells this configuration's prepared searches from another's on the same scenario."""
+        values: dict[str, Any] = self._values
+        return type(self), tuple(values.items())
+
+    def _prepared(self, scenario: Scenario) -> PreparedSearch:
+        """This configuration's :class:`PreparedSearch` on ``scenario``, built on the first call and then kept."""
+        searches = _PREPARED.get(scenario)  # a plain look-up first: this runs twice per plan()
+        if searches is None:
+            searches = _PREPARED.value(scenario, dict)
+        found = searches.get(self._search_key)
+        if found is None:
+            self.check_supports(scenario)
+            found = searches.setdefault(self._search_key, self._prepare(scenario))
+        return found
+
+    def _prepare(self, scenario: Scenario) -> PreparedSearch:
+        ends = endpoints(scenario)
+        graph = scenario.graph
+        kind = self._cost_kind()
+        example = np.array([ends.source, ends.target] if ends.source != ends.target else [ends.source])
+        path = centre_path(scenario, example)  # ends as those of every path found (the connectors depend on no more)
+        connectors = ([(path[0], path[1])] if not ends.start_on_centre else []) + (
+            [(path[-2], path[-1])] if not ends.goal_on_centre else [])
+        problem, costs = None, []
+        for p0, p1 in connectors:
+            problem = segment_problem(scenario, p0, p1)
+            if problem is not None:
+                break
+            costs.append(connector_cost(scenario, p0, p1, kind))
+        return PreparedSearch(
+            batch=self._make_batch(scenario, ends.target),
+            source=ends.source,
+            target=ends.target,
+            n_nodes=graph.n_nodes,
+            straight_width=scenario.shape[1] if scenario.kind == "grid2d" else 0,
+            dims=np.array((1,) * (3 - len(graph.shape)) + tuple(graph.shape), dtype=np.int64),
+            sizes=np.asarray(scenario.cell_sizes, dtype=np.float64),
+            start=np.asarray(scenario.start, dtype=np.float64),
+            goal=np.asarray(scenario.goal, dtype=np.float64),
+            start_on_centre=ends.start_on_centre,
+            goal_on_centre=ends.goal_on_centre,
+            cost_kind=kind,
+            connector_problem=problem,
+            connector_costs=tuple(costs),
+        )
+
     def plan(
         self,
         scenario: Scenario,
@@ -199,20 +289,25 @@ class GraphSearchPlanner(Planner, abc.ABC):
         progress: ProgressCallback | None = None,
     ) -> PlanResult:
         """Search the cell graph from the start cell to the goal cell; see the module docstring."""
-        self.check_supports(scenario)
-        clock = budget.start()
-        state = _search_state(scenario.graph.n_nodes, endpoints(scenario).source, self.initial_heap_capacity)
+        clock = budget.start() if _clock_limited(budget) else None
+        search = self._prepared(scenario)
+        state = _search_state(search.n_nodes, search.source, self.initial_heap_capacity)
         try:
-            return self._search(scenario, state, clock, budget, progress)
+            return self._search(scenario, search, state, clock, budget, progress)
         finally:  # nothing in the result refers to the state's arrays
             _keep_spare(state)
 
     def _search(
-        self, scenario: Scenario, state: SearchState, clock: BudgetClock, budget: Budget, progress: ProgressCallback | None
+        self,
+        scenario: Scenario,
+        search: PreparedSearch,
+        state: SearchState,
+        clock: BudgetClock | None,
+        budget: Budget,
+        progress: ProgressCallback | None,
     ) -> PlanResult:
         """Run the search in ``state`` in batches until it ends or the budget does, then build the result."""
-        target = endpoints(scenario).target
-        batch = self._make_batch(scenario, target)
+        batch = search.batch
         cap = budget.evaluations
         while True:
             step = self.batch_expansions if cap is None else min(self.batch_expansions, cap - state.expanded)
@@ -224,7 +319,7 @@ class GraphSearchPlanner(Planner, abc.ABC):
                 break
             if cap is not None and state.expanded >= cap:
                 return self._failed(state, f"evaluation budget of {cap} expansions exhausted before the goal")
-            spent = clock.time_up()
+            spent = None if clock is None else clock.time_up()
             if spent is not None:
                 return self._failed(state, f"{'CPU' if spent == 'cpu_time' else 'wall'} time budget exhausted "
                                     "before the goal")
@@ -236,7 +331,7 @@ class GraphSearchPlanner(Planner, abc.ABC):
                 message="the goal cell is not reachable from the start cell in the neighbourhood graph",
             )
         assert status == FOUND
-        return self._solved(scenario, state, target, progress)
+        return self._solved(scenario, state, search.target, progress)
 
     def _failed(self, state: SearchState, message: str) -> PlanResult:
         return PlanResult(Status.FAILED, iterations=1, evaluations=state.expanded, message=message)
@@ -244,23 +339,16 @@ class GraphSearchPlanner(Planner, abc.ABC):
     def _solved(
         self, scenario: Scenario, state: SearchState, target: int, progress: ProgressCallback | None
     ) -> PlanResult:
-        nodes = trace_path(state.parent, target)
-        if scenario.kind == "grid2d":
-            nodes = nodes[straight_run_ends(nodes, scenario.shape[1])]
-        path = centre_path(scenario, nodes)
-        ends = endpoints(scenario)
-        cost = float(state.g[target])
-        kind = self._cost_kind()
-        connectors = []
-        if not ends.start_on_centre:
-            connectors.append((path[0], path[1]))
-        if not ends.goal_on_centre:
-            connectors.append((path[-2], path[-1]))
-        for p0, p1 in connectors:
-            problem = segment_problem(scenario, p0, p1)
-            if problem is not None:
-                return self._failed(state, f"connector between an endpoint and its cell centre is not allowed: {problem}")
-            cost += connector_cost(scenario, p0, p1, kind)
+        search = self._prepared(scenario)
+        if search.connector_problem is not None:
+            return self._failed(state, "connector between an endpoint and its cell centre is not allowed: "
+                                f"{search.connector_problem}")
+        path = waypoints(state.parent, target, search.straight_width, search.dims, search.sizes, search.start,
+                         search.goal, search.start_on_centre, search.goal_on_centre)
+        graph_cost = float(state.g[target])
+        cost = graph_cost
+        for connector in search.connector_costs:
+            cost += connector
         if progress is not None:
             progress(1, state.expanded, cost)
         return PlanResult(
@@ -268,5 +356,5 @@ class GraphSearchPlanner(Planner, abc.ABC):
             path=path,
             iterations=1,
             evaluations=state.expanded,
-            extras={"cost": kind, "best_cost": cost, "graph_cost": float(state.g[target])},
+            extras={"cost": search.cost_kind, "best_cost": cost, "graph_cost": graph_cost},
         )

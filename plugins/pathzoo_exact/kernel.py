@@ -37,6 +37,7 @@ from typing import Callable
 
 import numba
 import numpy as np
+from llvmlite import ir
 from numba import types
 from numba.extending import intrinsic
 
@@ -56,6 +57,7 @@ __all__ = [
     "heap_push",
     "heap_pop",
     "next_open",
+    "begin_batch",
     "end_batch",
     "astar_batch",
     "astar_moves_batch",
@@ -95,6 +97,16 @@ def _float_bits(typingctx, x):
     return types.int64(types.float64), codegen
 
 
+@intrinsic
+def _trailing_zeros(typingctx, x):
+    """Index of the lowest set bit of a uint64 (64 when none is set): one instruction."""
+
+    def codegen(context, builder, signature, args):
+        return builder.cttz(args[0], ir.Constant(ir.IntType(1), 0))
+
+    return types.uint64(types.uint64), codegen
+
+
 @numba.njit(cache=True)
 def order_key(x: float) -> int:
     """An int64 that compares with other keys exactly as the float ``x`` compares with their floats.
@@ -116,6 +128,53 @@ def order_key(x: float) -> int:
     return bits ^ ((bits >> 63) & _MAGNITUDE)
 
 
+@numba.njit(cache=True)
+def _begin(
+    g: np.ndarray,
+    parent: np.ndarray,
+    closed: np.ndarray,
+    heap_node: np.ndarray,
+    heap_f: np.ndarray,
+    heap_g: np.ndarray,
+    counters: np.ndarray,
+    source: int,
+    clear: bool,
+) -> None:
+    """Put only ``source`` (cost 0) on the open list, after marking every node unseen and open if ``clear``."""
+    if clear:
+        g[:] = np.inf
+        closed[:] = False
+    g[source] = 0.0
+    parent[source] = -1
+    heap_node[0] = source
+    heap_f[0] = 0  # order_key(0.0)
+    heap_g[0] = 0
+    counters[0] = 1
+    counters[1] = 0
+
+
+@numba.njit(cache=True)
+def begin_batch(
+    g: np.ndarray,
+    parent: np.ndarray,
+    closed: np.ndarray,
+    heap_node: np.ndarray,
+    heap_f: np.ndarray,
+    heap_g: np.ndarray,
+    counters: np.ndarray,
+) -> int:
+    """The heap size a batch starts from, after doing the restart :meth:`SearchState.restart` left to it, if any.
+
+    Every batch kernel starts here. A restart done by the first batch costs no
+    call of its own: a search on a small map takes a few microseconds, about
+    as long as one more compiled call from Python.
+    """
+    if counters[2] >= 0:
+        _begin(g, parent, closed, heap_node, heap_f, heap_g, counters, counters[2], True)
+        counters[2] = -1
+    return counters[0]
+
+
 @dataclass
 class SearchState:
     """Mutable arrays of one search, resumed batch after batch.
@@ -133,8 +192,8 @@ class SearchState:
     heap_node, heap_f, heap_g : ndarray
         The binary heap: node, key ``f`` and tie-breaker ``g`` per slot;
         ``heap_f`` and ``heap_g`` hold int64 :func:`order_key` values.
-    counters : ndarray of int64, shape (2,)
-        ``[heap size, expanded nodes]``.
+    counters : ndarray of int64, shape (3,)
+        ``[heap size, expanded nodes, source of a restart the next batch does first (-1: none)]``.
     """
 
     g: np.ndarray
@@ -156,26 +215,26 @@ class SearchState:
             heap_node=empty,
             heap_f=empty,
             heap_g=empty,
-            counters=np.zeros(2, dtype=np.int64),
+            counters=np.array([0, 0, -1], dtype=np.int64),
         )
         state._begin(source, heap_capacity)
         return state
 
     def restart(self, source: int, heap_capacity: int = 4096) -> None:
-        """Forget the search and start a new one from ``source`` in the same node arrays: what :meth:`start` gives."""
-        self.g.fill(np.inf)
-        self.closed.fill(False)
-        self._begin(source, heap_capacity)
+        """Forget the search and start a new one from ``source`` in the same node arrays: what :meth:`start` gives.
+
+        The node arrays are reset by the next batch (:func:`begin_batch`);
+        until then only :attr:`expanded` (0) may be read.
+        """
+        if len(self.heap_node) != heap_capacity:
+            self.heap_node, self.heap_f, self.heap_g = (np.empty(heap_capacity, dtype=np.int64) for _ in range(3))
+        self.counters[1] = 0
+        self.counters[2] = source
 
     def _begin(self, source: int, heap_capacity: int) -> None:
         if len(self.heap_node) != heap_capacity:
             self.heap_node, self.heap_f, self.heap_g = (np.empty(heap_capacity, dtype=np.int64) for _ in range(3))
-        self.g[source] = 0.0
-        self.parent[source] = -1
-        self.heap_node[0] = source
-        self.heap_f[0] = 0  # order_key(0.0)
-        self.heap_g[0] = 0
-        self.counters[:] = (1, 0)
+        _begin(self.g, self.parent, self.closed, self.heap_node, self.heap_f, self.heap_g, self.counters, source, False)
 
     def grow_heap(self) -> None:
         """Double the heap's capacity, keeping its entries."""
@@ -361,7 +420,7 @@ def astar_batch(
     of one expansion. Returns :data:`RUNNING`, :data:`FOUND`,
     :data:`EXHAUSTED` or :data:`HEAP_FULL`.
     """
-    size = counters[0]
+    size = begin_batch(g, parent, closed, heap_node, heap_f, heap_g, counters)
     status = RUNNING
     done = 0
     while done < max_expansions:
@@ -418,12 +477,11 @@ def astar_moves_batch(
     reads one mask per expansion instead of the CSR row, and derives the
     neighbours' cells from the expanded cell (no division per push).
     """
-    size = counters[0]
+    size = begin_batch(g, parent, closed, heap_node, heap_f, heap_g, counters)
     status = RUNNING
     done = 0
     w = np.uint64(dims[2])
     plane = np.uint64(dims[1]) * w
-    n_moves = move_shift.shape[0]
     while done < max_expansions:
         u, size, status = next_open(closed, heap_node, heap_f, heap_g, size, max_degree)
         if status != RUNNING:
@@ -441,17 +499,18 @@ def astar_moves_batch(
         col = np.int64(rest - row_u * w)
         row = np.int64(row_u)
         layer = np.int64(layer_u)
-        bits = np.int64(mask[ui])
-        for k in range(n_moves):
-            if (bits >> k) & 1:
-                v = u + move_shift[k]
-                j = np.uint64(v)  # an unsigned index spares numba's negative-index correction (see heap_pop)
-                cand = gu + move_weight[k]
-                if cand < g[j] and not closed[j]:
-                    g[j] = cand
-                    parent[j] = u
-                    h = cell_heuristic(col + move_cell[k, 0], row + move_cell[k, 1], layer + move_cell[k, 2], goal, mode, steps, scale)
-                    size = heap_push(heap_node, heap_f, heap_g, size, v, order_key(cand + h), order_key(cand))
+        bits = np.uint64(mask[ui])
+        while bits != _ZERO:  # the set bits, lowest first: no test (and no mispredicted branch) per absent move
+            k = _trailing_zeros(bits)
+            bits &= bits - _ONE
+            v = u + move_shift[k]
+            j = np.uint64(v)  # an unsigned index spares numba's negative-index correction (see heap_pop)
+            cand = gu + move_weight[k]
+            if cand < g[j] and not closed[j]:
+                g[j] = cand
+                parent[j] = u
+                h = cell_heuristic(col + move_cell[k, 0], row + move_cell[k, 1], layer + move_cell[k, 2], goal, mode, steps, scale)
+                size = heap_push(heap_node, heap_f, heap_g, size, v, order_key(cand + h), order_key(cand))
     return end_batch(counters, size, done, status)
 
 

@@ -37,6 +37,7 @@ from pathzoo_exact.kernel import (
     FOUND,
     H_EUCLID,
     RUNNING,
+    begin_batch,
     end_batch,
     goal_cell,
     heap_push,
@@ -77,7 +78,7 @@ def thetastar_batch(
     """
     w = dims[2]
     cs = steps[0]
-    size = counters[0]
+    size = begin_batch(g, parent, closed, heap_node, heap_f, heap_g, counters)
     status = RUNNING
     done = 0
     while done < max_expansions:

@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 from pathzoo_exact import base
 from pathzoo_exact.astar import _E_MIN, least_energy_per_metre
-from pathzoo_exact.base import endpoints, straight_run_ends
+from pathzoo_exact.base import endpoints
+from pathzoo_exact.waypoints import straight_run_ends
 
 import pathzoo
 from pathzoo.core import Budget, PlanResult, Scenario, Status
