@@ -29,10 +29,8 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-from pathzoo_aco.engine.outcomes import DONE, NEED_SPACE, RUNNING
+from pathzoo_aco.engine.outcomes import ABORTED, DONE, EXHAUSTED, NEED_SPACE, REACHED, RUNNING, STEP_CAP, STUCK
 from pathzoo_aco.engine.prefetch import prefetch
-from pathzoo_aco.engine.sequential import (STOP_COLONY, heuristic_candidates, record_walk, resume, start_walk,
-                                           step_back, stop_before_step, take_edge)
 from pathzoo_aco.engine.walk_weighted import choose
 
 __all__ = ["local_colony", "FETCH_AHEAD_FROM"]
@@ -69,18 +67,34 @@ def local_colony(indices, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, w_add,
     lo_pow = lo**tau_exp
     fetch_ahead = adj_node.size > FETCH_AHEAD_FROM
     cand_q = np.empty(cand_w.size, dtype=adj_ptr.dtype)  # the candidates' list positions, typed as the pointers
+    a = counters[0]
     total = counters[2]
-    a = resume(counters, offsets, depth, stack_e, flat)
+    if counters[3] > 0:  # copy the walk that waited for room in ``flat``
+        base = offsets[a]
+        for p in range(depth[a]):
+            flat[base + p] = stack_e[p]
+        offsets[a + 1] = base + depth[a]
+        counters[3] = 0
+        a += 1
     while a < n_ants:
-        wid = start_walk(a, walk_base, start, stamp, flags, counters)
+        wid = walk_base + a
+        flags[a] = RUNNING
+        counters[1] += 1
+        stamp[start] = wid
         c = np.uint32(start)  # node ids are uint32, so ``c`` keeps one type
         d = 0
         pv = no_prev
         n = 0
         flag = RUNNING
         while True:
-            flag = stop_before_step(c, goal, n, max_steps, total, allowance)
-            if flag != RUNNING:
+            if c == goal:
+                flag = REACHED
+                break
+            if n >= max_steps:
+                flag = STEP_CAP
+                break
+            if total >= allowance:
+                flag = ABORTED
                 break
             # ---------------------------------------------------------- one step
             e0 = adj_ptr[c]
@@ -132,16 +146,31 @@ def local_colony(indices, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, w_add,
                     total_w += w
                     nc += 1
             if nc == 0 and n_open > 0:  # maybe every trail is 0: weigh the allowed edges by the heuristic alone
-                nc, total_w = heuristic_candidates(e0, e1, adj_node, adj_offset, w_mul, w_add, turn, pv, stamp, wid,
-                                                   cand_q, cand_w)
+                for q in range(e0, e1):
+                    if stamp[adj_node[q]] == wid:
+                        continue
+                    f = turn[pv, adj_offset[q]] if use_turn else 1.0
+                    w = f * (w_mul[q] + (w_add[q] if has_add else 0.0))  # the generic kernel's expression
+                    if w > 0.0:
+                        cand_q[nc] = q
+                        cand_w[nc] = w
+                        total_w += w
+                        nc += 1
                 for i in range(nc):
                     if cand_w[i] > best_w:
                         best_w = cand_w[i]
                         best_i = i
             if nc == 0:  # dead end
-                flag, c, d, pv = step_back(backtrack, d, pv, indices, stack_e, stack_prev, start, no_prev, use_turn)
-                if flag != RUNNING:
+                if not backtrack:
+                    flag = STUCK
                     break
+                if d == 0:
+                    flag = EXHAUSTED
+                    break
+                d -= 1
+                c = indices[stack_e[d - 1]] if d > 0 else np.uint32(start)
+                if use_turn:
+                    pv = stack_prev[d - 1] if d > 0 else no_prev
             else:
                 for i in range(nc if fetch_ahead else 0):  # the next node is one of these: fetch its list now
                     ahead = adj_ptr[adj_node[cand_q[i]]]
@@ -154,8 +183,16 @@ def local_colony(indices, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, w_add,
                     pick = cand_q[best_i]
                 else:
                     pick = cand_q[choose(cand_w, nc, total_w, 0.0)]
-                c, sel, d, pv = take_edge(pick, d, pv, adj_node, adj_edge, adj_offset, horizontal, use_turn, stamp,
-                                          wid, stack_e, stack_prev)
+                c = adj_node[pick]
+                stamp[c] = wid
+                sel = pick if adj_edge is None else adj_edge[pick]
+                stack_e[d] = sel
+                if use_turn:
+                    o = adj_offset[pick]
+                    if horizontal[o]:
+                        pv = o
+                    stack_prev[d] = pv
+                d += 1
                 if do_local:
                     k = np.int64(c) if on_nodes else np.int64(sel)
                     t = local_keep * min(max(scale * x[k], lo), hi) + local_add
@@ -164,10 +201,22 @@ def local_colony(indices, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, w_add,
                         power_stamp[k] = 0  # its power is computed again when next read
             n += 1
             total += 1
-        done = record_walk(a, flag, d, n, total, use_turn, stack_e, depth, steps, flags, counters, flat, offsets)
-        if done == NEED_SPACE:
-            return NEED_SPACE
-        if done == STOP_COLONY:
+        depth[a] = d
+        steps[a] = n
+        counters[2] = total
+        flags[a] = flag
+        if flag == REACHED:
+            if offsets[a] + d > flat.size:
+                counters[0] = a
+                counters[3] = 1
+                return NEED_SPACE
+            for p in range(d):
+                flat[offsets[a] + p] = stack_e[p]
+        offsets[a + 1] = offsets[a] + (d if flag == REACHED else 0)
+        if flag == ABORTED or (flag == EXHAUSTED and not use_turn):  # the ants after it never start
+            for b in range(a + 1, n_ants):
+                flags[b] = ABORTED
+                offsets[b + 1] = offsets[a + 1]
             break
         a += 1
     counters[0] = a
