@@ -6,10 +6,8 @@ import argparse
 import dataclasses
 import errno
 import logging
-import os
 import sys
-import threading
-from concurrent.futures import Future
+from concurrent.futures import Future, ThreadPoolExecutor
 from contextlib import ExitStack, contextmanager, nullcontext
 from importlib import resources
 from pathlib import Path
@@ -80,27 +78,24 @@ def _harness_info_on_stderr() -> Iterator[None]:
         logger.setLevel(level)
 
 
+def _metric_info(metric: str) -> None:
+    from pathzoo.analysis.frame import metric_info
+
+    metric_info(metric)
+
+
 def _check_metric(metric: str) -> "Future[None]":
     """Check ``--metric`` in a thread (the check imports pandas and the metrics), so that the start goes on meanwhile."""
-    done: Future[None] = Future()
-
-    def check() -> None:
-        try:
-            from pathzoo.analysis.frame import metric_info
-
-            metric_info(metric)
-            done.set_result(None)
-        except BaseException as exc:  # noqa: BLE001 - raised again where the command waits for the check
-            done.set_exception(exc)
-
-    threading.Thread(target=check, name="pathzoo-check-metric", daemon=True).start()
-    return done
+    pool = ThreadPoolExecutor(1, thread_name_prefix="pathzoo-check-metric")
+    checked = pool.submit(_metric_info, metric)
+    pool.shutdown(wait=False)  # the thread ends with the check
+    return checked
 
 
 def _early_executor(executor: str, data: dict[str, Any], args: argparse.Namespace) -> "RunExecutor | None":
     """The process executor, built before the experiment is (its planners described in a child meanwhile), with a
     worker for the first ``[[planner]]`` starting; None for other executors or a file whose check will fail anyway."""
-    from pathzoo.harness.executors import ProcessExecutor, make_executor
+    from pathzoo.harness.executors import ProcessExecutor, make_executor, worker_count
     from pathzoo.harness.sandbox import sandbox_problem
     from pathzoo.plugins.manager import get_registry
 
@@ -108,7 +103,7 @@ def _early_executor(executor: str, data: dict[str, Any], args: argparse.Namespac
 
     table = data.get("experiment", {})
     planners = data.get("planner")
-    jobs = args.jobs or (table.get("jobs") if isinstance(table, dict) else None) or os.cpu_count() or 1
+    jobs = worker_count(args.jobs, table.get("jobs") if isinstance(table, dict) else None)
     if executor != "process" or isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1:
         return None
     if args.require_sandbox and sandbox_problem():  # refused by run_experiment, after the file's own errors

@@ -15,7 +15,6 @@ judged is stored as ``invalid`` with the reason while the experiment goes on.
 from __future__ import annotations
 
 import logging
-import os
 import sqlite3
 import warnings
 from collections import Counter
@@ -25,7 +24,7 @@ from typing import TYPE_CHECKING, Any, Iterator
 
 from pathzoo.core.errors import InvalidExperimentError
 from pathzoo.core.status import RunStatus
-from pathzoo.harness.executors import RunExecutor, make_executor
+from pathzoo.harness.executors import RunExecutor, make_executor, worker_count
 from pathzoo.harness.bounds import bound_outcome
 from pathzoo.harness.eta import RunTimes, pilot_first
 from pathzoo.harness.judge import unjudged
@@ -42,7 +41,7 @@ if TYPE_CHECKING:
     from pathzoo.harness.worker import RunOutcome
     from pathzoo.plugins.manager import Registry
 
-__all__ = ["run_experiment", "extra_plugin_modules", "skipped_summary", "never_run", "DEFAULT_DB"]
+__all__ = ["run_experiment", "skipped_summary", "never_run", "DEFAULT_DB"]
 
 DEFAULT_DB = "pathzoo-results.sqlite"
 """Result database used when neither the call nor the experiment names one."""
@@ -224,7 +223,7 @@ def run_experiment(
     if jobs is not None and (isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1):
         raise InvalidExperimentError(f"jobs must be a positive integer, got {jobs!r}")
     db_path = Path(db if db is not None else experiment.db if experiment.db is not None else DEFAULT_DB)
-    n_jobs = jobs or experiment.jobs or os.cpu_count() or 1
+    n_jobs = worker_count(jobs, experiment.jobs)
     registry = get_registry()
     skipped = experiment.skipped()
     if skipped:

@@ -226,14 +226,17 @@ class SearchState:
         The node arrays are reset by the next batch (:func:`begin_batch`);
         until then only :attr:`expanded` (0) may be read.
         """
-        if len(self.heap_node) != heap_capacity:
-            self.heap_node, self.heap_f, self.heap_g = (np.empty(heap_capacity, dtype=np.int64) for _ in range(3))
+        self._heap_of(heap_capacity)
         self.counters[1] = 0
         self.counters[2] = source
 
+    def _heap_of(self, capacity: int) -> None:
+        """Heap arrays of ``capacity`` slots (new ones only when the capacity differs)."""
+        if len(self.heap_node) != capacity:
+            self.heap_node, self.heap_f, self.heap_g = (np.empty(capacity, dtype=np.int64) for _ in range(3))
+
     def _begin(self, source: int, heap_capacity: int) -> None:
-        if len(self.heap_node) != heap_capacity:
-            self.heap_node, self.heap_f, self.heap_g = (np.empty(heap_capacity, dtype=np.int64) for _ in range(3))
+        self._heap_of(heap_capacity)
         _begin(self.g, self.parent, self.closed, self.heap_node, self.heap_f, self.heap_g, self.counters, source, False)
 
     def grow_heap(self) -> None:

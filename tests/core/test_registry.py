@@ -78,7 +78,7 @@ def test_builtins_come_through_entry_points():
 
 
 def test_entry_point_plugins_are_remembered_even_after_uninstall(fake_plugins, monkeypatch):
-    from pathzoo.harness.runner import extra_plugin_modules
+    from pathzoo.harness.planner_info import extra_plugin_modules
 
     reg = discover(fake_plugins)
     assert reg.entry_point_plugins == {"good", "clash", "badhook"}

@@ -2,7 +2,7 @@
 
 Register it in the harness process with
 ``get_registry().add_plugin(forged, "forged-test")``; the harness then ships
-the module name to its workers (:func:`pathzoo.harness.runner.extra_plugin_modules`).
+the module name to its workers (:func:`pathzoo.harness.planner_info.extra_plugin_modules`).
 """
 
 from __future__ import annotations

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 from typing import Any
 
 from pathzoo.core.errors import InvalidExperimentError
@@ -10,7 +11,7 @@ from pathzoo.harness.executors.inline import InlineExecutor
 from pathzoo.harness.executors.process import ProcessExecutor
 from pathzoo.harness.sandbox import SandboxUnavailableError, sandbox_problem
 
-__all__ = ["RunExecutor", "InlineExecutor", "ProcessExecutor", "dask_executor", "make_executor", "EXECUTORS"]
+__all__ = ["RunExecutor", "InlineExecutor", "ProcessExecutor", "dask_executor", "make_executor", "worker_count", "EXECUTORS"]
 
 EXECUTORS: tuple[str, ...] = ("process", "inline", "dask")
 """Executor names accepted by :func:`make_executor` (``"dask:<address>"`` names a running cluster)."""
@@ -31,6 +32,14 @@ def dask_executor(address: str | None = None, jobs: int | None = None, **kwargs:
     from pathzoo.harness.executors.cluster import DaskExecutor
 
     return DaskExecutor(jobs, address=address, **kwargs)
+
+
+def worker_count(jobs: Any, default: Any = None) -> Any:
+    """How many runs go in parallel: ``jobs`` when given, else the experiment's ``default``, else the CPU count.
+
+    Values are passed through unchecked (the caller checks them).
+    """
+    return jobs or default or os.cpu_count() or 1
 
 
 def make_executor(spec: "str | RunExecutor", jobs: int, *, require_sandbox: bool = False) -> RunExecutor:
