@@ -77,13 +77,13 @@ from typing import Any, Callable, ClassVar, Hashable, NamedTuple
 
 import numpy as np
 
-from pathzoo.core import Budget, BudgetClock, Planner, PlanResult, ProgressCallback, Scenario, Status
+from pathzoo.core import Budget, Planner, PlanResult, ProgressCallback, Scenario, Status
 from pathzoo.core.object_memo import ObjectMemo
 from pathzoo.grid.paths import centre_path, on_centre
 from pathzoo.grid.terrain import segment_profile
 from pathzoo.rules import segment_problem
 from pathzoo_exact.kernel import EXHAUSTED, FOUND, HEAP_FULL, RUNNING, SearchState
-from pathzoo_exact.waypoints import waypoints
+from pathzoo_exact.waypoints import path_ends, path_layout, waypoints
 
 __all__ = ["GraphSearchPlanner", "BatchFn", "SPARE_MAX_NODES", "Endpoints", "endpoints", "connector_cost",
            "PreparedSearch"]
@@ -171,14 +171,12 @@ class PreparedSearch(NamedTuple):
         The start and goal cells' node ids.
     n_nodes : int
         Nodes of the graph.
-    straight_width : int
-        Grid columns when straight runs lose their inner waypoints (``grid2d``), else 0.
-    dims : ndarray of int64, shape (3,)
-        Grid shape as ``(layers, rows, columns)``.
-    sizes, start, goal : ndarray of float64
-        Cell sizes, start and goal point, for :func:`~pathzoo_exact.waypoints.waypoints`.
-    start_on_centre, goal_on_centre : bool
-        See :class:`Endpoints`.
+    layout : ndarray of int64, shape (6,)
+        The grid's shape, the width of a grid whose straight runs lose their
+        inner waypoints (``grid2d``, else 0) and whether each end point sits
+        on its cell's centre (:func:`~pathzoo_exact.waypoints.path_layout`).
+    ends : ndarray of float64, shape (3, d)
+        Cell sizes, start and goal point (:func:`~pathzoo_exact.waypoints.path_ends`).
     cost_kind : str
         The edge cost minimised.
     connector_problem : str or None
@@ -191,13 +189,8 @@ class PreparedSearch(NamedTuple):
     source: int
     target: int
     n_nodes: int
-    straight_width: int
-    dims: np.ndarray
-    sizes: np.ndarray
-    start: np.ndarray
-    goal: np.ndarray
-    start_on_centre: bool
-    goal_on_centre: bool
+    layout: np.ndarray
+    ends: np.ndarray
     cost_kind: str
     connector_problem: str | None
     connector_costs: tuple[float, ...]
@@ -240,7 +233,7 @@ class GraphSearchPlanner(Planner, abc.ABC):
 
     def _prepared(self, scenario: Scenario) -> PreparedSearch:
         """This configuration's :class:`PreparedSearch` on ``scenario``, built on the first call and then kept."""
-        searches = _PREPARED.get(scenario)  # a plain look-up first: this runs twice per plan()
+        searches = _PREPARED.get(scenario)  # a plain look-up first
         if searches is None:
             searches = _PREPARED.value(scenario, dict)
         found = searches.get(self._search_key)
@@ -263,18 +256,16 @@ class GraphSearchPlanner(Planner, abc.ABC):
             if problem is not None:
                 break
             costs.append(connector_cost(scenario, p0, p1, kind))
+        dims = np.array((1,) * (3 - len(graph.shape)) + tuple(graph.shape), dtype=np.int64)
         return PreparedSearch(
             batch=self._make_batch(scenario, ends.target),
             source=ends.source,
             target=ends.target,
             n_nodes=graph.n_nodes,
-            straight_width=scenario.shape[1] if scenario.kind == "grid2d" else 0,
-            dims=np.array((1,) * (3 - len(graph.shape)) + tuple(graph.shape), dtype=np.int64),
-            sizes=np.asarray(scenario.cell_sizes, dtype=np.float64),
-            start=np.asarray(scenario.start, dtype=np.float64),
-            goal=np.asarray(scenario.goal, dtype=np.float64),
-            start_on_centre=ends.start_on_centre,
-            goal_on_centre=ends.goal_on_centre,
+            layout=path_layout(dims, scenario.shape[1] if scenario.kind == "grid2d" else 0, ends.start_on_centre,
+                               ends.goal_on_centre),
+            ends=path_ends(np.asarray(scenario.cell_sizes, dtype=np.float64), np.asarray(scenario.start, dtype=np.float64),
+                           np.asarray(scenario.goal, dtype=np.float64)),
             cost_kind=kind,
             connector_problem=problem,
             connector_costs=tuple(costs),
@@ -292,69 +283,58 @@ class GraphSearchPlanner(Planner, abc.ABC):
         clock = budget.start() if _clock_limited(budget) else None
         search = self._prepared(scenario)
         state = _search_state(search.n_nodes, search.source, self.initial_heap_capacity)
-        try:
-            return self._search(scenario, search, state, clock, budget, progress)
-        finally:  # nothing in the result refers to the state's arrays
-            _keep_spare(state)
-
-    def _search(
-        self,
-        scenario: Scenario,
-        search: PreparedSearch,
-        state: SearchState,
-        clock: BudgetClock | None,
-        budget: Budget,
-        progress: ProgressCallback | None,
-    ) -> PlanResult:
-        """Run the search in ``state`` in batches until it ends or the budget does, then build the result."""
-        batch = search.batch
-        cap = budget.evaluations
-        while True:
-            step = self.batch_expansions if cap is None else min(self.batch_expansions, cap - state.expanded)
-            status = batch(state, step)
-            if status == HEAP_FULL:
-                state.grow_heap()
-                continue
-            if status != RUNNING:
-                break
-            if cap is not None and state.expanded >= cap:
-                return self._failed(state, f"evaluation budget of {cap} expansions exhausted before the goal")
-            spent = None if clock is None else clock.time_up()
-            if spent is not None:
-                return self._failed(state, f"{'CPU' if spent == 'cpu_time' else 'wall'} time budget exhausted "
-                                    "before the goal")
-        if status == EXHAUSTED:
+        batch, cap, step = search.batch, budget.evaluations, self.batch_expansions
+        try:  # batches until the search ends or the budget does; nothing returned refers to the state's arrays
+            while True:
+                if cap is not None:
+                    step = min(self.batch_expansions, cap - state.expanded)
+                status = batch(state, step)
+                if status == FOUND:
+                    return self._solved(scenario, search, state, progress)
+                if status == HEAP_FULL:
+                    state.grow_heap()
+                    continue
+                if status != RUNNING:
+                    break
+                if cap is not None and state.expanded >= cap:
+                    return self._failed(state, f"evaluation budget of {cap} expansions exhausted before the goal")
+                spent = None if clock is None else clock.time_up()
+                if spent is not None:
+                    return self._failed(state, f"{'CPU' if spent == 'cpu_time' else 'wall'} time budget exhausted "
+                                        "before the goal")
+            assert status == EXHAUSTED
             return PlanResult(
                 Status.NO_PATH,
                 iterations=1,
                 evaluations=state.expanded,
                 message="the goal cell is not reachable from the start cell in the neighbourhood graph",
             )
-        assert status == FOUND
-        return self._solved(scenario, state, search.target, progress)
+        finally:
+            _keep_spare(state)
 
     def _failed(self, state: SearchState, message: str) -> PlanResult:
         return PlanResult(Status.FAILED, iterations=1, evaluations=state.expanded, message=message)
 
     def _solved(
-        self, scenario: Scenario, state: SearchState, target: int, progress: ProgressCallback | None
+        self, scenario: Scenario, search: PreparedSearch, state: SearchState, progress: ProgressCallback | None
     ) -> PlanResult:
-        search = self._prepared(scenario)
+        """The answer of a search that expanded ``search.target``."""
         if search.connector_problem is not None:
             return self._failed(state, "connector between an endpoint and its cell centre is not allowed: "
                                 f"{search.connector_problem}")
-        path = waypoints(state.parent, target, search.straight_width, search.dims, search.sizes, search.start,
-                         search.goal, search.start_on_centre, search.goal_on_centre)
+        target = search.target
+        path = waypoints(state.parent, target, search.layout, search.ends)
         graph_cost = float(state.g[target])
         cost = graph_cost
         for connector in search.connector_costs:
             cost += connector
+        expanded = state.expanded
         if progress is not None:
-            progress(1, state.expanded, cost)
+            progress(1, expanded, cost)
         return PlanResult(
             Status.SOLVED,
             path=path,
             iterations=1,
-            evaluations=state.expanded,
+            evaluations=expanded,
             extras={"cost": search.cost_kind, "best_cost": cost, "graph_cost": graph_cost},
         )

@@ -32,7 +32,7 @@ several, on the critical path of every heap level. Replayed on the searches of
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Callable
 
 import numba
@@ -194,6 +194,9 @@ class SearchState:
         ``heap_f`` and ``heap_g`` hold int64 :func:`order_key` values.
     counters : ndarray of int64, shape (3,)
         ``[heap size, expanded nodes, source of a restart the next batch does first (-1: none)]``.
+    arrays : tuple of ndarray
+        The seven arrays above in this order, the batch kernels' trailing
+        arguments (kept, so that a batch call does not gather them).
     """
 
     g: np.ndarray
@@ -203,6 +206,13 @@ class SearchState:
     heap_f: np.ndarray
     heap_g: np.ndarray
     counters: np.ndarray
+    arrays: tuple[np.ndarray, ...] = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        self._gather()
+
+    def _gather(self) -> None:
+        self.arrays = (self.g, self.parent, self.closed, self.heap_node, self.heap_f, self.heap_g, self.counters)
 
     @classmethod
     def start(cls, n_nodes: int, source: int, heap_capacity: int = 4096) -> "SearchState":
@@ -234,6 +244,7 @@ class SearchState:
         """Heap arrays of ``capacity`` slots (new ones only when the capacity differs)."""
         if len(self.heap_node) != capacity:
             self.heap_node, self.heap_f, self.heap_g = (np.empty(capacity, dtype=np.int64) for _ in range(3))
+            self._gather()
 
     def _begin(self, source: int, heap_capacity: int) -> None:
         self._heap_of(heap_capacity)
@@ -247,6 +258,7 @@ class SearchState:
             new = np.empty(2 * len(old), dtype=old.dtype)
             new[:size] = old[:size]
             setattr(self, name, new)
+        self._gather()
 
     @property
     def expanded(self) -> int:
@@ -549,15 +561,4 @@ def run_batch(kernel: Callable[..., int], args: tuple, max_degree: int, state: S
     max_expansions : int
         Expansions allowed in this batch.
     """
-    return kernel(
-        *args,
-        state.g,
-        state.parent,
-        state.closed,
-        state.heap_node,
-        state.heap_f,
-        state.heap_g,
-        state.counters,
-        max_expansions,
-        max_degree,
-    )
+    return kernel(*args, *state.arrays, max_expansions, max_degree)

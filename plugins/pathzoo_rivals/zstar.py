@@ -49,7 +49,7 @@ from typing import ClassVar
 import numpy as np
 
 from pathzoo.core import Param, PlanResult, ProgressCallback, Scenario
-from pathzoo_exact.base import BatchFn, GraphSearchPlanner
+from pathzoo_exact.base import BatchFn, GraphSearchPlanner, PreparedSearch
 from pathzoo_exact.kernel import H_ZERO, SearchState, astar_batch, goal_cell, run_batch
 
 __all__ = ["ZStarPlanner", "zstar_heuristic", "zstar_edge_cost", "reduced_costs"]
@@ -149,9 +149,9 @@ class ZStarPlanner(GraphSearchPlanner):
         return partial(run_batch, astar_batch, args, len(graph.offsets))
 
     def _solved(
-        self, scenario: Scenario, state: SearchState, target: int, progress: ProgressCallback | None
+        self, scenario: Scenario, search: PreparedSearch, state: SearchState, progress: ProgressCallback | None
     ) -> PlanResult:
         """Turn the goal's reduced cost back into energy (add ``h(start)``), then build the result as usual."""
         h = zstar_heuristic(scenario, self.max_climb_rad(scenario))
-        state.g[target] += h[scenario.start_node]
-        return super()._solved(scenario, state, target, progress)
+        state.g[search.target] += h[scenario.start_node]
+        return super()._solved(scenario, search, state, progress)

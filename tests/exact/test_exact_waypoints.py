@@ -7,7 +7,7 @@ import itertools
 import numpy as np
 import pytest
 from pathzoo_exact.base import endpoints
-from pathzoo_exact.waypoints import straight_run_ends, waypoints
+from pathzoo_exact.waypoints import path_ends, path_layout, straight_run_ends, waypoints
 
 from pathzoo.core import Scenario
 from pathzoo.core.tiny_scenarios import check_scenario
@@ -60,8 +60,9 @@ def test_waypoints_are_centre_path_of_the_kept_nodes(kind: str) -> None:
         node_arr = np.array(nodes, dtype=np.int64)
         kept = node_arr[straight_run_ends(node_arr, width)] if width else node_arr
         expected = centre_path(s, kept)
-        got = waypoints(chain(int(np.prod(base.shape)), nodes), nodes[-1], width, dims, s.cell_sizes, s.start, s.goal,
-                        ends.start_on_centre, ends.goal_on_centre)
+        got = waypoints(chain(int(np.prod(base.shape)), nodes), nodes[-1],
+                        path_layout(dims, width, ends.start_on_centre, ends.goal_on_centre),
+                        path_ends(s.cell_sizes, s.start, s.goal))
         assert got.dtype == expected.dtype and got.shape == expected.shape
         assert got.tobytes() == expected.tobytes()
         cases += 1
@@ -71,9 +72,7 @@ def test_waypoints_are_centre_path_of_the_kept_nodes(kind: str) -> None:
 def test_straight_runs_lose_their_inner_waypoints_on_grids_only() -> None:
     s = check_scenario("grid2d")
     nodes = node_paths(s)[1]
-    path = waypoints(chain(int(np.prod(s.shape)), nodes), nodes[-1], s.shape[1], np.array((1, *s.shape)),
-                     s.cell_sizes, s.point_of(np.array(nodes[:1]))[0], s.point_of(np.array(nodes[-1:]))[0], True, True)
-    assert len(path) == 2
-    path = waypoints(chain(int(np.prod(s.shape)), nodes), nodes[-1], 0, np.array((1, *s.shape)),
-                     s.cell_sizes, s.point_of(np.array(nodes[:1]))[0], s.point_of(np.array(nodes[-1:]))[0], True, True)
-    assert len(path) == len(nodes)
+    ends = path_ends(s.cell_sizes, s.point_of(np.array(nodes[:1]))[0], s.point_of(np.array(nodes[-1:]))[0])
+    parent, dims = chain(int(np.prod(s.shape)), nodes), np.array((1, *s.shape))
+    assert len(waypoints(parent, nodes[-1], path_layout(dims, s.shape[1], True, True), ends)) == 2
+    assert len(waypoints(parent, nodes[-1], path_layout(dims, 0, True, True), ends)) == len(nodes)
