@@ -15,9 +15,10 @@ few rules they share:
   then ``"<planner>@<first 7 hash characters>"``; a name that two
   configurations share gets the ``@hash`` suffix too;
 - a metric's unit and direction come from the metric registry
-  (``pathzoo list metrics``); the harness's own numeric columns
+  (``pathzoo list metrics``, looked up by :func:`metric_info` of
+  :mod:`pathzoo.plugins.metric_lookup`); the harness's own numeric columns
   (``wall_time_s``, ``cpu_time_s``, ``iterations``, ``evaluations``) are known
-  here too, all to be minimised;
+  there too, all to be minimised;
 - for rank-based comparisons a failed run is **worse than every successful
   run** and tied with the other failures: :func:`loss_values` turns a metric
   into a "loss" (smaller is better, the sign flipped for ``max`` metrics) in
@@ -26,14 +27,13 @@ few rules they share:
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-from typing import Iterable, Literal
+from typing import Iterable
 
 import numpy as np
 import pandas as pd
 
-from pathzoo.core.errors import InvalidParameterError, UnknownPluginError
-from pathzoo.core.suggest import did_you_mean
+from pathzoo.plugins.metric_lookup import DERIVED_COLUMNS, RUN_COLUMNS, Direction, MetricInfo, metric_info
+from pathzoo.core.errors import InvalidParameterError
 
 __all__ = [
     "MetricInfo",
@@ -49,95 +49,7 @@ __all__ = [
     "with_config",
 ]
 
-Direction = Literal["min", "max"]
-
-
-@dataclass(frozen=True)
-class MetricInfo:
-    """What analysis needs to know about a metric column.
-
-    Attributes
-    ----------
-    id : str
-        Column name in the runs frame.
-    unit : str
-        SI unit, ``"1"`` for dimensionless.
-    direction : {"min", "max"}
-        Whether smaller or larger is better.
-    """
-
-    id: str
-    unit: str
-    direction: Direction
-
-    @property
-    def label(self) -> str:
-        """``"length [m]"``, or the bare id for dimensionless metrics."""
-        return self.id if self.unit in ("", "1") else f"{self.id} [{self.unit}]"
-
-    @property
-    def better(self) -> str:
-        """``"lower is better"`` or ``"higher is better"``."""
-        return "lower is better" if self.direction == "min" else "higher is better"
-
-
-RUN_COLUMNS: dict[str, MetricInfo] = {
-    "wall_time_s": MetricInfo("wall_time_s", "s", "min"),
-    "cpu_time_s": MetricInfo("cpu_time_s", "s", "min"),
-    "iterations": MetricInfo("iterations", "1", "min"),
-    "evaluations": MetricInfo("evaluations", "1", "min"),
-}
-"""Numeric harness columns that may be ranked like metrics (all minimised)."""
-
-DERIVED_COLUMNS: dict[str, MetricInfo] = {
-    "model_ratio": MetricInfo("model_ratio", "1", "min"),
-}
-"""Columns analysis adds to the runs frame and ranks like metrics (:mod:`pathzoo.analysis.path_models`)."""
-
 _REQUIRED = ("planner", "params_hash", "scenario", "seed_index", "status", "valid")
-
-
-def metric_info(metric: str, direction: Direction | None = None, unit: str | None = None) -> MetricInfo:
-    """Look up a metric's unit and direction.
-
-    Parameters
-    ----------
-    metric : str
-        Metric id (a registered metric, or one of :data:`RUN_COLUMNS`).
-    direction : {"min", "max"}, optional
-        Override (needed for columns that are not registered metrics).
-    unit : str, optional
-        Override of the unit.
-
-    Raises
-    ------
-    UnknownPluginError
-        The metric is not registered and no ``direction`` was given.
-    InvalidParameterError
-        ``direction`` is not ``"min"`` or ``"max"``.
-    """
-    if direction is not None and direction not in ("min", "max"):
-        raise InvalidParameterError(f"direction must be 'min' or 'max', got {direction!r}")
-    known = RUN_COLUMNS.get(metric) or DERIVED_COLUMNS.get(metric)
-    if known is None and (direction is None or unit is None):
-        from pathzoo.plugins.manager import get_registry
-
-        entry = get_registry().metrics.get(metric)
-        if entry is not None:
-            known = MetricInfo(metric, str(entry.obj.unit), entry.obj.direction)
-    if known is None and direction is None:
-        from pathzoo.plugins.manager import get_registry
-
-        hint = did_you_mean(metric, [*get_registry().metrics, *RUN_COLUMNS])
-        raise UnknownPluginError(
-            f"unknown metric '{metric}'{hint} (see 'pathzoo list metrics'); pass direction='min' or 'max' for "
-            "other columns"
-        )
-    return MetricInfo(
-        metric,
-        unit if unit is not None else (known.unit if known else "1"),
-        direction if direction is not None else known.direction,  # type: ignore[union-attr]
-    )
 
 
 def require_columns(runs: pd.DataFrame, columns: Iterable[str], name: str = "runs") -> None:

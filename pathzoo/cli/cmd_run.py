@@ -79,13 +79,13 @@ def _harness_info_on_stderr() -> Iterator[None]:
 
 
 def _metric_info(metric: str) -> None:
-    from pathzoo.analysis.frame import metric_info
+    from pathzoo.plugins.metric_lookup import metric_info
 
     metric_info(metric)
 
 
 def _check_metric(metric: str) -> "Future[None]":
-    """Check ``--metric`` in a thread (the check imports pandas and the metrics), so that the start goes on meanwhile."""
+    """Check ``--metric`` in a thread (it discovers the plugins' declarations), so that the start goes on meanwhile."""
     pool = ThreadPoolExecutor(1, thread_name_prefix="pathzoo-check-metric")
     checked = pool.submit(_metric_info, metric)
     pool.shutdown(wait=False)  # the thread ends with the check

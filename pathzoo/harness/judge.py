@@ -17,7 +17,7 @@ Rules, applied in order:
 6. the planner says ``FAILED`` -> ``failed``.
 
 A run that cannot be judged (judging over its time limit, or raising) is
-stored by :func:`unjudged` as ``invalid`` with the reason
+stored by :func:`~pathzoo.harness.run_record.unjudged` as ``invalid`` with the reason
 (:mod:`pathzoo.harness.judge_worker`).
 
 Then every metric is computed from the stored path and the scenario; a metric
@@ -35,7 +35,7 @@ from pathzoo.core.results import RunRecord
 from pathzoo.core.status import RunStatus, Status
 from pathzoo.grid.reference import reference_path
 from pathzoo.rules import validate_path
-from pathzoo.metrics.outcome import RETURNED
+from pathzoo.harness.run_record import run_record
 
 if TYPE_CHECKING:
     from pathzoo.core.metric import Metric
@@ -43,7 +43,7 @@ if TYPE_CHECKING:
     from pathzoo.harness.specs import RunTask
     from pathzoo.harness.worker import RunOutcome
 
-__all__ = ["judge", "verdict", "unjudged"]
+__all__ = ["judge", "verdict"]
 
 
 def verdict(task: "RunTask", outcome: "RunOutcome", scenario: "Scenario") -> tuple[RunStatus, bool, str, str]:
@@ -76,44 +76,6 @@ def verdict(task: "RunTask", outcome: "RunOutcome", scenario: "Scenario") -> tup
     return RunStatus.FAILED, False, "", outcome.message
 
 
-def _record(task: "RunTask", outcome: "RunOutcome", status: RunStatus, valid: bool, reason: str, message: str,
-            isolated: bool) -> RunRecord:
-    returned = status in RETURNED
-    return RunRecord(
-        run_key=task.run_key,
-        experiment=task.experiment,
-        planner_id=task.planner.id,
-        planner_version=task.planner_version,
-        params=dict(task.planner.params),
-        params_hash=task.params_hash,
-        scenario_id=task.scenario.id,
-        seed_index=task.seed_index,
-        seed=task.seed,
-        status=status,
-        valid=valid,
-        invalid_reason=reason,
-        message=message,
-        wall_time_s=float(outcome.wall_time_s),
-        cpu_time_s=float(outcome.cpu_time_s),
-        stopped_by=outcome.stopped_by if returned else "wall_time" if status is RunStatus.TIMEOUT else "none",
-        iterations=outcome.iterations if returned else 0,
-        evaluations=outcome.evaluations if returned else 0,
-        path=outcome.path if returned else None,
-        times=outcome.times if returned else None,
-        history=outcome.history,
-        metrics={},
-        versions=dict(outcome.versions),
-        started_at=outcome.started_at,
-        isolated=isolated,
-        sandboxed=outcome.sandboxed,
-    )
-
-
-def unjudged(task: "RunTask", outcome: "RunOutcome", reason: str, *, isolated: bool = True) -> RunRecord:
-    """The record of a run that could not be judged: ``invalid`` with ``reason``, no metrics."""
-    return _record(task, outcome, RunStatus.INVALID, False, reason, outcome.message, isolated)
-
-
 def judge(task: "RunTask", outcome: "RunOutcome", scenario: "Scenario", metrics: Sequence["Metric"], *,
           isolated: bool = True) -> RunRecord:
     """Build the :class:`RunRecord` of a run: verdict, then every metric.
@@ -132,7 +94,7 @@ def judge(task: "RunTask", outcome: "RunOutcome", scenario: "Scenario", metrics:
         Whether the planner ran in a process of its own (stored with the run).
     """
     status, valid, reason, message = verdict(task, outcome, scenario)
-    record = _record(task, outcome, status, valid, reason, message, isolated)
+    record = run_record(task, outcome, status, valid, reason, message, isolated)
     values: dict[str, float] = {}
     for metric in metrics:
         try:

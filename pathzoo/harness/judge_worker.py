@@ -301,7 +301,7 @@ class JudgeWorker:
 
     def judge(self, task: "RunTask", outcome: "RunOutcome", *, isolated: bool = True) -> "RunRecord":
         """The stored record of one run: judged in the judge process, or ``invalid`` when it could not be."""
-        from pathzoo.harness.judge import unjudged
+        from pathzoo.harness.run_record import unjudged
 
         for attempt in range(2):
             conn = self._start()

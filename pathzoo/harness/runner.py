@@ -27,7 +27,7 @@ from pathzoo.core.status import RunStatus
 from pathzoo.harness.executors import RunExecutor, make_executor, worker_count
 from pathzoo.harness.bounds import bound_outcome
 from pathzoo.harness.eta import RunTimes, pilot_first
-from pathzoo.harness.judge import unjudged
+from pathzoo.harness.run_record import unjudged
 from pathzoo.harness.judge_worker import JUDGE_TIMEOUT_S, JudgeWorker
 from pathzoo.harness.planner_info import extra_plugin_modules
 from pathzoo.harness.store import ResultStore, read_runs

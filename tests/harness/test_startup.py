@@ -119,3 +119,38 @@ def test_the_judge_is_forked_without_holding_up_the_first_runs(monkeypatch):
         record = judge.judge(task, outcome)
         assert not judge._warm_later
     assert record.status.value == "solved" and record.valid
+
+
+PARENT_PROBE = """
+import sys
+from pathzoo.harness.experiment import Experiment
+from pathzoo.harness.runner import run_experiment
+from pathzoo.harness.store import ResultStore
+from pathzoo.plugins.metric_lookup import metric_info
+
+metric_info("length")  # what `pathzoo run` checks --metric with
+heavy = []
+insert = ResultStore.insert
+
+def first_insert(self, *args, **kwargs):
+    if not heavy:
+        heavy.append(sorted(m for m in ("numba", "scipy", "pandas") if m in sys.modules))
+    return insert(self, *args, **kwargs)
+
+ResultStore.insert = first_insert
+run_experiment(Experiment.from_toml(sys.argv[1]), db=sys.argv[2], progress=False, jobs=1)
+print(heavy[0])
+"""
+
+
+def test_the_harness_process_loads_no_numba_scipy_or_pandas_before_its_first_result(tmp_path):
+    """The judge and the workers need them, not the process that stores the runs: it would only spend CPU that the
+    first run's workers need (docs/startup.md)."""
+    import subprocess
+    import sys
+
+    path = tmp_path / "probe.toml"
+    path.write_text(EXPERIMENT.format(name="probe"))
+    out = subprocess.run([sys.executable, "-c", PARENT_PROBE, str(path), str(tmp_path / "probe.sqlite")],
+                         capture_output=True, text=True, timeout=300, check=True)
+    assert out.stdout.strip().splitlines()[-1] == "[]"
