@@ -154,3 +154,15 @@ def test_the_harness_process_loads_no_numba_scipy_or_pandas_before_its_first_res
     out = subprocess.run([sys.executable, "-c", PARENT_PROBE, str(path), str(tmp_path / "probe.sqlite")],
                          capture_output=True, text=True, timeout=300, check=True)
     assert out.stdout.strip().splitlines()[-1] == "[]"
+
+
+def test_the_fork_server_has_every_builtin_metric_module_loaded_for_the_judge():
+    """The judge is forked from the server, so the metric modules it computes with are imported there, once."""
+    import subprocess
+    import sys
+
+    probe = ("import sys\nimport pathzoo.harness.executors.warmup\nloaded = set(sys.modules)\n"
+             "from pathzoo.metrics.catalogue import BUILTIN_METRICS\n"
+             "print(sorted({c.__module__ for c in BUILTIN_METRICS} - loaded))\n")
+    out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, timeout=300, check=True)
+    assert out.stdout.strip().splitlines()[-1] == "[]"

@@ -33,7 +33,7 @@ die_with_parent()  # the harness may be gone before the imports below end: the s
 
 import pathzoo.harness.executors.process  # noqa: E402,F401 - a worker's code
 import pathzoo.harness.judge_worker  # noqa: E402,F401 - the judge's code
-import pathzoo.metrics  # noqa: E402,F401 - the built-in metrics the judge computes
+import pathzoo.metrics.catalogue  # noqa: E402,F401 - the built-in metrics the judge computes (every metric module)
 from pathzoo.harness.digest import scenario_digest, warm  # noqa: E402
 from pathzoo.core.tiny_scenarios import check_scenario  # noqa: E402
 from pathzoo.core.warmup import warm_up  # noqa: E402,F401 - every worker's untimed first call
