@@ -7,7 +7,6 @@ import dataclasses
 import errno
 import logging
 import sys
-from concurrent.futures import Future, ThreadPoolExecutor
 from contextlib import ExitStack, contextmanager, nullcontext
 from importlib import resources
 from pathlib import Path
@@ -78,20 +77,6 @@ def _harness_info_on_stderr() -> Iterator[None]:
         logger.setLevel(level)
 
 
-def _metric_info(metric: str) -> None:
-    from pathzoo.plugins.metric_lookup import metric_info
-
-    metric_info(metric)
-
-
-def _check_metric(metric: str) -> "Future[None]":
-    """Check ``--metric`` in a thread (it discovers the plugins' declarations), so that the start goes on meanwhile."""
-    pool = ThreadPoolExecutor(1, thread_name_prefix="pathzoo-check-metric")
-    checked = pool.submit(_metric_info, metric)
-    pool.shutdown(wait=False)  # the thread ends with the check
-    return checked
-
-
 def _early_executor(executor: str, data: dict[str, Any], args: argparse.Namespace) -> "RunExecutor | None":
     """The process executor, built before the experiment is (its planners described in a child meanwhile), with a
     worker for the first ``[[planner]]`` starting; None for other executors or a file whose check will fail anyway."""
@@ -99,7 +84,7 @@ def _early_executor(executor: str, data: dict[str, Any], args: argparse.Namespac
     from pathzoo.harness.sandbox import sandbox_problem
     from pathzoo.plugins.manager import get_registry
 
-    get_registry()  # discovered once, here, before the worker's start and the metric's check need it
+    get_registry()  # discovered once (the metric's check may have done it), before the worker's start needs it
 
     table = data.get("experiment", {})
     planners = data.get("planner")
@@ -130,17 +115,14 @@ def _run(args: argparse.Namespace) -> int:
             if not path.is_file():
                 raise FileNotFoundError(errno.ENOENT, "no such experiment file", str(path))
         from pathzoo.harness.experiment import Experiment, read_toml, resolve_seeds
+        from pathzoo.plugins.metric_lookup import metric_info
 
         data = read_toml(path)
+        metric_info(args.metric)  # a mistyped --metric fails before any run (read from the declarations: no import)
         early = _early_executor(executor, data, args)
         if early is not None:
             stack.callback(early.shutdown)  # idempotent: run_experiment shuts it down when it ran
-        # a mistyped --metric fails before any run; checked while a child describes the planners
-        metric_checked = _check_metric(args.metric)
-        try:
-            exp = Experiment.from_mapping(data, path)  # the file read once
-        finally:
-            metric_checked.result()
+        exp = Experiment.from_mapping(data, path)  # the file read once
         from pathzoo.harness.runner import DEFAULT_DB, run_experiment
 
         if args.seeds is not None:
