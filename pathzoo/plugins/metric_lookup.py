@@ -93,8 +93,8 @@ def metric_info(metric: str, direction: Direction | None = None, unit: str | Non
     if known is None and direction is None:
         hint = did_you_mean(metric, [*get_registry().metrics, *RUN_COLUMNS])
         raise UnknownPluginError(
-            f"unknown metric '{metric}'{hint} (see 'pathzoo list metrics'); pass direction='min' or 'max' for "
-            "other columns"
+            f"unknown metric '{metric}'{hint} (see 'pathzoo list metrics'; from Python, another column is ranked "
+            "when given direction='min' or 'max')"
         )
     return MetricInfo(
         metric,
