@@ -29,7 +29,7 @@ from pathzoo.core import Param, Scenario
 from pathzoo.core.object_memo import ObjectMemo
 from pathzoo.grid.graph import GridGraph
 from pathzoo_exact.base import BatchFn, GraphSearchPlanner
-from pathzoo_exact.kernel import H_EUCLID, H_OCTILE, astar_batch, astar_moves_batch, goal_cell, run_batch
+from pathzoo_exact.kernel import H_EUCLID, H_OCTILE, astar_batch, astar_moves_batch, goal_cell, grid_dims, run_batch
 from pathzoo_exact.moves import move_table
 
 __all__ = ["AStarPlanner", "least_energy_per_metre"]
@@ -77,7 +77,7 @@ class AStarPlanner(GraphSearchPlanner):
     def _make_batch(self, scenario: Scenario, target: int) -> BatchFn:
         """The move-table kernel when every move has one cost (flat grids), else the CSR kernel; both give the same result."""
         graph = scenario.graph
-        dims = np.array((1,) * (3 - len(graph.shape)) + tuple(graph.shape), dtype=np.int64)
+        dims = grid_dims(graph.shape)
         sizes = scenario.cell_sizes
         steps = np.array([sizes[0], sizes[1], sizes[2] if len(sizes) == 3 else 0.0])
         mode, scale = self._heuristic(scenario)

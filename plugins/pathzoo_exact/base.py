@@ -82,7 +82,7 @@ from pathzoo.core.object_memo import ObjectMemo
 from pathzoo.grid.paths import centre_path, on_centre
 from pathzoo.grid.terrain import segment_profile
 from pathzoo.rules import segment_problem
-from pathzoo_exact.kernel import EXHAUSTED, FOUND, HEAP_FULL, RUNNING, SearchState
+from pathzoo_exact.kernel import EXHAUSTED, FOUND, HEAP_FULL, RUNNING, SearchState, grid_dims
 from pathzoo_exact.waypoints import path_ends, path_layout, waypoints
 
 __all__ = ["GraphSearchPlanner", "BatchFn", "SPARE_MAX_NODES", "Endpoints", "endpoints", "connector_cost",
@@ -199,11 +199,6 @@ class PreparedSearch(NamedTuple):
 _PREPARED: "ObjectMemo[Scenario, dict[Hashable, PreparedSearch]]" = ObjectMemo()
 
 
-def _clock_limited(budget: Budget) -> bool:
-    """Whether a clock can end a search under ``budget`` (else the search needs no clock at all)."""
-    return budget.stop is not None or budget.cpu_s is not None or budget.time_s is not None
-
-
 class GraphSearchPlanner(Planner, abc.ABC):
     """Base of the exact planners: a best-first search on ``scenario.graph``.
 
@@ -256,16 +251,14 @@ class GraphSearchPlanner(Planner, abc.ABC):
             if problem is not None:
                 break
             costs.append(connector_cost(scenario, p0, p1, kind))
-        dims = np.array((1,) * (3 - len(graph.shape)) + tuple(graph.shape), dtype=np.int64)
         return PreparedSearch(
             batch=self._make_batch(scenario, ends.target),
             source=ends.source,
             target=ends.target,
             n_nodes=graph.n_nodes,
-            layout=path_layout(dims, scenario.shape[1] if scenario.kind == "grid2d" else 0, ends.start_on_centre,
-                               ends.goal_on_centre),
-            ends=path_ends(np.asarray(scenario.cell_sizes, dtype=np.float64), np.asarray(scenario.start, dtype=np.float64),
-                           np.asarray(scenario.goal, dtype=np.float64)),
+            layout=path_layout(grid_dims(graph.shape), scenario.shape[1] if scenario.kind == "grid2d" else 0,
+                               ends.start_on_centre, ends.goal_on_centre),
+            ends=path_ends(scenario.cell_sizes, scenario.start, scenario.goal),
             cost_kind=kind,
             connector_problem=problem,
             connector_costs=tuple(costs),
@@ -280,7 +273,7 @@ class GraphSearchPlanner(Planner, abc.ABC):
         progress: ProgressCallback | None = None,
     ) -> PlanResult:
         """Search the cell graph from the start cell to the goal cell; see the module docstring."""
-        clock = budget.start() if _clock_limited(budget) else None
+        clock = budget.start() if budget.timed or budget.stop is not None else None  # else no clock can end it
         search = self._prepared(scenario)
         state = _search_state(search.n_nodes, search.source, self.initial_heap_capacity)
         batch, cap, step = search.batch, budget.evaluations, self.batch_expansions

@@ -32,7 +32,7 @@ several, on the critical path of every heap level. Replayed on the searches of
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Callable
 
 import numba
@@ -53,6 +53,7 @@ __all__ = [
     "order_key",
     "cell_heuristic",
     "heuristic",
+    "grid_dims",
     "goal_cell",
     "heap_push",
     "heap_pop",
@@ -129,31 +130,6 @@ def order_key(x: float) -> int:
 
 
 @numba.njit(cache=True)
-def _begin(
-    g: np.ndarray,
-    parent: np.ndarray,
-    closed: np.ndarray,
-    heap_node: np.ndarray,
-    heap_f: np.ndarray,
-    heap_g: np.ndarray,
-    counters: np.ndarray,
-    source: int,
-    clear: bool,
-) -> None:
-    """Put only ``source`` (cost 0) on the open list, after marking every node unseen and open if ``clear``."""
-    if clear:
-        g[:] = np.inf
-        closed[:] = False
-    g[source] = 0.0
-    parent[source] = -1
-    heap_node[0] = source
-    heap_f[0] = 0  # order_key(0.0)
-    heap_g[0] = 0
-    counters[0] = 1
-    counters[1] = 0
-
-
-@numba.njit(cache=True)
 def begin_batch(
     g: np.ndarray,
     parent: np.ndarray,
@@ -163,14 +139,23 @@ def begin_batch(
     heap_g: np.ndarray,
     counters: np.ndarray,
 ) -> int:
-    """The heap size a batch starts from, after doing the restart :meth:`SearchState.restart` left to it, if any.
+    """The heap size a batch starts from, after doing the (re)start :meth:`SearchState.restart` left to it, if any.
 
-    Every batch kernel starts here. A restart done by the first batch costs no
-    call of its own: a search on a small map takes a few microseconds, about
-    as long as one more compiled call from Python.
+    A start marks every node unseen and open and puts only its source (cost
+    0) on the open list. Every batch kernel starts here: a restart done by the
+    first batch costs no call of its own, and a search on a small map takes a
+    few microseconds, about as long as one more compiled call from Python.
     """
-    if counters[2] >= 0:
-        _begin(g, parent, closed, heap_node, heap_f, heap_g, counters, counters[2], True)
+    source = counters[2]
+    if source >= 0:
+        g[:] = np.inf
+        closed[:] = False
+        g[source] = 0.0
+        parent[source] = -1
+        heap_node[0] = source
+        heap_f[0] = 0  # order_key(0.0)
+        heap_g[0] = 0
+        counters[0] = 1
         counters[2] = -1
     return counters[0]
 
@@ -193,10 +178,7 @@ class SearchState:
         The binary heap: node, key ``f`` and tie-breaker ``g`` per slot;
         ``heap_f`` and ``heap_g`` hold int64 :func:`order_key` values.
     counters : ndarray of int64, shape (3,)
-        ``[heap size, expanded nodes, source of a restart the next batch does first (-1: none)]``.
-    arrays : tuple of ndarray
-        The seven arrays above in this order, the batch kernels' trailing
-        arguments (kept, so that a batch call does not gather them).
+        ``[heap size, expanded nodes, source of a start the next batch does first (-1: none)]``.
     """
 
     g: np.ndarray
@@ -206,34 +188,32 @@ class SearchState:
     heap_f: np.ndarray
     heap_g: np.ndarray
     counters: np.ndarray
-    arrays: tuple[np.ndarray, ...] = field(init=False, repr=False, compare=False)
 
-    def __post_init__(self) -> None:
-        self._gather()
-
-    def _gather(self) -> None:
-        self.arrays = (self.g, self.parent, self.closed, self.heap_node, self.heap_f, self.heap_g, self.counters)
+    @property
+    def arrays(self) -> tuple[np.ndarray, ...]:
+        """The seven arrays in the order above: the batch kernels' trailing arguments."""
+        return self.g, self.parent, self.closed, self.heap_node, self.heap_f, self.heap_g, self.counters
 
     @classmethod
     def start(cls, n_nodes: int, source: int, heap_capacity: int = 4096) -> "SearchState":
-        """A fresh state with only ``source`` (cost 0) on the open list."""
+        """A fresh state whose first batch starts the search from ``source`` (see :meth:`restart`)."""
         empty = np.empty(0, dtype=np.int64)
         state = cls(
-            g=np.full(n_nodes, np.inf),
+            g=np.empty(n_nodes),
             parent=np.empty(n_nodes, dtype=np.int64),
-            closed=np.zeros(n_nodes, dtype=np.bool_),
+            closed=np.empty(n_nodes, dtype=np.bool_),
             heap_node=empty,
             heap_f=empty,
             heap_g=empty,
-            counters=np.array([0, 0, -1], dtype=np.int64),
+            counters=np.zeros(3, dtype=np.int64),
         )
-        state._begin(source, heap_capacity)
+        state.restart(source, heap_capacity)
         return state
 
     def restart(self, source: int, heap_capacity: int = 4096) -> None:
-        """Forget the search and start a new one from ``source`` in the same node arrays: what :meth:`start` gives.
+        """Forget the search and start a new one from ``source`` in the same node arrays.
 
-        The node arrays are reset by the next batch (:func:`begin_batch`);
+        The node arrays are set by the next batch (:func:`begin_batch`);
         until then only :attr:`expanded` (0) may be read.
         """
         self._heap_of(heap_capacity)
@@ -244,11 +224,6 @@ class SearchState:
         """Heap arrays of ``capacity`` slots (new ones only when the capacity differs)."""
         if len(self.heap_node) != capacity:
             self.heap_node, self.heap_f, self.heap_g = (np.empty(capacity, dtype=np.int64) for _ in range(3))
-            self._gather()
-
-    def _begin(self, source: int, heap_capacity: int) -> None:
-        self._heap_of(heap_capacity)
-        _begin(self.g, self.parent, self.closed, self.heap_node, self.heap_f, self.heap_g, self.counters, source, False)
 
     def grow_heap(self) -> None:
         """Double the heap's capacity, keeping its entries."""
@@ -258,7 +233,6 @@ class SearchState:
             new = np.empty(2 * len(old), dtype=old.dtype)
             new[:size] = old[:size]
             setattr(self, name, new)
-        self._gather()
 
     @property
     def expanded(self) -> int:
@@ -298,6 +272,11 @@ def heuristic(node: int, goal: np.ndarray, mode: int, dims: np.ndarray, steps: n
         rest = node - layer * dims[1] * w
     row = rest // w
     return cell_heuristic(rest - row * w, row, layer, goal, mode, steps, scale)
+
+
+def grid_dims(shape: tuple[int, ...]) -> np.ndarray:
+    """A grid's ``shape`` as the kernels take it: ``dims = (L, H, W)``, one layer on 2-D grids."""
+    return np.array((1,) * (3 - len(shape)) + tuple(shape), dtype=np.int64)
 
 
 def goal_cell(target: int, dims: np.ndarray) -> np.ndarray:

@@ -50,7 +50,7 @@ import numpy as np
 
 from pathzoo.core import Param, PlanResult, ProgressCallback, Scenario
 from pathzoo_exact.base import BatchFn, GraphSearchPlanner, PreparedSearch
-from pathzoo_exact.kernel import H_ZERO, SearchState, astar_batch, goal_cell, run_batch
+from pathzoo_exact.kernel import H_ZERO, SearchState, astar_batch, goal_cell, grid_dims, run_batch
 
 __all__ = ["ZStarPlanner", "zstar_heuristic", "zstar_edge_cost", "reduced_costs"]
 
@@ -143,7 +143,7 @@ class ZStarPlanner(GraphSearchPlanner):
         graph = scenario.graph
         theta_m = self.max_climb_rad(scenario)
         weights = reduced_costs(scenario, zstar_edge_cost(scenario, theta_m), zstar_heuristic(scenario, theta_m))
-        dims = np.array((1,) * (3 - len(graph.shape)) + tuple(graph.shape), dtype=np.int64)
+        dims = grid_dims(graph.shape)
         args = (graph.indptr, graph.indices, weights, target, goal_cell(target, dims), H_ZERO, dims,
                 np.zeros(3), 0.0)
         return partial(run_batch, astar_batch, args, len(graph.offsets))

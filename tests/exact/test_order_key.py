@@ -25,7 +25,7 @@ def test_keys_compare_like_their_floats() -> None:
     k = np.array([order_key(v) for v in x])
     assert np.array_equal(k[:, None] < k[None, :], x[:, None] < x[None, :])
     assert np.array_equal(k[:, None] == k[None, :], x[:, None] == x[None, :])
-    assert order_key(0.0) == 0  # what SearchState.start stores for the source
+    assert order_key(0.0) == 0  # what begin_batch stores for the source
 
 
 def test_minus_zero_is_the_one_exception() -> None:
