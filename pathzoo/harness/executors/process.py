@@ -254,6 +254,12 @@ def configuration(task: "RunTask") -> tuple[str, str]:
     return task.planner.id, task.params_hash
 
 
+def _any_configuration(planner_id: str) -> tuple[str, str]:
+    """The configuration of a worker started early for a planner (:meth:`ProcessExecutor.start_worker`): its first
+    run, whatever its parameters, fixes the configuration."""
+    return planner_id, ""
+
+
 class ProcessExecutor(RunExecutor):
     """A pool of ``jobs`` long-lived worker processes, each for one planner configuration (see the module docstring).
 
@@ -458,7 +464,7 @@ class ProcessExecutor(RunExecutor):
             if len(self._workers) < self.capacity and not self._closing:
                 with self._lock:
                     self._see_planner(planner_id)
-                self._spawn((planner_id, ""))
+                self._spawn(_any_configuration(planner_id))
         if self._first_alone and any(w.task is not None for w in self._workers):
             return
         starting = Counter(w.config for w in self._workers if not w.was_ready)
@@ -467,8 +473,8 @@ class ProcessExecutor(RunExecutor):
             if starting[config] > 0:
                 starting[config] -= 1
                 continue
-            if starting[(config[0], "")] > 0:  # started early for this planner: it takes this configuration
-                starting[(config[0], "")] -= 1
+            if starting[_any_configuration(config[0])] > 0:  # started early for this planner: it takes this one
+                starting[_any_configuration(config[0])] -= 1
                 continue
             if starting[None] > 0 and not self.sandboxed:
                 starting[None] -= 1
@@ -494,7 +500,7 @@ class ProcessExecutor(RunExecutor):
             for i, (task, future) in enumerate(self._pending):
                 config = configuration(task)
                 worker = next((w for w in self._workers if w.idle and w.task is None
-                               and w.config in (config, (config[0], "")) and self._sees(w, task)), None)
+                               and w.config in (config, _any_configuration(config[0])) and self._sees(w, task)), None)
                 if worker is None and not self.sandboxed:
                     worker = next((w for w in self._workers if w.idle and w.task is None and w.config is None), None)
                 if worker is not None:
