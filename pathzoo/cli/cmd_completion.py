@@ -15,9 +15,7 @@ SHELLS = ("bash", "zsh", "tcsh")
 def _run(args: argparse.Namespace) -> int:
     import shtab
 
-    from pathzoo.cli.main import build_parser
-
-    sys.stdout.write(shtab.complete(build_parser(), shell=args.shell))
+    sys.stdout.write(shtab.complete(args.root_parser, shell=args.shell))
     return 0
 
 

@@ -63,6 +63,7 @@ def build_parser() -> argparse.ArgumentParser:
     for command in (cmd_list, cmd_run, cmd_tune, cmd_reproduce, cmd_leaderboard, cmd_report, cmd_export, cmd_show,
                     cmd_compare, cmd_completion):
         command.add_parser(sub)
+    parser.set_defaults(root_parser=parser)  # the completion command describes the whole parser
     return parser
 
 

@@ -9,7 +9,6 @@ metric cells by :func:`~pathzoo.io.geographic.geographic_to_metric`.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -17,6 +16,7 @@ import numpy as np
 
 from pathzoo.core.errors import InvalidScenarioError
 from pathzoo.io.arrays import NodataPolicy, as_elevation, load_array, read_npz, select_array
+from pathzoo.io.dem_grid import DEM
 from pathzoo.io.geographic import GridUnits, detect_units, geographic_to_metric
 from pathzoo.io.geotiff import GEOTIFF_SUFFIXES, read_geotiff
 from pathzoo.io.provenance import file_record
@@ -28,26 +28,6 @@ ASC_HEADER_KEYS = ("ncols", "nrows", "xllcorner", "xllcenter", "yllcorner", "yll
 """Header keywords of an ESRI ASCII grid (case-insensitive)."""
 
 _NPZ_GEOMETRY = ("dx", "dy", "xmin", "xmax", "ymin", "ymax")
-
-
-@dataclass(frozen=True, eq=False)
-class DEM:
-    """An elevation grid read from a file.
-
-    Attributes
-    ----------
-    elevation : ndarray of float64, shape (H, W)
-        Metres at cell centres; NaN where the file has no data. Read-only.
-    cell_size : float or None
-        Metres per cell, or ``None`` when the file does not say (``.npy``, or
-        an ``.npz`` without ``dx``/``dy``).
-    metadata : dict
-        Provenance: file, SHA-256, header values, unit conversion.
-    """
-
-    elevation: np.ndarray
-    cell_size: float | None
-    metadata: dict[str, Any] = field(default_factory=dict)
 
 
 def _finish(

@@ -9,17 +9,15 @@ from __future__ import annotations
 
 import math
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 
 from pathzoo.core.errors import InvalidScenarioError
 from pathzoo.io.arrays import NodataPolicy, as_elevation
+from pathzoo.io.dem_grid import DEM
 from pathzoo.io.geographic import GridUnits, detect_units, geographic_to_metric
 from pathzoo.io.provenance import file_record
-
-if TYPE_CHECKING:
-    from pathzoo.io.dem import DEM
 
 __all__ = ["GEOTIFF_SUFFIXES", "read_geotiff"]
 
@@ -44,7 +42,7 @@ def _geodesic_cell(crs: Any, lon: float, lat: float, dlon: float, dlat: float) -
 
 
 def read_geotiff(path: str | Path, *, units: GridUnits = "auto", nodata: NodataPolicy = "error") -> "DEM":
-    """Read the first band of a GeoTIFF as a :class:`~pathzoo.io.dem.DEM`.
+    """Read the first band of a GeoTIFF as a :class:`~pathzoo.io.dem_grid.DEM`.
 
     Parameters
     ----------
@@ -65,8 +63,6 @@ def read_geotiff(path: str | Path, *, units: GridUnits = "auto", nodata: NodataP
         Naming the file: rasterio missing, unreadable file, rotated or
         non-square grid, ``units`` given for a file with a CRS.
     """
-    from pathzoo.io.dem import DEM
-
     path = Path(path)
     src = str(path)
     try:

@@ -2,7 +2,10 @@
 
 Every ``import`` and ``from ... import`` in ``pathzoo/``, ``plugins/`` and
 ``scenarios/`` is read with :mod:`ast`, those inside functions and under
-``TYPE_CHECKING`` included, and the relative ones resolved. A module belongs
+``TYPE_CHECKING`` included, and the relative ones resolved. Imports written
+as strings count too: ``importlib.import_module("...")`` and
+``__import__("...")`` with a literal name, and the modules named in a
+:func:`~pathzoo.lazy_names.lazy_getattr` table. A module belongs
 to the unit with the longest matching name in :data:`LAYERS`; it may import
 its own unit and any unit of a lower layer, nothing else, except the pairs
 in :data:`ALLOWED` (each explained in ``docs/layers.md``).
@@ -54,6 +57,8 @@ ALLOWED: dict[tuple[str, str], str] = {
     ("pathzoo.core.scenario", "pathzoo.rules"): "a scenario's segment and path queries, answered by the rules",
     ("pathzoo.plugins.external", "pathzoo_external"): "a program planner's declaration loads the bundled bridge "
                                                        "(planner code) on first use, in the worker only",
+    ("pathzoo.analysis", "report"): "the analysis package's facade names write_report and render_report, "
+                                    "loaded on first use; no analysis module imports the report",
 }
 """(importing module, imported unit) pairs allowed across the layers, each explained in ``docs/layers.md``."""
 
@@ -84,12 +89,55 @@ def unit_of(module: str) -> str | None:
 RANK = {unit: rank for rank, layer in enumerate(LAYERS) for unit in layer}
 
 
+STRING_IMPORTERS = frozenset({"import_module", "__import__"})
+"""Functions whose first argument, a literal module name, is an import (``importlib.import_module``, ``__import__``)."""
+
+
+def _called_name(call: ast.Call) -> str | None:
+    func = call.func
+    return func.id if isinstance(func, ast.Name) else func.attr if isinstance(func, ast.Attribute) else None
+
+
+def _lazy_table(call: ast.Call, tables: dict[str, ast.Dict]) -> ast.Dict | None:
+    """The mapping literal given to ``lazy_getattr(package, mapping)``: written in the call or bound to a name."""
+    if len(call.args) < 2:
+        return None
+    table = call.args[1]
+    if isinstance(table, ast.Name):
+        return tables.get(table.id)
+    return table if isinstance(table, ast.Dict) else None
+
+
+def string_imports(tree: ast.Module, module: str, package: str) -> list[tuple[int, str]]:
+    """``(line, module)`` of the imports written as strings in ``tree`` (see the module docstring)."""
+    tables = {target.id: node.value for node in tree.body if isinstance(node, ast.Assign)
+              and isinstance(node.value, ast.Dict) for target in node.targets if isinstance(target, ast.Name)}
+    found = []
+    for node in ast.walk(tree):
+        if not isinstance(node, ast.Call):
+            continue
+        name = _called_name(node)
+        first = node.args[0] if node.args else None
+        if name in STRING_IMPORTERS and isinstance(first, ast.Constant) and isinstance(first.value, str):
+            target = first.value
+            if target.startswith("."):
+                target = package + target if target != "." else package
+            found.append((node.lineno, target))
+        elif name == "lazy_getattr" and (table := _lazy_table(node, tables)) is not None:
+            base = first.value if isinstance(first, ast.Constant) and isinstance(first.value, str) else module
+            found.extend((value.lineno, value.value if "." in value.value else f"{base}.{value.value}")
+                         for value in table.values
+                         if isinstance(value, ast.Constant) and isinstance(value.value, str))
+    return found
+
+
 def imports(path: Path, text: str) -> list[tuple[int, str]]:
     """``(line, imported module)`` of every import in ``text``, the source of ``path``; relative ones resolved."""
     module = module_name(path)
     package = module if path.name == "__init__.py" else module.rpartition(".")[0]
-    found = []
-    for node in ast.walk(ast.parse(text, str(path))):
+    tree = ast.parse(text, str(path))
+    found = string_imports(tree, module, package)
+    for node in ast.walk(tree):
         if isinstance(node, ast.Import):
             found.extend((node.lineno, alias.name) for alias in node.names)
         elif isinstance(node, ast.ImportFrom):
@@ -181,8 +229,27 @@ def test_every_allowed_exception_is_used_and_explained() -> None:
     ("pathzoo/grid/graph.py", "from ..rules import segments\n", "higher layer"),
     ("plugins/pathzoo_exact/astar.py", "from pathzoo.harness import run_experiment\n", "higher layer"),
     ("pathzoo/core/budget.py", "import pathzoo.grid\n", "higher layer"),
+    ("pathzoo/grid/graph.py", "import importlib\nimportlib.import_module('pathzoo.harness.runner')\n",
+     "higher layer"),
+    ("pathzoo/grid/graph.py", "from importlib import import_module\ndef f():\n    import_module('pathzoo.harness')\n",
+     "higher layer"),
+    ("pathzoo/grid/graph.py", "def f():\n    return __import__('pathzoo.analysis.stats')\n", "higher layer"),
+    ("pathzoo/core/__init__.py", "from pathzoo.lazy_names import lazy_getattr\n"
+     "_WHERE = {'run_experiment': 'pathzoo.harness.runner'}\n__getattr__ = lazy_getattr(__name__, _WHERE)\n",
+     "higher layer"),
+    ("pathzoo/core/__init__.py", "from pathzoo.lazy_names import lazy_getattr\n"
+     "__getattr__ = lazy_getattr('pathzoo.grid', {'Graph': 'graph'})\n", "higher layer"),
 ])
 def test_the_check_finds_upward_imports(module: str, code: str, expected: str) -> None:
-    """A planted import of each kind the issue found (module level, in a function, relative) is reported."""
+    """A planted import of each kind (module level, in a function, relative, written as a string) is reported."""
     found = layer_violations({REPO_ROOT / module: code})
     assert len(found) == 1 and expected in found[0], found
+
+
+def test_a_lazy_table_of_own_submodules_is_no_violation() -> None:
+    """Plain names in a ``lazy_getattr`` table are the package's own modules, resolved against it."""
+    planted = ("from pathzoo.lazy_names import lazy_getattr\n"
+               "_WHERE = {'read_map': 'movingai'}\n__getattr__ = lazy_getattr(__name__, _WHERE)\n")
+    path = REPO_ROOT / "pathzoo/io/__init__.py"
+    assert layer_violations({path: planted}) == []
+    assert "pathzoo.io.movingai" in [target for _, target in imports(path, planted)]
