@@ -2,11 +2,16 @@
 # (a hook specification is a signature and a docstring; the plugins implement the bodies)
 """All pluggy hook specifications of pathzoo, in one place.
 
-A plugin is a module (or object) exposed under the ``pathzoo`` entry-point
-group. It implements any of these hooks with ``@pathzoo.hookimpl``::
+A plugin is a module (or object) exposed under the entry-point group of its
+kind (:data:`pathzoo.plugins.manager.KIND_GROUPS`): ``pathzoo.planners``,
+``pathzoo.scenarios`` or ``pathzoo.metrics``. It implements any of these hooks
+with ``@pathzoo.hookimpl``::
 
-    [project.entry-points.pathzoo]
+    [project.entry-points."pathzoo.planners"]
     greedy = "pathzoo_greedy.plugin"
+
+A module may implement only the registration hook of its group (the others are
+ignored, so that the judge never imports planner code).
 
 Registration hooks return classes or entries; data hooks return files a
 plugin ships for pathzoo to read (the papers' tables); observer hooks are
@@ -24,7 +29,7 @@ if TYPE_CHECKING:
     from pathzoo.core.metric import Metric
     from pathzoo.core.planner import Planner
     from pathzoo.core.results import RunRecord
-    from pathzoo.plugins.entries import ScenarioEntry
+    from pathzoo.plugins.entries import LazyMetric, LazyPlanner, ScenarioEntry
 
 __all__ = ["hookspec", "hookimpl", "PROJECT"]
 
@@ -34,8 +39,8 @@ hookimpl = pluggy.HookimplMarker(PROJECT)
 
 
 @hookspec
-def pathzoo_register_planners() -> Sequence[type["Planner"]]:
-    """Return the planner classes this plugin provides."""
+def pathzoo_register_planners() -> Sequence[type["Planner"] | "LazyPlanner"]:
+    """Return the planners this plugin provides: classes, or lazy declarations that import them when built."""
 
 
 @hookspec
@@ -44,8 +49,8 @@ def pathzoo_register_scenarios() -> Sequence["ScenarioEntry"]:
 
 
 @hookspec
-def pathzoo_register_metrics() -> Sequence[type["Metric"]]:
-    """Return the metric classes this plugin provides."""
+def pathzoo_register_metrics() -> Sequence[type["Metric"] | "LazyMetric"]:
+    """Return the metrics this plugin provides: classes, or lazy declarations that import them when used."""
 
 
 @hookspec

@@ -28,7 +28,13 @@ NARRATION = re.compile(
     r"|\bload average\b"
     r"|\bA/B\b"
     r"|\bidle (machine|run|rerun)\b"
-    r"|\bthe machine was\b",
+    r"|\bthe machine was\b"
+    r"|\bearlier versions?\b"
+    r"|\bno longer\b"
+    r"|\bused to be\b"
+    r"|\bit was\b"
+    r"|\bthe issue\b"
+    r"|\bDESIGN\.md\b",
     re.IGNORECASE,
 )
 """Words that narrate how a figure was reached; the issue's ``grep -riE`` and a few more."""
@@ -56,6 +62,12 @@ def test_the_docs_narrate_no_history() -> None:
     "| row | fourth session's code | fifth session's code |",
     "figures below were taken under a load average of 5-20",
     "could not be measured on an idle machine",
+    "An earlier version of the pack put the goal inside a C-shaped obstacle.",
+    "graph lives (it was a pass over every edge in every plan())",
+    "so two configurations of one planner no longer collide.",
+    "including the issue's reproduction (problem 136).",
+    "Scalars and arrays used to be stored as JSON.",
+    "the architecture of DESIGN.md",
 ])
 def test_the_narration_pattern_catches_what_the_docs_used_to_say(line: str) -> None:
     assert NARRATION.search(line)
