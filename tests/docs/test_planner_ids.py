@@ -1,0 +1,55 @@
+"""Every planner id a docs page or the README names is a registered planner.
+
+A name reads ``family.name`` with a family of the registered planners
+(``aco``, ``exact``, ...). Module paths (``ompl.util.RNG``), file names
+(``ompl.md``) and web addresses are not ids and are skipped. The papers'
+rivals that are not reconstructed keep an id in the reproduction tables, so
+that a row says which method it stands for; they are the only exceptions,
+with the example id of a user's own planner in ``docs/aco-engine.md``.
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import pytest
+
+from pathzoo.plugins.manager import get_registry
+
+REPO_ROOT = Path(__file__).resolve().parents[2]
+PAGES = sorted(
+    [REPO_ROOT / "README.md"]
+    + [p for p in (REPO_ROOT / "docs").rglob("*") if p.suffix in (".md", ".rst") and "_build" not in p.parts]
+)
+NOT_RECONSTRUCTED = {"aco.chen", "swarm.mopso", "evo.lro_ga"}
+"""Rivals a paper compares against that pathzoo does not reconstruct (docs/reproduction.md)."""
+EXAMPLES = {"aco.mine"}
+"""Ids of a user's own planner in a registration example."""
+FILE_SUFFIXES = {"md", "py", "rst", "toml", "org", "html", "json", "csv", "txt"}
+
+
+def _families() -> set[str]:
+    return {pid.split(".", 1)[0] for pid in get_registry().table("planners")}
+
+
+def named_ids(text: str, families: set[str]) -> set[str]:
+    """``family.name`` tokens of ``text`` that read as planner ids."""
+    pattern = re.compile(
+        r"(?<![\w./-])(?<!-m )(" + "|".join(sorted(families)) + r")\.([a-z][a-z0-9_]*)(?![\w-]|\.\w)"
+    )
+    return {f"{m[1]}.{m[2]}" for m in pattern.finditer(text) if m[2] not in FILE_SUFFIXES}
+
+
+def test_the_pattern_finds_ids_and_skips_modules() -> None:
+    families = {"ompl", "aco", "search"}
+    text = ("Run `aco.acs` and ompl.rrt, not ompl.util.RNG, ompl.md, https://ompl.kavrakilab.org, "
+            "`python -m ompl.ompl_benchmark_statistics` or pathzoo_baselines.search.helper; aco.nope.")
+    assert named_ids(text, families) == {"aco.acs", "ompl.rrt", "aco.nope"}
+
+
+@pytest.mark.parametrize("page", PAGES, ids=lambda p: str(p.relative_to(REPO_ROOT)))
+def test_page_names_only_registered_planners(page: Path) -> None:
+    registered = set(get_registry().table("planners"))
+    unknown = named_ids(page.read_text(encoding="utf-8"), _families()) - registered - NOT_RECONSTRUCTED - EXAMPLES
+    assert not unknown, f"{page.relative_to(REPO_ROOT)} names unregistered planner id(s): {sorted(unknown)}"
