@@ -10,7 +10,9 @@ anything else runs, and ``bwrap`` (bubblewrap, as in Flatpak) then gives it:
 - a mount namespace in which the whole file system is mounted read-only
   (``--ro-bind / /``: ``/usr``, the Python install, pathzoo, the result
   database, the judge's and the harness's numba and graph caches), a fresh
-  ``/proc`` and ``/dev``, empty ``/tmp``, ``/var/tmp``, ``/run`` and
+  ``/proc`` whose ``/proc/sys`` is mounted read-only (run by root, a planner
+  could otherwise set global sysctls such as ``kernel.core_pattern``, whose
+  pipe form runs a program as the host's root), a fresh ``/dev``, empty ``/tmp``, ``/var/tmp``, ``/run`` and
   ``/dev/shm`` (so no socket of the harness, its ``forkserver`` or its
   resource tracker is reachable), and two writable directories: the
   worker's scratch directory (its working directory, ``HOME`` and
@@ -180,7 +182,7 @@ def sandboxed_command(command: Sequence[str], *, procs_files: Sequence[str], scr
     scratch.mkdir(parents=True, exist_ok=True)
     numba_cache.mkdir(parents=True, exist_ok=True)
     hidden = _hidden_roots()
-    args = [bwrap, "--ro-bind", "/", "/", "--dev", "/dev", "--proc", "/proc"]
+    args = [bwrap, "--ro-bind", "/", "/", "--dev", "/dev", "--proc", "/proc", "--ro-bind", "/proc/sys", "/proc/sys"]
     for root in hidden:
         if os.path.isdir(root):
             args += ["--tmpfs", root]

@@ -36,10 +36,11 @@ from __future__ import annotations
 
 import json
 import math
+import os
 import re
 import sqlite3
 import time
-from contextlib import contextmanager
+from contextlib import contextmanager, suppress
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Collection, Iterator, Mapping
 
@@ -139,7 +140,7 @@ CREATE INDEX IF NOT EXISTS history_run ON history (experiment, run_key);
 
 
 class ResultsDatabaseError(PathzooError, RuntimeError):
-    """A result database is missing, not a pathzoo database, of another schema version, or conflicts."""
+    """A result database is missing, not a pathzoo database, of another schema version, conflicts, or its disk is full."""
 
 
 def _metric_column(metric_id: str) -> str:
@@ -202,15 +203,51 @@ def _use_wal(conn: sqlite3.Connection, timeout_s: float = 60.0) -> None:
             time.sleep(0.01)
 
 
-@contextmanager
-def _transaction(conn: sqlite3.Connection) -> Iterator[sqlite3.Connection]:
-    conn.execute("BEGIN IMMEDIATE")
+def _disk_full(exc: sqlite3.Error, path: Path) -> bool:
+    """Whether SQLite's error means that the disk holding ``path`` is full.
+
+    SQLite says "database or disk is full" when a write finds no space, but
+    "disk I/O error" when the write-ahead log cannot grow; the second is read
+    as a full disk when the file system has no block left for the user.
+    """
+    text = str(exc).lower()
+    if "disk is full" in text:
+        return True
+    if "disk i/o error" not in text:
+        return False
     try:
-        yield conn
-    except BaseException:
-        conn.execute("ROLLBACK")
-        raise
-    conn.execute("COMMIT")
+        stat = os.statvfs(path.parent)
+    except OSError:
+        return False
+    return stat.f_bavail * stat.f_frsize < _FULL_BYTES
+
+
+_FULL_BYTES = 1 << 20
+"""Free space below which a "disk I/O error" is reported as a full disk."""
+
+
+@contextmanager
+def _transaction(conn: sqlite3.Connection, path: Path) -> Iterator[sqlite3.Connection]:
+    """One write transaction; a full disk raises :class:`ResultsDatabaseError` saying so (the transaction is undone,
+    nothing stored before is lost)."""
+    try:
+        conn.execute("BEGIN IMMEDIATE")
+        try:
+            yield conn
+        except BaseException:
+            with suppress(sqlite3.Error):
+                conn.execute("ROLLBACK")
+            raise
+        conn.execute("COMMIT")
+    except sqlite3.OperationalError as exc:
+        if not _disk_full(exc, path):
+            raise
+        with suppress(sqlite3.Error):
+            conn.execute("ROLLBACK")
+        raise ResultsDatabaseError(
+            f"{path}: the disk is full (SQLite: {exc}); the runs stored so far are kept: free some space and run the "
+            "same command again to resume"
+        ) from None
 
 
 def _blob(arr: np.ndarray | None) -> bytes | None:
@@ -294,7 +331,7 @@ class ResultStore:
             "SELECT seed, budget, timeout_s FROM experiments WHERE name = ?", (experiment.name,)
         ).fetchone()
         if row is None:
-            with _transaction(self.conn):
+            with _transaction(self.conn, self.path):
                 self.conn.execute(
                     "INSERT OR IGNORE INTO experiments VALUES (?, ?, ?, ?, ?, ?)",
                     (experiment.name, experiment.seed, budget, experiment.timeout_s,
@@ -370,7 +407,7 @@ class ResultStore:
             values[f"metric:{mid}"] = _real(record.metrics[mid])
         cols = ", ".join(f'"{c}"' for c in values)
         marks = ", ".join("?" for _ in values)
-        with _transaction(self.conn):
+        with _transaction(self.conn, self.path):
             if replace_statuses:
                 marks_ = ", ".join("?" for _ in replace_statuses)
                 old = self.conn.execute(

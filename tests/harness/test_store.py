@@ -148,3 +148,50 @@ def test_reopening_keeps_everything(tmp_path, experiment):
         store.insert(make_record("c", metrics={"new_metric": 2.0}))  # a new metric column is added, none dropped
     frame = read_runs(db)
     assert frame.run_key.tolist() == ["a", "c"] and frame.length[0] == 9.25 and frame.new_metric[1] == 2.0
+
+
+class _FullDisk:
+    """A connection whose writes of runs fail as SQLite fails on a full disk (``error``); reads pass through."""
+
+    def __init__(self, conn: sqlite3.Connection, error: str) -> None:
+        self.conn, self.error = conn, error
+
+    def execute(self, sql: str, *args):
+        if sql.lstrip().startswith("INSERT") and "runs" in sql:
+            raise sqlite3.OperationalError(self.error)
+        return self.conn.execute(sql, *args)
+
+    def __getattr__(self, name: str):
+        return getattr(self.conn, name)
+
+
+@pytest.mark.parametrize("error, free", [("database or disk is full", 10 << 30), ("disk I/O error", 4096)])
+def test_a_full_disk_is_named_in_one_line_and_loses_nothing(tmp_path, experiment, monkeypatch, error, free):
+    import os
+
+    db = tmp_path / "r.sqlite"
+    with ResultStore(db) as store:
+        store.add_experiment(experiment)
+        assert store.insert(make_record("a"))
+        store.conn = _FullDisk(store.conn, error)  # type: ignore[assignment]
+        statvfs = os.statvfs
+        monkeypatch.setattr(os, "statvfs", lambda p: os.statvfs_result((4096, 4096, 10**6, 1, free // 4096,
+                                                                        *statvfs(p)[5:])))
+        with pytest.raises(ResultsDatabaseError) as caught:
+            store.insert(make_record("b"))
+        monkeypatch.undo()
+        store.conn = store.conn.conn
+        assert store.insert(make_record("b"))  # space freed: the same store goes on
+    message = str(caught.value)
+    assert "disk is full" in message and str(db) in message and "\n" not in message
+    assert read_runs(db, "store").run_key.tolist() == ["a", "b"]
+
+
+def test_another_io_error_is_not_called_a_full_disk(tmp_path, experiment):
+    db = tmp_path / "r.sqlite"
+    with ResultStore(db) as store:
+        store.add_experiment(experiment)
+        store.conn = _FullDisk(store.conn, "disk I/O error")  # type: ignore[assignment]
+        with pytest.raises(sqlite3.OperationalError, match="disk I/O error"):
+            store.insert(make_record("b"))
+        store.conn = store.conn.conn
