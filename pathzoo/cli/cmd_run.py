@@ -14,11 +14,13 @@ from typing import TYPE_CHECKING, Any, Iterator
 
 from pathzoo.cli.cmd_leaderboard import add_table_options, isolation_note, render_leaderboard
 from pathzoo.cli.errors import CommandError
+from pathzoo.core.errors import PathzooError
 
 if TYPE_CHECKING:
     from pathzoo.harness.executors import RunExecutor
+    from pathzoo.harness.shard import Shard
 
-__all__ = ["add_parser", "add_execution_options", "executor_of", "positive_int", "status_list"]
+__all__ = ["add_parser", "add_execution_options", "executor_of", "positive_int", "shard_of", "status_list"]
 
 EXECUTORS = ("process", "dask", "inline")
 
@@ -32,6 +34,16 @@ def positive_int(text: str) -> int:
     if value < 1:
         raise argparse.ArgumentTypeError(f"must be a positive integer, got {text!r}")
     return value
+
+
+def shard_of(text: str) -> "Shard":
+    """argparse type: ``K/N``, shard K of N (:mod:`pathzoo.harness.shard`)."""
+    from pathzoo.harness.shard import parse_shard
+
+    try:
+        return parse_shard(text)
+    except PathzooError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
 
 
 def status_list(text: str) -> tuple[str, ...]:
@@ -132,14 +144,15 @@ def _run(args: argparse.Namespace) -> int:
             with _harness_info_on_stderr() if args.verbose else nullcontext():
                 runs = run_experiment(exp, db=db, jobs=args.jobs, executor=early or executor,
                                       progress=not args.no_progress, retry=args.retry,
-                                      require_sandbox=args.require_sandbox)
+                                      require_sandbox=args.require_sandbox, shard=args.shard)
         except KeyboardInterrupt:
             raise CommandError(f"interrupted; finished runs are stored in {db}, run the same command again to resume") \
                 from None
     skipped = len(exp.skipped())
     unrun = f"; {skipped} planner x scenario pair(s) not run, the planner not supporting the scenario's kind" + (
         "" if args.verbose else " (-v lists them)") if skipped else ""
-    print(f"experiment '{exp.name}': {len(runs)} runs stored in {db}{unrun}", file=sys.stderr)
+    part = f" (shard {args.shard}; 'pathzoo merge' joins the shards' databases)" if args.shard else ""
+    print(f"experiment '{exp.name}': {len(runs)} runs stored in {db}{part}{unrun}", file=sys.stderr)
     sys.stdout.write(render_leaderboard(runs, args, db))
     note = isolation_note(runs)
     if note:
@@ -169,6 +182,9 @@ def add_parser(subparsers: Any) -> None:
         "each new result replaces the old row",
     )
     parser.add_argument("--seeds", type=positive_int, metavar="N", help="override the experiment's number of seeds")
+    parser.add_argument("--shard", type=shard_of, metavar="K/N",
+                        help="run only shard K of N: every N-th run of the experiment from the K-th "
+                        "(N machines, one shard each; 'pathzoo merge' joins their databases)")
     parser.add_argument("--require-sandbox", action="store_true",
                         help="refuse to run planners outside the OS sandbox (bubblewrap + cgroups; docs/sandbox.md)")
     parser.add_argument("-v", "--verbose", action="store_true",

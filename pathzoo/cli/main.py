@@ -13,7 +13,7 @@ import sqlite3
 import sys
 from typing import Any, NoReturn, Sequence
 
-from pathzoo.cli import (cmd_compare, cmd_completion, cmd_export, cmd_leaderboard, cmd_list, cmd_report,
+from pathzoo.cli import (cmd_compare, cmd_completion, cmd_export, cmd_leaderboard, cmd_list, cmd_merge, cmd_report,
                          cmd_reproduce, cmd_run, cmd_show, cmd_tune)
 from pathzoo.core.errors import PathzooError
 from pathzoo.core.suggest import did_you_mean
@@ -61,7 +61,7 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--version", action="version", version=f"pathzoo {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
     for command in (cmd_list, cmd_run, cmd_tune, cmd_reproduce, cmd_leaderboard, cmd_report, cmd_export, cmd_show,
-                    cmd_compare, cmd_completion):
+                    cmd_compare, cmd_merge, cmd_completion):
         command.add_parser(sub)
     parser.set_defaults(root_parser=parser)  # the completion command describes the whole parser
     return parser

@@ -36,6 +36,7 @@ if TYPE_CHECKING:
     import pandas as pd
 
     from pathzoo.harness.experiment import Experiment
+    from pathzoo.harness.shard import Shard
     from pathzoo.core.results import RunRecord
     from pathzoo.harness.specs import RunTask
     from pathzoo.harness.worker import RunOutcome
@@ -171,6 +172,7 @@ def run_experiment(
     retry: "tuple[str, ...] | list[str]" = (),
     judge_timeout_s: float = JUDGE_TIMEOUT_S,
     require_sandbox: bool = False,
+    shard: "Shard | None" = None,
 ) -> "pd.DataFrame":
     """Run every run of ``experiment`` not yet stored in ``db``; return exactly the experiment's runs.
 
@@ -198,13 +200,16 @@ def run_experiment(
         (:class:`~pathzoo.harness.sandbox.SandboxUnavailableError`, before any
         run); without it an unsandboxed executor is named in one warning of
         the ``pathzoo.harness`` logger (``docs/sandbox.md``).
+    shard : Shard, optional
+        Run only this shard of the experiment's runs
+        (:mod:`pathzoo.harness.shard`; ``pathzoo merge`` joins the shards' databases).
 
     Returns
     -------
     pandas.DataFrame
         :func:`pathzoo.harness.store.read_runs` restricted to this
         experiment's planners x scenarios x seeds (other runs stored under the
-        same name, from earlier calls, are left out), in the experiment's
+        same name, from earlier calls, and runs of other shards, are left out), in the experiment's
         order of runs, not the order they finished in.
 
     Notes
@@ -234,6 +239,8 @@ def run_experiment(
         store.add_experiment(experiment)
         finished = store.finished_keys(experiment.name, exclude_statuses=retry_statuses)
         all_tasks = experiment.tasks(extra_plugin_modules(registry))
+        if shard is not None:
+            all_tasks = shard.select(all_tasks)
         # a pilot of every scenario and planner first, so the time left is costed from the start
         tasks = pilot_first([t for t in all_tasks if t.run_key not in finished],
                             lambda t: (t.planner.name, t.scenario.id))

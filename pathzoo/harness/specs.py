@@ -20,6 +20,7 @@ import hashlib
 import pickle
 import sys
 from dataclasses import dataclass, field, replace
+from pathlib import Path
 from typing import TYPE_CHECKING, Any, Literal, Mapping
 
 from pathzoo.core.budget import Budget
@@ -252,8 +253,28 @@ class ScenarioSpec:
         return (self.source, self.location, self.id, self.digest)
 
     def describe(self) -> dict[str, str]:
-        """JSON-friendly description (for the experiments table)."""
-        return {"id": self.id, "kind": self.kind, "source": self.source, "location": self.location}
+        """JSON-friendly description (for the experiments table), with :meth:`content_digest`."""
+        return {"id": self.id, "kind": self.kind, "source": self.source, "location": self.location,
+                "digest": self.content_digest()}
+
+    def content_digest(self) -> str:
+        """What the scenario's content is made from, hashed without loading it (``pathzoo merge`` compares it).
+
+        An object's is the hash of its pickled bytes; a file scenario's the
+        SHA-256 of the file (a map file that it names is not included); a
+        registered scenario's the hash of the distribution, version and id
+        that provide it, so two machines with different scenario packs differ.
+        """
+        if self.source == "object":
+            return self.digest
+        if self.source == "file":
+            text = hashlib.sha256(Path(self.location).read_bytes()).hexdigest()
+        else:
+            from pathzoo.plugins.manager import get_registry
+
+            entry = get_registry().get("scenarios", self.location)
+            text = hashlib.sha256(f"{entry.distribution} {entry.version} {self.location}".encode()).hexdigest()
+        return text[:24]
 
     def load(self) -> "Scenario":
         """Load the scenario (uncached; the worker and the runner cache it)."""

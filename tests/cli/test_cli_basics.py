@@ -15,7 +15,7 @@ from pathzoo.cli.main import main
 from pathzoo.plugins import manager
 
 PATHZOO = Path(sys.executable).parent / "pathzoo"
-COMMANDS = ("list", "run", "tune", "reproduce", "leaderboard", "report", "export-ompl", "show", "compare", "completion")
+COMMANDS = ("list", "run", "tune", "reproduce", "leaderboard", "report", "export-ompl", "show", "compare", "merge", "completion")
 
 
 def error_lines(stderr: str) -> list[str]:
