@@ -97,7 +97,7 @@ HAND_TIMING = re.compile(
     r"|" + _NUMBER + r"\s*(?-i:[kM])?\s*(?:[a-z-]{2,}\s+)?per\s+(?:CPU\s+)?second\b"
     r"|\b(?:takes?|took|costs?|loads?\s+in|builds?\s+in|runs?\s+in)\s+" + _NUMBER + r"\s*" + _SECONDS,
     re.IGNORECASE)
-"""A speed figure of pathzoo's own code typed into prose: an approximate or sub-second time, CPU seconds, a rate, "Nx faster"."""
+"""A speed figure typed into prose: an approximate or sub-second time, CPU seconds, a rate, "Nx faster"."""
 
 KEPT_TIMING = re.compile(
     r"target|budget|limit|timeout|killed|toleran|paper|sized to|more than about|\bat (?:least|most)\b"
