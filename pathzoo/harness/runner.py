@@ -121,8 +121,12 @@ def _execute(
     executor.prepare(tasks)
     submit_more()
     while in_flight:
-        done, _ = wait(list(in_flight), return_when=FIRST_COMPLETED)
+        grown = executor.capacity_changed()  # a pool that follows a cluster: more runs once workers join
+        waited: list[Future[Any]] = [*in_flight, *([grown] if grown is not None else [])]
+        done, _ = wait(waited, return_when=FIRST_COMPLETED)
         for future in done:
+            if future is grown:
+                continue
             task = in_flight.pop(future)
             outcome = bound_outcome(future.result())
             record = _store(store, judge.judge(task, outcome, isolated=isolated), task, outcome, retry)

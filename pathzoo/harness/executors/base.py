@@ -43,6 +43,11 @@ class RunExecutor(abc.ABC):
     def submit(self, task: "RunTask") -> "Future[RunOutcome]":
         """Schedule one run."""
 
+    def capacity_changed(self) -> "Future[None] | None":
+        """A future that resolves when :attr:`capacity` or :attr:`lookahead` next changes, so the runner submits
+        more runs at once; None (the default) for an executor whose capacity never changes."""
+        return None
+
     def prepare(self, tasks: "list[RunTask]") -> None:
         """Hear of the runs about to be submitted, e.g. to warm the workers up (default: nothing)."""
 

@@ -42,7 +42,18 @@ docstring). What this gives:
   workers with ``DASK_DISTRIBUTED__WORKER__DAEMON=False`` (or ``dask worker
   --no-nanny``), else the executor refuses to start with an error saying so;
 - file scenarios are read by path on the workers, so the files must be
-  visible to them at the same path; Python scenario objects travel in the task.
+  visible to them at the same path; Python scenario objects travel in the task;
+- the pool follows the cluster: :attr:`~DaskExecutor.capacity` (and as many
+  runs again queued on the scheduler, :attr:`~DaskExecutor.lookahead`) is the
+  number of threads of the workers connected now, polled every
+  :data:`WORKERS_POLL_S`, and :meth:`~DaskExecutor.capacity_changed` wakes the
+  runner when it changes, so a worker that joins late (a SLURM job leaving
+  the queue, adaptive scaling) gets runs at once. While no worker is
+  connected one run waits on the scheduler and the ``pathzoo.harness``
+  logger says, every :data:`WAIT_NOTICE_S`, that the experiment is waiting
+  for workers; a run waiting for a free thread (all threads busy, or none)
+  is never given up as lost. A worker that joins late as a daemonic process
+  is named in a warning and left out of the capacity.
 """
 
 from __future__ import annotations
@@ -52,6 +63,7 @@ import multiprocessing
 import os
 import threading
 import time
+import logging
 import uuid
 from concurrent.futures import CancelledError, Future
 from dataclasses import dataclass, replace
@@ -67,12 +79,17 @@ from pathzoo.harness.worker import SETUP_TIMEOUT_S, RunOutcome, utc_now
 if TYPE_CHECKING:
     from pathzoo.harness.specs import RunTask
 
-__all__ = ["DaskExecutor", "ANSWER_GRACE_S"]
+__all__ = ["DaskExecutor", "ANSWER_GRACE_S", "WORKERS_POLL_S", "WAIT_NOTICE_S"]
 
 _STARTED_TOPIC = "pathzoo-run-started"
 _TICK_S = 0.1
 ANSWER_GRACE_S = 120.0
 """Slack beyond the setup and hard limits before the harness gives up on a Dask task that does not answer."""
+WORKERS_POLL_S = 0.5
+"""How often the executor asks the scheduler which workers are connected."""
+WAIT_NOTICE_S = 60.0
+"""How often the wait for a first worker is said again."""
+log = logging.getLogger("pathzoo.harness")
 _clock = time.perf_counter  # bound at import: a later patch of time.perf_counter does not reach the harness
 
 _supervisors: dict[tuple[str, int], ProcessExecutor] = {}
@@ -139,13 +156,18 @@ class DaskExecutor(RunExecutor):
     Parameters
     ----------
     jobs : int, optional
-        Workers of the local cluster (default ``os.cpu_count()``); ignored with ``address``.
+        Workers of the local cluster (default ``os.cpu_count()``); ignored with ``address`` or ``cluster``.
     address : str, optional
-        Scheduler address such as ``"tcp://10.0.0.5:8786"``; without it a
-        ``LocalCluster`` with one thread per worker is started and closed.
+        Scheduler address such as ``"tcp://10.0.0.5:8786"``; without it (and
+        without ``cluster``) a ``LocalCluster`` with one thread per worker is
+        started and closed.
     processes : bool
         Local cluster only: Dask workers as processes (True) or as threads in
         this process. Planners run in child processes either way.
+    cluster : distributed.deploy.Cluster, optional
+        A cluster made by the caller (a dask-jobqueue ``SLURMCluster``, say),
+        whose workers may still be starting; the executor connects to it and
+        closes it at :meth:`shutdown`.
 
     Raises
     ------
@@ -158,21 +180,22 @@ class DaskExecutor(RunExecutor):
     sandbox_problem = ""
     """A local cluster's workers are sandboxed where this host can; each run's outcome says whether it was."""
 
-    def __init__(self, jobs: int | None = None, *, address: str | None = None, processes: bool = True) -> None:
+    def __init__(self, jobs: int | None = None, *, address: str | None = None, processes: bool = True,
+                 cluster: Any = None) -> None:
         try:
             import dask
             from distributed import Client, LocalCluster
         except ImportError:
             raise PathzooError("the 'dask' executor needs dask.distributed: pip install 'pathzoo[dask]'") from None
-        self._cluster = None
+        self._cluster = cluster
         self._config = None
-        if address:
+        self._where = address or getattr(cluster, "scheduler_address", "") or "the local cluster"
+        if address or cluster is not None:
             try:
-                self._client = Client(address, timeout="20s")
+                self._client = Client(cluster) if cluster is not None else Client(address, timeout="20s")
             except (OSError, ValueError, TypeError) as exc:  # TimeoutError is an OSError
-                raise PathzooError(f"cannot connect to the Dask scheduler at {address!r}: "
+                raise PathzooError(f"cannot connect to the Dask scheduler at {self._where!r}: "
                                    f"{' '.join(str(exc).split()) or type(exc).__name__}") from None
-            self._refuse_daemonic_workers(address)
         else:
             # a run that kills its Dask worker is a crash, not a task to retry elsewhere; workers (and the ones
             # their nannies start again later) must be allowed to start the planners' processes
@@ -184,27 +207,80 @@ class DaskExecutor(RunExecutor):
             )
             self._client = Client(self._cluster)
             self.sandbox_problem = sandbox_problem()
-        self.capacity = max(1, sum(self._client.nthreads().values()))
         self._token = uuid.uuid4().hex
         self._lock = threading.Lock()
         self._runs: dict[str, _Run] = {}
         self._closing = threading.Event()
+        self._workers: dict[str, int] = {}  # address: threads, of the workers that may run planners
+        self._refused: set[str] = set()  # daemonic workers, left out
+        self._wake: Future[None] = Future()
+        self._waiting_since = math.nan
+        try:
+            self._follow_workers(refuse=True)
+        except BaseException:
+            self._client.close()
+            raise
         self._client.subscribe_topic(_STARTED_TOPIC, self._on_started)
         self._watchdog = threading.Thread(target=self._watch, name="pathzoo-dask-watchdog", daemon=True)
         self._watchdog.start()
 
-    def _refuse_daemonic_workers(self, address: str) -> None:
+    def _follow_workers(self, refuse: bool = False) -> None:
+        """Bring :attr:`capacity` up to date with the workers connected now; check the ones seen first now.
+
+        Daemonic workers raise with ``refuse`` (at the start), else they are
+        named in a warning and left out.
+        """
         try:
-            allowed = self._client.run(_may_fork)
+            threads = dict(self._client.nthreads())
         except Exception as exc:  # noqa: BLE001 - any failure to ask is a failure to connect
-            self._client.close()
-            raise PathzooError(f"cannot query the Dask workers at {address!r}: {type(exc).__name__}: {exc}") from None
-        daemonic = sorted(worker for worker, ok in allowed.items() if not ok)
-        if daemonic:
-            self._client.close()
-            raise PathzooError(
-                f"the Dask workers {', '.join(daemonic)} at {address!r} are daemonic processes and cannot start "
-                "planner processes: start them with DASK_DISTRIBUTED__WORKER__DAEMON=False")
+            if refuse:
+                raise PathzooError(f"cannot query the Dask workers at {self._where!r}: "
+                                   f"{type(exc).__name__}: {exc}") from None
+            return
+        new = sorted(set(threads) - set(self._workers) - self._refused)
+        if new:
+            try:
+                allowed = self._client.run(_may_fork, workers=new)
+            except Exception as exc:  # noqa: BLE001 - a worker that left meanwhile: asked again next time
+                if refuse:
+                    raise PathzooError(f"cannot query the Dask workers at {self._where!r}: "
+                                       f"{type(exc).__name__}: {exc}") from None
+                allowed = {}
+            daemonic = sorted(worker for worker, ok in allowed.items() if not ok)
+            if daemonic and refuse:
+                raise PathzooError(
+                    f"the Dask workers {', '.join(daemonic)} at {self._where!r} are daemonic processes and cannot "
+                    "start planner processes: start them with DASK_DISTRIBUTED__WORKER__DAEMON=False")
+            if daemonic:
+                log.warning("pathzoo: Dask worker(s) %s joined as daemonic processes, which cannot start planner "
+                            "processes: left out (start them with DASK_DISTRIBUTED__WORKER__DAEMON=False)",
+                            ", ".join(daemonic))
+            self._refused.update(daemonic)
+            self._workers.update({w: threads[w] for w in allowed if allowed[w]})
+        for gone in set(self._workers) - set(threads):
+            del self._workers[gone]
+        capacity = sum(self._workers.values())
+        self._notice_wait(capacity)
+        capacity = max(1, capacity)  # with no worker, one run waits on the scheduler for the first to come
+        if (capacity, capacity) != (self.capacity, self.lookahead):
+            self.capacity = self.lookahead = capacity
+            wake, self._wake = self._wake, Future()
+            wake.set_result(None)
+
+    def _notice_wait(self, threads: int) -> None:
+        """Say that the experiment waits for workers (at once, then every :data:`WAIT_NOTICE_S`), and when they come."""
+        now = _clock()
+        if threads and not math.isnan(self._waiting_since):
+            log.warning("pathzoo: %d Dask worker thread(s) connected at %s, running", threads, self._where)
+            self._waiting_since = math.nan
+        elif not threads and (math.isnan(self._waiting_since) or now - self._waiting_since >= WAIT_NOTICE_S):
+            log.warning("pathzoo: no Dask worker is connected to the scheduler at %s: waiting for one (runs start "
+                        "when workers join; Ctrl-C stops)", self._where)
+            self._waiting_since = now
+
+    def capacity_changed(self) -> "Future[None]":
+        """A future that resolves when :attr:`capacity` next changes (a worker joined or left)."""
+        return self._wake
 
     def submit(self, task: "RunTask") -> "Future[RunOutcome]":
         """Submit one run as a Dask task."""
@@ -276,9 +352,18 @@ class DaskExecutor(RunExecutor):
                               message=f"dask task failed: {type(exc).__name__}: {exc}")
 
     def _watch(self) -> None:
+        polled = _clock()
         while not self._closing.wait(_TICK_S):
             now = _clock()
+            if now - polled >= WORKERS_POLL_S:
+                self._follow_workers()
+                polled = now
             with self._lock:
+                busy = sum(not math.isnan(run.started) for run in self._runs.values())
+                if busy >= sum(self._workers.values()):  # no free thread: the runs not started wait for one
+                    for run in self._runs.values():
+                        if math.isnan(run.started):
+                            run.submitted = now
                 expired = [key for key, run in self._runs.items() if now >= run.deadline]
                 runs = [self._runs.pop(key) for key in expired]
             for run in runs:  # a lost or stuck Dask task must not hang the experiment
