@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any, Literal, Mapping, Protocol
 
 from pathzoo.core.errors import InvalidParameterError
@@ -119,6 +119,24 @@ class Budget:
     def timed(self) -> bool:
         """True when a clock limit (``cpu_s`` or ``time_s``) is set."""
         return self.time_s is not None or self.cpu_s is not None
+
+    def or_default(self, iterations: int) -> "Budget":
+        """The budget a planner runs: this one, or its own count ``iterations`` when no limit is set at all.
+
+        The one budget rule of every family (``docs/timing.md``): a count
+        (``iterations`` or ``evaluations``) ends the run by that count; a
+        clock-only budget lets an anytime planner search until the clock; a
+        budget without any limit means the planner's own default count. A
+        safety limit (the harness's ``timeout_s``) is never part of a budget.
+
+        Examples
+        --------
+        >>> Budget().or_default(100)
+        Budget(iterations=100, evaluations=None, time_s=None, cpu_s=None)
+        >>> Budget(cpu_s=2.0).or_default(100).iterations is None
+        True
+        """
+        return replace(self, iterations=iterations) if self.unlimited else self
 
     def count_reached(self, iterations: int, evaluations: int) -> StopReason | None:
         """``"iterations"`` or ``"evaluations"`` when these counts reach that limit, else None."""

@@ -6,8 +6,8 @@ TOML format (every key but the planners and scenarios is optional)::
     name = "arena"              # default: the file's stem
     seed = 0                    # experiment seed; each run's seed derives from it
     seeds = 10                  # seed indices 0..9, or an explicit list [0, 4, 7]
-    budget = { cpu_s = 2.0 }    # iterations, evaluations, cpu_s, time_s (default cpu_s = 10)
-    timeout_s = 60              # hard wall limit per run (default time_s + 30 s, else 300 s)
+    budget = { cpu_s = 2.0 }    # iterations, evaluations, cpu_s, time_s (default: none, each planner's own count)
+    timeout_s = 60              # hard wall limit per run, never a budget (default time_s + 30 s, else 300 s)
     jobs = 4                    # worker processes (default: number of CPUs)
     db = "results.sqlite"       # result database, relative to this file
     scenarios = ["movingai.arena.*", "maps/my_scenario.toml"]
@@ -59,9 +59,10 @@ if TYPE_CHECKING:
 
 __all__ = ["Experiment", "read_toml", "DEFAULT_BUDGET", "TIMEOUT_MARGIN_S", "DEFAULT_TIMEOUT_NO_TIME_S"]
 
-DEFAULT_BUDGET = Budget(cpu_s=10.0)
-"""Budget when none is given: a CPU-time stop (the planners' own iteration counts decide their results,
-``docs/timing.md``); a wall-time budget would make results depend on the machine's load."""
+DEFAULT_BUDGET = Budget()
+"""Budget when none is given: no limit, so every planner runs its own default count and every result repeats on
+any machine and load (``docs/timing.md``). A clock here would be a budget for the anytime planners (they search
+until it) and not for the others; the hard limit ``timeout_s`` is the only safety stop, and no planner sees it."""
 TIMEOUT_MARGIN_S = 30.0
 """Default hard limit = ``budget.time_s`` + this margin."""
 DEFAULT_TIMEOUT_NO_TIME_S = 300.0
@@ -350,8 +351,9 @@ class Experiment:
         seeds : int or iterable of int
             Count (indices ``0..n-1``) or explicit seed indices.
         budget : Budget, optional
-            Default :data:`DEFAULT_BUDGET`, ``Budget(cpu_s=10)``.
+            Default :data:`DEFAULT_BUDGET`, ``Budget()``: each planner's own count.
         timeout_s : float, optional
+            Hard wall limit of a run, never a budget: a run past it is killed and stored as a timeout.
             Default ``budget.time_s + 30`` s (300 s without a time budget).
         name, seed : str, int
             Experiment name and seed.

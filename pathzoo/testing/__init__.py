@@ -13,7 +13,7 @@ The checks are listed in :mod:`pathzoo.testing.checks`; the tiny scenarios
 they plan on come from :func:`check_scenario`.
 """
 
-from pathzoo.testing.checks import DEFAULT_BUDGET, ConformanceError
+from pathzoo.testing.checks import DEFAULT_BUDGET, CheckTimeout, ConformanceError
 from pathzoo.testing.conformance import (
     PlannerLike,
     as_planner,
@@ -26,6 +26,7 @@ from pathzoo.core.tiny_scenarios import check_scenario
 
 __all__ = [
     "DEFAULT_BUDGET",
+    "CheckTimeout",
     "ConformanceError",
     "PlannerLike",
     "as_planner",

@@ -35,7 +35,7 @@ from pathzoo.core.status import Status
 from pathzoo.rules import validate_path
 from pathzoo.core.tiny_scenarios import check_scenario
 from pathzoo.core.warmup import is_warm, warm_up
-from pathzoo.testing.bounded import run_bounded
+from pathzoo.testing.bounded import BoundedTimeout, run_bounded
 
 __all__ = [
     "ConformanceError",
@@ -56,8 +56,11 @@ __all__ = [
     "check_history_improves",
     "check_leaves_global_rng_alone",
     "check_unsupported_kinds",
+    "check_budget_default",
+    "CheckTimeout",
     "CHECK_LIMIT_S",
     "WARM_UP_LIMIT_S",
+    "WARM_UP_PLAN_LIMIT_S",
 ]
 
 DEFAULT_BUDGET = Budget(iterations=5, time_s=2.0)
@@ -75,6 +78,10 @@ CHECK_LIMIT_S = 60.0
 WARM_UP_LIMIT_S = 180.0
 """Hard limit on the untimed warm-up of a planner on one scenario kind (its first numba compilation included)."""
 
+WARM_UP_PLAN_LIMIT_S = 30.0
+"""Limit on the warm-up's wall time outside numba's compilation: a planner that ignores the warm-up's budget
+(``Budget(iterations=5, time_s=2)``) is stopped here, not after :data:`WARM_UP_LIMIT_S`."""
+
 SEED = 20240611
 """Seed of the generator handed to ``plan()`` by the checks."""
 
@@ -83,6 +90,35 @@ _ID_PATTERN = re.compile(r"^[a-z0-9_]+\.[a-z0-9_.\-]+$")
 
 class ConformanceError(AssertionError):
     """A planner broke the planner contract; the message says which rule, where."""
+
+
+class CheckTimeout(ConformanceError, BoundedTimeout):
+    """A bounded call of the planner ran past its limit; the kit calls that planner no more."""
+
+
+_TIMED_OUT: dict[int, tuple[Planner, str]] = {}
+"""Planners (by ``id``, the planner kept so the id stays its own) that timed out, with the message."""
+
+
+def _run_planner_bounded(planner: Planner, fn: Callable[[], object], limit_s: float, what: str,
+                         compile_limit_s: float | None = None) -> None:
+    """:func:`run_bounded` for a call of ``planner``: none after a first timeout, which is remembered.
+
+    Raises
+    ------
+    CheckTimeout
+        This call ran past its limit, or an earlier one of this planner did
+        (then ``fn`` is not run).
+    """
+    earlier = _TIMED_OUT.get(id(planner))
+    if earlier is not None and earlier[0] is planner:
+        raise CheckTimeout(f"{planner.id}: not run: an earlier call timed out ({earlier[1]})")
+    try:
+        run_bounded(fn, limit_s, what, _failure(planner), compile_limit_s)
+    except BoundedTimeout as exc:
+        message = str(exc)
+        _TIMED_OUT[id(planner)] = (planner, message)
+        raise CheckTimeout(message if message.startswith(f"{planner.id}: ") else f"{planner.id}: {message}") from None
 
 
 class _Progress:
@@ -109,13 +145,18 @@ def _bounded_warm_up(planner: Planner, kind: str, budget: Budget) -> None:
     """:func:`warm_up` in this process, after a forked rehearsal has shown it returns within :data:`WARM_UP_LIMIT_S`."""
     if is_warm(planner, kind):
         return
-    run_bounded(lambda: warm_up(planner, kind, budget), WARM_UP_LIMIT_S,
-                f"the untimed warm-up plan() on {kind} with {budget}", _failure(planner))
+    _run_planner_bounded(planner, lambda: warm_up(planner, kind, budget), min(WARM_UP_PLAN_LIMIT_S, WARM_UP_LIMIT_S),
+                         f"the untimed warm-up plan() on {kind} with {budget}", compile_limit_s=WARM_UP_LIMIT_S)
     warm_up(planner, kind, budget)
 
 
 def _bounded(check: Callable[..., None]) -> Callable[..., None]:
-    """Run ``check`` in a forked process killed after :data:`CHECK_LIMIT_S` (the warm-up first, bounded too)."""
+    """Run ``check`` in a forked process killed after :data:`CHECK_LIMIT_S` (the warm-up first, bounded too).
+
+    Once a bounded call of a planner has timed out, every later bounded
+    check of it fails at once with :class:`CheckTimeout` instead of waiting
+    out its own limit.
+    """
 
     @functools.wraps(check)
     def bounded(planner: Planner, **options: Any) -> None:
@@ -124,7 +165,7 @@ def _bounded(check: Callable[..., None]) -> Callable[..., None]:
         if kind in kinds:
             _bounded_warm_up(planner, kind, options.get("budget", DEFAULT_BUDGET))
 
-        run_bounded(lambda: check(planner, **options), CHECK_LIMIT_S, check.__name__, _failure(planner))
+        _run_planner_bounded(planner, lambda: check(planner, **options), CHECK_LIMIT_S, check.__name__)
 
     return bounded
 
@@ -314,8 +355,21 @@ def check_budget_time(planner: Planner, *, budget: Budget = DEFAULT_BUDGET) -> N
     """
     scenario = check_scenario(_first_kind(planner))
     warm_up(planner, scenario.kind, budget)
-    run_bounded(lambda: _plan(planner, scenario, Budget(time_s=TIME_BUDGET_S)), TIME_BUDGET_S + TIME_TOLERANCE_S,
-                f"plan() with Budget(time_s={TIME_BUDGET_S}) on {scenario.id}", _failure(planner))
+    _run_planner_bounded(planner, lambda: _plan(planner, scenario, Budget(time_s=TIME_BUDGET_S)),
+                         TIME_BUDGET_S + TIME_TOLERANCE_S, f"plan() with Budget(time_s={TIME_BUDGET_S}) on {scenario.id}")
+
+
+@_bounded
+def check_budget_default(planner: Planner, *, budget: Budget = DEFAULT_BUDGET) -> None:
+    """With ``Budget()`` (no limit at all) ``plan()`` ends by the planner's own default count, within the check's limit.
+
+    The rule of every family (``docs/timing.md``): no budget means the
+    planner's own count, never an endless search. The bounded check fails a
+    planner that has not returned after :data:`CHECK_LIMIT_S`.
+    """
+    scenario = check_scenario(_first_kind(planner))
+    warm_up(planner, scenario.kind, budget)
+    _plan(planner, scenario, Budget())
 
 
 # ------------------------------------------------------------------ failure modes

@@ -100,6 +100,8 @@ def _eta(m: np.ndarray, root: np.ndarray, admitted: np.ndarray, length: np.ndarr
 
 _SCHEDULE_CHUNK = 4096
 """Iterations whose seeds and schedules are computed at a time by :meth:`DSACO.plan`."""
+_UNCOUNTED = 2**62
+"""Iterations scheduled under a clock-only budget: more than any clock allows."""
 
 
 @numba.njit(cache=True)
@@ -348,6 +350,7 @@ class DSACO(AntColonyPlanner):
         before the next one starts.
         """
         self.check_supports(scenario)
+        budget = budget.or_default(self.iterations)
         clock = budget.start()
         problem = ColonyProblem.of(scenario)
         rules = problem.memo(self.table_key("walk_rules"), lambda: self.walk_rules(problem))
@@ -404,12 +407,12 @@ class DSACO(AntColonyPlanner):
                           iterations=iterations, evaluations=evaluations, message=message, extras=extras)
 
     def iteration_count(self, budget: Budget) -> int:
-        """Iterations the budget's counts allow: its iterations, as many as its evaluations fill
-        (``n_ants`` each), or the ``iterations`` parameter when it sets neither."""
+        """Iterations the budget's counts allow: its iterations, or as many as its evaluations fill (``n_ants``
+        each); without a count (a clock-only budget, which ends the run) :data:`_UNCOUNTED` iterations."""
         counts = [n for n in (budget.iterations,
                               None if budget.evaluations is None else -(-budget.evaluations // self.n_ants))
                   if n is not None]
-        return min(counts) if counts else self.iterations
+        return min(counts) if counts else _UNCOUNTED
 
     def ants_per_iteration(self, budget: Budget, first: int, last: int) -> np.ndarray:
         """Ants of iterations ``first`` to ``last - 1`` (0-based): ``n_ants``, fewer in the iteration where the

@@ -14,7 +14,8 @@ Budgets
   and every few evaluations, so on very large maps the overshoot is a few
   candidates, not a generation (the candidates left get ``inf``, uncounted,
   and missing initial candidates are copies of the ones drawn).
-- No limit at all: :data:`DEFAULT_ITERATIONS` generations.
+- No limit at all: :data:`DEFAULT_ITERATIONS` generations (:meth:`Budget.or_default`); a clock-only
+  budget runs generations until the clock.
 
 Result
 ------
@@ -97,7 +98,7 @@ class Search:
     ):
         self.scenario = scenario
         self.encoding = encoding
-        self.budget = Budget(iterations=DEFAULT_ITERATIONS) if budget.unlimited else budget
+        self.budget = budget.or_default(DEFAULT_ITERATIONS)
         self.clock = self.budget.start()
         if started is not None:
             self.clock.started = started

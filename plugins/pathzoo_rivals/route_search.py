@@ -11,6 +11,9 @@ spent. The run keeps
   (``select``: least energy, the harness's energy metric, or least 3-D
   length), which ``plan()`` returns. Because it is the best of every route
   evaluated, the reported cost never increases.
+
+A budget without any limit runs :data:`DEFAULT_ITERATIONS` iterations; a
+clock-only budget runs until the clock (:meth:`Budget.or_default`).
 """
 
 from __future__ import annotations
@@ -27,10 +30,13 @@ from pathzoo.rules import segment_problem
 from pathzoo_rivals.pareto import ParetoArchive
 from pathzoo_rivals.routes import OBJECTIVES, RouteProblem
 
-__all__ = ["RouteRun", "RouteSearchPlanner", "SELECT"]
+__all__ = ["DEFAULT_ITERATIONS", "RouteRun", "RouteSearchPlanner", "SELECT"]
 
 SELECT = Param("energy", "which route of the search is returned: least energy (harness metric) or least 3-D length",
                choices=("energy", "length"))
+
+DEFAULT_ITERATIONS = 50
+"""Iterations run when the budget sets no limit at all (about 2 CPU s on ``ggaco.hugo``)."""
 
 
 class RouteRun:
@@ -53,7 +59,7 @@ class RouteRun:
     def __init__(self, problem: RouteProblem, budget: Budget, progress: ProgressCallback | None, rule: str,
                  archive_size: int) -> None:
         self.problem = problem
-        self.clock: BudgetClock = budget.start()
+        self.clock: BudgetClock = budget.or_default(DEFAULT_ITERATIONS).start()
         self.progress = progress
         self.rule = rule
         self.archive = ParetoArchive(archive_size)

@@ -16,7 +16,7 @@ def test_build_resolves_planners_scenarios_and_defaults(forged):
     assert [(p.id, dict(p.params)) for p in exp.planners] == [
         ("test.honest", {"delay_s": 0.0}), ("test.honest", {"delay_s": 0.5}), ("test.sabotage", {"how": "exit"})]
     assert [(s.id, s.source) for s in exp.scenarios] == [("test.wall", "registry"), ("test.street", "object")]
-    assert exp.seeds == (0, 1, 2) and exp.budget == Budget(cpu_s=10.0) and exp.timeout_s == 300.0
+    assert exp.seeds == (0, 1, 2) and exp.budget == Budget() and exp.timeout_s == 300.0
     no_time = Experiment.build(planners=["test.honest"], scenarios=["test.wall"], budget=Budget(iterations=5))
     assert no_time.timeout_s == 300
 

@@ -248,15 +248,49 @@ def test_a_planner_ignoring_its_time_budget_fails_the_time_check_instead_of_hang
     with pytest.raises(ConformanceError) as info:
         check_planner(IgnoresTime())
     failed = [line.strip() for line in str(info.value).splitlines()[1:]]
-    assert failed == ["check_budget_time: ConformanceError: kit.ignores_time: plan() with Budget(time_s=0.3) on "
-                      "testing.grid2d had not returned after 1.3 s; its process was killed"]
+    assert failed == ["check_budget_time: CheckTimeout: kit.ignores_time: plan() with Budget(time_s=0.3) on "
+                      "testing.grid2d had not returned after 1.3 s; its process was killed",
+                      "not run after that timeout: check_budget_default, check_picklable, check_unsupported_kinds"]
+
+
+class SleepsAMinute(Shortest):
+    """Ignores every budget: each plan() takes 60 s (a sleep, so the test leaves the shared CPUs to others)."""
+
+    id = "kit.sleeps_a_minute"
+
+    def plan(self, scenario, *, budget, rng, progress=None):
+        time.sleep(60.0)
+        return super().plan(scenario, budget=budget, rng=rng, progress=progress)
+
+
+def test_a_planner_that_ignores_its_budget_for_a_minute_is_reported_within_90_s():
+    started = time.monotonic()
+    with pytest.raises(ConformanceError) as info:
+        check_planner(SleepsAMinute())
+    elapsed = time.monotonic() - started
+    failed = [line.strip() for line in str(info.value).splitlines()[1:]]
+    assert failed[0].startswith("check_solves[grid2d]: CheckTimeout: kit.sleeps_a_minute: the untimed warm-up plan() "
+                                "on grid2d with Budget(iterations=5")
+    assert failed[1].startswith("not run after that timeout: check_same_seed_same_path[grid2d], ")
+    assert len(failed) == 2 and elapsed < 90.0
+
+
+def test_no_budget_means_the_planners_own_count():
+    C.check_budget_default(Shortest())
+    with pytest.raises(C.CheckTimeout, match=r"kit.ignores_time: check_budget_default had not returned after 0.5 s"):
+        with pytest.MonkeyPatch.context() as mp:
+            mp.setattr(C, "CHECK_LIMIT_S", 0.5)
+            C.check_budget_default(IgnoresTime())
 
 
 def test_a_planner_that_never_returns_fails_every_planning_check(monkeypatch):
     monkeypatch.setattr(C, "WARM_UP_LIMIT_S", 0.3)
+    planner = _variant("Hangs", _hangs)()
     with pytest.raises(ConformanceError, match=r"kit.hangs: the untimed warm-up plan\(\) on grid2d with "
                                                r"Budget\(.*\) had not returned after 0.3 s; its process was killed"):
-        C.check_solves(_variant("Hangs", _hangs)(), kind="grid2d")
+        C.check_solves(planner, kind="grid2d")
+    with pytest.raises(C.CheckTimeout, match=r"kit.hangs: not run: an earlier call timed out"):
+        C.check_unreachable_goal(planner, kind="grid2d")
 
 
 def test_a_check_that_outlives_its_limit_is_killed(monkeypatch):

@@ -19,11 +19,12 @@ The loop: while the budget lasts, send ``n_ants`` ants (fewer in the last
 iteration if the evaluation budget says so), keep the best walk so far, let
 the variant update the trail, and report ``progress(iteration, evaluations,
 best_cost)`` with the best-so-far cost. One evaluation is one ant walk; one
-iteration is one colony cycle. When the budget sets neither an iteration nor
-an evaluation limit, the colony runs the ``iterations`` parameter (the
-paper's count). A clock limit (``cpu_s``, ``time_s``) is checked between
-colonies only and only stops the loop, so a run that its counts end is the
-same on any machine and load (``docs/timing.md``).
+iteration is one colony cycle. The budget follows the one rule of every
+family (:meth:`Budget.or_default`, ``docs/timing.md``): a count ends the
+run; a clock-only budget (``cpu_s``, ``time_s``) runs colonies until the
+clock, which is checked between colonies; a budget without any limit runs
+the ``iterations`` parameter (the paper's count). A run that a count ends is
+the same on any machine and load.
 """
 
 from __future__ import annotations
@@ -56,14 +57,14 @@ def colony_params(*, n_ants: int, iterations: int, alpha: float, beta: float, rh
     ----------
     n_ants, iterations, alpha, beta, rho : number
         Defaults of the colony size, iteration count (used when the budget
-        sets no iteration or evaluation limit), trail weight, heuristic weight and evaporation rate.
+        sets no limit at all), trail weight, heuristic weight and evaporation rate.
     dead_end : {"backtrack", "die"}
         Default dead-end handling.
     """
     return {
         "n_ants": Param(n_ants, "ants per iteration (m); at most 10,000, as every ant's walk is held in memory",
                         low=1, high=10_000, tune=(5, 100), tune_log=True),
-        "iterations": Param(iterations, "iterations run when the budget sets no iteration or evaluation limit", low=1),
+        "iterations": Param(iterations, "iterations run when the budget sets no limit at all", low=1),
         "alpha": Param(alpha, "weight of the pheromone trail (α)", low=0.0, tune=(0.0, 5.0)),
         "beta": Param(beta, "weight of the heuristic (β)", low=0.0, tune=(0.0, 10.0)),
         "rho": Param(rho, "evaporation rate (ρ)", low=0.0, high=1.0, high_open=True, tune=(0.01, 0.9)),
@@ -187,6 +188,7 @@ class AntColonyPlanner(Planner):
              progress: ProgressCallback | None = None) -> PlanResult:
         """Run the colony; see the module docstring."""
         self.check_supports(scenario)
+        budget = budget.or_default(self.iterations)
         clock = budget.start()
         problem = ColonyProblem.of(scenario)
         if problem.start == problem.goal:
@@ -198,12 +200,9 @@ class AntColonyPlanner(Planner):
         engine = self.walk_engine(problem)
         state = self.init_state(problem, rules, trail, engine, rng)
         release_pages(problem.graph)  # set-up read the whole graph; the walks read little of it (docs/graph-cache.md)
-        limit = None if budget.counted else self.iterations
         walk_time = 0.0
         message = ""
         while not clock.exhausted(iterations=state.iteration, evaluations=state.evaluations):
-            if limit is not None and state.iteration >= limit:
-                break
             n = self.n_ants
             if budget.evaluations is not None:
                 n = min(n, budget.evaluations - state.evaluations)
