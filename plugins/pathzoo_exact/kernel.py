@@ -41,6 +41,8 @@ from llvmlite import ir
 from numba import types
 from numba.extending import intrinsic
 
+from pathzoo.grid.segments import segment_blocked_2d
+
 __all__ = [
     "SearchState",
     "H_ZERO",
@@ -60,8 +62,13 @@ __all__ = [
     "next_open",
     "begin_batch",
     "end_batch",
+    "CSR_STEP",
+    "MOVES_STEP",
+    "SIGHT_STEP",
+    "search_loop",
     "astar_batch",
     "astar_moves_batch",
+    "thetastar_batch",
     "trace_path",
     "run_batch",
 ]
@@ -385,127 +392,146 @@ def end_batch(counters: np.ndarray, size: int, expanded: int, status: int) -> in
     return status
 
 
-@numba.njit(cache=True)
-def astar_batch(
-    indptr: np.ndarray,
-    indices: np.ndarray,
-    weights: np.ndarray,
-    target: int,
-    goal: np.ndarray,
-    mode: int,
-    dims: np.ndarray,
-    steps: np.ndarray,
-    scale: float,
-    g: np.ndarray,
-    parent: np.ndarray,
-    closed: np.ndarray,
-    heap_node: np.ndarray,
-    heap_f: np.ndarray,
-    heap_g: np.ndarray,
-    counters: np.ndarray,
-    max_expansions: int,
-    max_degree: int,
-) -> int:
-    """Run up to ``max_expansions`` expansions of A* on a CSR graph.
+CSR_STEP = 0
+"""Step rule of :func:`search_loop`: relax the edges of a CSR graph (:func:`astar_batch`)."""
+MOVES_STEP = 1
+"""Step rule of :func:`search_loop`: relax the moves of a move table (:func:`astar_moves_batch`)."""
+SIGHT_STEP = 2
+"""Step rule of :func:`search_loop`: Theta*'s, a successor seeing its parent's parent links to it (:func:`thetastar_batch`)."""
 
-    ``target`` is the goal's node id and ``goal`` its cell (:func:`goal_cell`).
-    Nodes are closed when expanded and never reopened, which is exact for a
-    consistent heuristic (and for Dijkstra). ``max_degree`` bounds the pushes
-    of one expansion. Returns :data:`RUNNING`, :data:`FOUND`,
-    :data:`EXHAUSTED` or :data:`HEAP_FULL`.
+
+def search_loop(rule: int, doc: str) -> Callable[..., int]:
+    """The batch kernel of one step rule: the A* loop of expansions, compiled with only that rule's step.
+
+    The kernel takes the rule's problem arguments (see ``doc``), then the
+    seven :attr:`SearchState.arrays`, ``max_expansions`` and ``max_degree``.
+    It pops the best open node (:func:`next_open`), stops at the target and
+    otherwise relaxes the node's edges by the rule. ``rule`` is a constant
+    of the closure, so numba drops the other rules' steps before it
+    compiles: the kernel is the loop written out for that rule, with no call
+    per expansion (a shared step called through numba, even one inlined by
+    numba, costs a call or reference counts on every expansion). Returns
+    :data:`RUNNING`, :data:`FOUND`, :data:`EXHAUSTED` or :data:`HEAP_FULL`.
     """
-    size = begin_batch(g, parent, closed, heap_node, heap_f, heap_g, counters)
-    status = RUNNING
-    done = 0
-    while done < max_expansions:
-        u, size, status = next_open(closed, heap_node, heap_f, heap_g, size, max_degree)
-        if status != RUNNING:
-            break
-        done += 1
-        if u == target:
-            status = FOUND
-            break
-        ui = np.uint64(u)  # unsigned indices spare numba's negative-index correction (see heap_pop)
-        gu = g[ui]
-        for e in range(indptr[ui], indptr[ui + _ONE]):
-            v = indices[np.uint64(e)]
-            j = np.uint64(v)
-            cand = gu + weights[np.uint64(e)]
-            if cand < g[j] and not closed[j]:
-                g[j] = cand
-                parent[j] = u
-                f = cand + heuristic(v, goal, mode, dims, steps, scale)
-                size = heap_push(heap_node, heap_f, heap_g, size, v, order_key(f), order_key(cand))
-    return end_batch(counters, size, done, status)
+
+    def batch(*args):
+        g, parent, closed, heap_node, heap_f, heap_g, counters, max_expansions, max_degree = args[-9:]
+        if rule == CSR_STEP:
+            indptr, indices, weights, target, goal, mode, dims, steps, scale = args[:-9]
+        elif rule == MOVES_STEP:
+            mask, move_shift, move_weight, move_cell, target, goal, mode, dims, steps, scale = args[:-9]
+            w = np.uint64(dims[2])
+            plane = np.uint64(dims[1]) * w
+        else:
+            indptr, indices, weights, blocked, target, goal, dims, steps = args[:-9]
+            width = dims[2]
+            cs = steps[0]
+        size = begin_batch(g, parent, closed, heap_node, heap_f, heap_g, counters)
+        status = RUNNING
+        done = 0
+        while done < max_expansions:
+            u, size, status = next_open(closed, heap_node, heap_f, heap_g, size, max_degree)
+            if status != RUNNING:
+                break
+            done += 1
+            if u == target:
+                status = FOUND
+                break
+            if rule == CSR_STEP:
+                ui = np.uint64(u)  # unsigned indices spare numba's negative-index correction (see heap_pop)
+                gu = g[ui]
+                for e in range(indptr[ui], indptr[ui + _ONE]):
+                    v = indices[np.uint64(e)]
+                    j = np.uint64(v)
+                    cand = gu + weights[np.uint64(e)]
+                    if cand < g[j] and not closed[j]:
+                        g[j] = cand
+                        parent[j] = u
+                        f = cand + heuristic(v, goal, mode, dims, steps, scale)
+                        size = heap_push(heap_node, heap_f, heap_g, size, v, order_key(f), order_key(cand))
+            elif rule == MOVES_STEP:
+                ui = np.uint64(u)
+                gu = g[ui]
+                # unsigned divisions: numba's signed ``//`` rounds towards minus infinity, which costs a correction
+                layer_u = ui // plane
+                rest = ui - layer_u * plane
+                row_u = rest // w
+                col = np.int64(rest - row_u * w)
+                row = np.int64(row_u)
+                layer = np.int64(layer_u)
+                bits = np.uint64(mask[ui])
+                while bits != _ZERO:  # the set bits, lowest first: no test (and no mispredicted branch) per absent move
+                    k = _trailing_zeros(bits)
+                    bits &= bits - _ONE
+                    v = u + move_shift[k]
+                    j = np.uint64(v)  # an unsigned index spares numba's negative-index correction (see heap_pop)
+                    cand = gu + move_weight[k]
+                    if cand < g[j] and not closed[j]:
+                        g[j] = cand
+                        parent[j] = u
+                        h = cell_heuristic(col + move_cell[k, 0], row + move_cell[k, 1], layer + move_cell[k, 2], goal,
+                                           mode, steps, scale)
+                        size = heap_push(heap_node, heap_f, heap_g, size, v, order_key(cand + h), order_key(cand))
+            else:
+                p = parent[u]
+                pr = p // width
+                pc = p % width
+                for e in range(indptr[u], indptr[u + 1]):
+                    v = indices[e]
+                    if closed[v]:
+                        continue
+                    vr = v // width
+                    vc = v % width
+                    if p >= 0 and not segment_blocked_2d(blocked, pc + 0.5, pr + 0.5, vc + 0.5, vr + 0.5):
+                        cand = g[p] + cs * math.hypot(float(vc - pc), float(vr - pr))
+                        via = p
+                    else:
+                        cand = g[u] + weights[e]
+                        via = u
+                    if cand < g[v]:
+                        g[v] = cand
+                        parent[v] = via
+                        f = cand + heuristic(v, goal, H_EUCLID, dims, steps, 1.0)
+                        size = heap_push(heap_node, heap_f, heap_g, size, v, order_key(f), order_key(cand))
+        return end_batch(counters, size, done, status)
+
+    batch.__doc__ = doc
+    batch.__qualname__ = batch.__name__ = ("astar_batch", "astar_moves_batch", "thetastar_batch")[rule]
+    return numba.njit(cache=True)(batch)
 
 
-@numba.njit(cache=True)
-def astar_moves_batch(
-    mask: np.ndarray,
-    move_shift: np.ndarray,
-    move_weight: np.ndarray,
-    move_cell: np.ndarray,
-    target: int,
-    goal: np.ndarray,
-    mode: int,
-    dims: np.ndarray,
-    steps: np.ndarray,
-    scale: float,
-    g: np.ndarray,
-    parent: np.ndarray,
-    closed: np.ndarray,
-    heap_node: np.ndarray,
-    heap_f: np.ndarray,
-    heap_g: np.ndarray,
-    counters: np.ndarray,
-    max_expansions: int,
-    max_degree: int,
-) -> int:
-    """:func:`astar_batch` on a grid whose edge costs depend on the move only (see :mod:`pathzoo_exact.moves`).
+astar_batch = search_loop(CSR_STEP, """A* on a CSR graph, up to ``max_expansions`` expansions (see :func:`search_loop`).
 
-    Bit ``k`` of ``mask[u]`` says that node ``u`` has the edge of move ``k``,
-    to node ``u + move_shift[k]`` at cost ``move_weight[k]``; ``move_cell[k]``
-    is the move as ``(dx, dy, dz)`` cells. Moves are tried in ascending ``k``,
-    the order of the CSR edges, so every comparison, push and pop is that of
-    :func:`astar_batch` on the same graph and the result is bit-identical. It
-    reads one mask per expansion instead of the CSR row, and derives the
+    Arguments: ``indptr, indices, weights, target, goal, mode, dims, steps,
+    scale``, the seven :attr:`SearchState.arrays`, ``max_expansions``,
+    ``max_degree``. ``target`` is the goal's node id and ``goal`` its cell
+    (:func:`goal_cell`); ``mode``, ``dims``, ``steps`` and ``scale`` are
+    :func:`heuristic`'s. Nodes are closed when expanded and never reopened,
+    which is exact for a consistent heuristic (and for Dijkstra).
+    ``max_degree`` bounds the pushes of one expansion.
+    """)
+
+astar_moves_batch = search_loop(MOVES_STEP, """:func:`astar_batch` on a grid whose edge costs depend on the move only (see :mod:`pathzoo_exact.moves`).
+
+    Arguments: ``mask, move_shift, move_weight, move_cell``, then those of
+    :func:`astar_batch` from ``target`` on. Bit ``k`` of ``mask[u]`` says
+    that node ``u`` has the edge of move ``k``, to node ``u +
+    move_shift[k]`` at cost ``move_weight[k]``; ``move_cell[k]`` is the move
+    as ``(dx, dy, dz)`` cells. Moves are tried in ascending ``k``, the order
+    of the CSR edges, so every comparison, push and pop is that of
+    :func:`astar_batch` on the same graph and the result is bit-identical.
+    It reads one mask per expansion instead of the CSR row, and derives the
     neighbours' cells from the expanded cell (no division per push).
-    """
-    size = begin_batch(g, parent, closed, heap_node, heap_f, heap_g, counters)
-    status = RUNNING
-    done = 0
-    w = np.uint64(dims[2])
-    plane = np.uint64(dims[1]) * w
-    while done < max_expansions:
-        u, size, status = next_open(closed, heap_node, heap_f, heap_g, size, max_degree)
-        if status != RUNNING:
-            break
-        done += 1
-        if u == target:
-            status = FOUND
-            break
-        ui = np.uint64(u)
-        gu = g[ui]
-        # unsigned divisions: numba's signed ``//`` rounds towards minus infinity, which costs a correction
-        layer_u = ui // plane
-        rest = ui - layer_u * plane
-        row_u = rest // w
-        col = np.int64(rest - row_u * w)
-        row = np.int64(row_u)
-        layer = np.int64(layer_u)
-        bits = np.uint64(mask[ui])
-        while bits != _ZERO:  # the set bits, lowest first: no test (and no mispredicted branch) per absent move
-            k = _trailing_zeros(bits)
-            bits &= bits - _ONE
-            v = u + move_shift[k]
-            j = np.uint64(v)  # an unsigned index spares numba's negative-index correction (see heap_pop)
-            cand = gu + move_weight[k]
-            if cand < g[j] and not closed[j]:
-                g[j] = cand
-                parent[j] = u
-                h = cell_heuristic(col + move_cell[k, 0], row + move_cell[k, 1], layer + move_cell[k, 2], goal, mode, steps, scale)
-                size = heap_push(heap_node, heap_f, heap_g, size, v, order_key(cand + h), order_key(cand))
-    return end_batch(counters, size, done, status)
+    """)
+
+thetastar_batch = search_loop(SIGHT_STEP, """Theta* (:mod:`pathzoo_exact.thetastar`) on a 2-D CSR graph (see :func:`search_loop`).
+
+    Arguments: ``indptr, indices, weights, blocked, target, goal, dims,
+    steps``, then those of :func:`astar_batch` from ``g`` on. ``dims`` is
+    ``(1, H, W)``, ``steps`` ``(cell_size, cell_size, 0)`` and ``blocked``
+    the occupancy grid that :func:`pathzoo.grid.segments.segment_blocked_2d`
+    reads for line of sight; the heuristic is the Euclidean distance.
+    """)
 
 
 @numba.njit(cache=True)

@@ -23,93 +23,16 @@ Interpretations:
 
 from __future__ import annotations
 
-import math
 from functools import partial
 from typing import ClassVar
 
-import numba
 import numpy as np
 
 from pathzoo.core import Scenario
-from pathzoo.grid.segments import segment_blocked_2d
 from pathzoo_exact.base import BatchFn, GraphSearchPlanner
-from pathzoo_exact.kernel import (
-    FOUND,
-    H_EUCLID,
-    RUNNING,
-    begin_batch,
-    end_batch,
-    goal_cell,
-    heap_push,
-    heuristic,
-    next_open,
-    order_key,
-    run_batch,
-)
+from pathzoo_exact.kernel import goal_cell, run_batch, thetastar_batch
 
-__all__ = ["ThetaStarPlanner", "thetastar_batch"]
-
-
-@numba.njit(cache=True)
-def thetastar_batch(
-    indptr: np.ndarray,
-    indices: np.ndarray,
-    weights: np.ndarray,
-    blocked: np.ndarray,
-    target: int,
-    goal: np.ndarray,
-    dims: np.ndarray,
-    steps: np.ndarray,
-    g: np.ndarray,
-    parent: np.ndarray,
-    closed: np.ndarray,
-    heap_node: np.ndarray,
-    heap_f: np.ndarray,
-    heap_g: np.ndarray,
-    counters: np.ndarray,
-    max_expansions: int,
-    max_degree: int,
-) -> int:
-    """Run up to ``max_expansions`` expansions of Theta*; returns a kernel status code.
-
-    ``dims`` is ``(1, H, W)`` and ``steps`` ``(cell_size, cell_size, 0)``;
-    the status codes and ``max_degree`` are those of
-    :func:`pathzoo_exact.kernel.astar_batch`.
-    """
-    w = dims[2]
-    cs = steps[0]
-    size = begin_batch(g, parent, closed, heap_node, heap_f, heap_g, counters)
-    status = RUNNING
-    done = 0
-    while done < max_expansions:
-        u, size, status = next_open(closed, heap_node, heap_f, heap_g, size, max_degree)
-        if status != RUNNING:
-            break
-        done += 1
-        if u == target:
-            status = FOUND
-            break
-        p = parent[u]
-        pr = p // w
-        pc = p % w
-        for e in range(indptr[u], indptr[u + 1]):
-            v = indices[e]
-            if closed[v]:
-                continue
-            vr = v // w
-            vc = v % w
-            if p >= 0 and not segment_blocked_2d(blocked, pc + 0.5, pr + 0.5, vc + 0.5, vr + 0.5):
-                cand = g[p] + cs * math.hypot(float(vc - pc), float(vr - pr))
-                via = p
-            else:
-                cand = g[u] + weights[e]
-                via = u
-            if cand < g[v]:
-                g[v] = cand
-                parent[v] = via
-                f = cand + heuristic(v, goal, H_EUCLID, dims, steps, 1.0)
-                size = heap_push(heap_node, heap_f, heap_g, size, v, order_key(f), order_key(cand))
-    return end_batch(counters, size, done, status)
+__all__ = ["ThetaStarPlanner"]
 
 
 class ThetaStarPlanner(GraphSearchPlanner):
