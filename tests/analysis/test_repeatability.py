@@ -21,7 +21,7 @@ def two_runs(tmp_path_factory):
     """The same small experiment run twice into two databases."""
     tmp = tmp_path_factory.mktemp("repeat")
     exp = Experiment.build(planners=["exact.astar", ("aco.as", {"iterations": 3, "n_ants": 4})],
-                           scenarios=["gant.fig7"], seeds=2, budget=pathzoo.Budget(cpu_s=30.0), name="twice")
+                           scenarios=["gant.fig7"], seeds=2, budget=pathzoo.Budget(), name="twice")
     dbs = [tmp / "a.sqlite", tmp / "b.sqlite"]
     for db in dbs:
         run_experiment(exp, db=db, executor="inline", progress=False)
