@@ -167,18 +167,18 @@ def test_bad_experiment_files_are_one_line(tmp_path, capsys, body, message):
 def test_executor_options_reach_the_runner(experiment, tmp_path, capsys, monkeypatch):
     seen = {}
 
-    def fake_run_experiment(exp, *, db, jobs, executor, progress, retry=(), require_sandbox=False):
+    def fake_run_experiment(exp, *, db, jobs, executor, progress, retry=(), require_sandbox=False, shard=None):
         seen.update(db=db, jobs=jobs, executor=executor, progress=progress, seeds=exp.seeds,
-                    require_sandbox=require_sandbox)
+                    require_sandbox=require_sandbox, shard=str(shard))
         raise KeyboardInterrupt
 
     monkeypatch.setattr(runner, "run_experiment", fake_run_experiment)
     db = tmp_path / "r.sqlite"
     argv = ["run", str(experiment), "--db", str(db), "--executor", "dask", "--dask-address", "tcp://10.0.0.1:8786",
-            "--jobs", "3", "--seeds", "4", "--no-progress", "--require-sandbox"]
+            "--jobs", "3", "--seeds", "4", "--no-progress", "--require-sandbox", "--shard", "2/3"]
     assert main(argv) == 2
     assert seen == {"db": str(db), "jobs": 3, "executor": "dask:tcp://10.0.0.1:8786", "progress": False,
-                    "seeds": (0, 1, 2, 3), "require_sandbox": True}
+                    "seeds": (0, 1, 2, 3), "require_sandbox": True, "shard": "2/3"}
     assert one_error(capsys) == (
         f"interrupted; finished runs are stored in {db}, run the same command again to resume"
     )
