@@ -22,7 +22,9 @@ if TYPE_CHECKING:
 
 __all__ = ["add_parser", "add_execution_options", "executor_of", "positive_int", "shard_of", "status_list"]
 
-EXECUTORS = ("process", "dask", "inline")
+EXECUTORS = ("process", "dask", "inline", "slurm", "pbs", "sge")
+CLUSTER_KEYS = ("queue", "account", "cores", "memory", "walltime", "jobs", "prologue")
+"""The ``[cluster]`` keys that ``pathzoo run`` also takes as ``--cluster-KEY`` options."""
 
 
 def positive_int(text: str) -> int:
@@ -68,7 +70,9 @@ def executor_of(args: argparse.Namespace) -> str:
 def add_execution_options(parser: argparse.ArgumentParser) -> None:
     """``--jobs``, ``--executor``, ``--dask-address`` and ``--no-progress`` (shared with ``pathzoo tune``)."""
     parser.add_argument("--jobs", type=positive_int, metavar="N", help="worker processes (default: number of CPUs)")
-    parser.add_argument("--executor", choices=EXECUTORS, default="process", help="where runs execute (default: process)")
+    parser.add_argument("--executor", choices=EXECUTORS, default="process",
+                        help="where runs execute (default: process); slurm, pbs and sge run Dask workers as jobs "
+                        "of that batch system (docs/cluster.md)")
     parser.add_argument("--dask-address", metavar="ADDR", help="Dask scheduler address, with --executor dask")
     parser.add_argument("--no-progress", action="store_true", help="do not show a progress bar")
 
@@ -87,6 +91,36 @@ def _harness_info_on_stderr() -> Iterator[None]:
     finally:
         logger.removeHandler(handler)
         logger.setLevel(level)
+
+
+def _add_cluster_options(parser: argparse.ArgumentParser) -> None:
+    group = parser.add_argument_group("batch-system jobs (with --executor slurm, pbs or sge; override the "
+                                      "experiment file's [cluster] table; docs/cluster.md)")
+    group.add_argument("--cluster-queue", metavar="NAME", help="partition or queue (default: the system's)")
+    group.add_argument("--cluster-account", metavar="NAME", help="account or project to charge")
+    group.add_argument("--cluster-cores", type=positive_int, metavar="N",
+                       help="cores per job, one Dask worker process each (default 1)")
+    group.add_argument("--cluster-memory", metavar="SIZE", help="memory per job, e.g. 8GB (default 2GB)")
+    group.add_argument("--cluster-walltime", metavar="TIME", help="time limit per job, e.g. 02:00:00")
+    group.add_argument("--cluster-jobs", type=positive_int, metavar="N", help="jobs kept running (default 1)")
+    group.add_argument("--cluster-prologue", action="append", metavar="LINE",
+                       help="a shell line the job runs before its worker (repeatable), e.g. 'module load python'")
+
+
+def _cluster_executor(executor: str, data: dict[str, Any], path: Path, args: argparse.Namespace
+                      ) -> "RunExecutor | None":
+    """The batch-system executor from the file's ``[cluster]`` table and the ``--cluster-*`` options (its jobs
+    submitted now, while the experiment resolves); None for other executors, which take no such option."""
+    given = {key: getattr(args, f"cluster_{key}") for key in CLUSTER_KEYS}
+    if executor not in ("slurm", "pbs", "sge"):
+        named = [f"--cluster-{key}" for key, value in given.items() if value is not None]
+        if named:
+            raise CommandError(f"{', '.join(named)} need(s) --executor slurm, pbs or sge")
+        return None
+    from pathzoo.harness.executors import ClusterOptions, jobqueue_executor
+
+    options = ClusterOptions.from_mapping(data.get("cluster", {}), str(path)).updated(given)
+    return jobqueue_executor(executor, options)
 
 
 def _early_executor(executor: str, data: dict[str, Any], args: argparse.Namespace) -> "RunExecutor | None":
@@ -131,7 +165,7 @@ def _run(args: argparse.Namespace) -> int:
 
         data = read_toml(path)
         metric_info(args.metric)  # a mistyped --metric fails before any run (read from the declarations: no import)
-        early = _early_executor(executor, data, args)
+        early = _cluster_executor(executor, data, path, args) or _early_executor(executor, data, args)
         if early is not None:
             stack.callback(early.shutdown)  # idempotent: run_experiment shuts it down when it ran
         exp = Experiment.from_mapping(data, path)  # the file read once
@@ -176,6 +210,7 @@ def add_parser(subparsers: Any) -> None:
         "--db", metavar="FILE", help="SQLite results file (default: the experiment's db, else pathzoo-results.sqlite)"
     )
     add_execution_options(parser)
+    _add_cluster_options(parser)
     parser.add_argument(
         "--retry", type=status_list, default=(), metavar="STATUSES",
         help="run again the stored runs with these statuses, comma-separated (e.g. crash,timeout); "

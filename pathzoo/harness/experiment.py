@@ -35,7 +35,9 @@ file suffix; relative paths are relative to the TOML file). A ``.scen`` file
 gives all its problems; ``"maps/den312d.scen#12"`` gives the problem at the
 0-based index 12 only, and ``"maps/den312d.scen#den312d.1?"`` those whose id
 (or index) matches the glob. ``scenarios`` may also be written as a top-level
-key before ``[experiment]``.
+key before ``[experiment]``. A ``[cluster]`` table says where ``pathzoo run
+--executor slurm`` (``pbs``, ``sge``) runs; it is not part of the experiment
+(:mod:`pathzoo.harness.executors.cluster_options`).
 """
 
 from __future__ import annotations
@@ -457,10 +459,10 @@ class Experiment:
             except PathzooError as exc:
                 raise bad(fld, str(exc)) from None
 
-        unknown = sorted(set(data) - {"experiment", "planner", "scenarios"})
+        unknown = sorted(set(data) - {"experiment", "planner", "scenarios", "cluster"})
         if unknown:
             raise InvalidExperimentError(
-                f"{src}: unknown top-level key(s) {unknown}; allowed: experiment, planner, scenarios"
+                f"{src}: unknown top-level key(s) {unknown}; allowed: experiment, planner, scenarios, cluster"
             )
         exp = data.get("experiment", {})
         if not isinstance(exp, dict):

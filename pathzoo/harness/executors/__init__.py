@@ -1,4 +1,5 @@
-"""Executors: where runs execute (``inline``, ``process`` (default) or ``dask``)."""
+"""Executors: where runs execute (``inline``, ``process`` (default), ``dask``, or a batch system: ``slurm``, ``pbs``,
+``sge``)."""
 
 from __future__ import annotations
 
@@ -6,14 +7,16 @@ import os
 from typing import Any
 
 from pathzoo.core.errors import InvalidExperimentError
+from pathzoo.harness.executors.cluster_options import ClusterOptions
 from pathzoo.harness.executors.base import RunExecutor
 from pathzoo.harness.executors.inline import InlineExecutor
 from pathzoo.harness.executors.process import ProcessExecutor
 from pathzoo.harness.sandbox import SandboxUnavailableError, sandbox_problem
 
-__all__ = ["RunExecutor", "InlineExecutor", "ProcessExecutor", "dask_executor", "make_executor", "worker_count", "EXECUTORS"]
+__all__ = ["RunExecutor", "InlineExecutor", "ProcessExecutor", "ClusterOptions", "dask_executor", "jobqueue_executor",
+           "make_executor", "worker_count", "EXECUTORS"]
 
-EXECUTORS: tuple[str, ...] = ("process", "inline", "dask")
+EXECUTORS: tuple[str, ...] = ("process", "inline", "dask", "slurm", "pbs", "sge")
 """Executor names accepted by :func:`make_executor` (``"dask:<address>"`` names a running cluster)."""
 
 
@@ -34,6 +37,21 @@ def dask_executor(address: str | None = None, jobs: int | None = None, **kwargs:
     return DaskExecutor(jobs, address=address, **kwargs)
 
 
+def jobqueue_executor(kind: str, options: "ClusterOptions | None" = None) -> RunExecutor:
+    """A :class:`~pathzoo.harness.executors.jobqueue.JobQueueExecutor` (imports dask-jobqueue only now).
+
+    Parameters
+    ----------
+    kind : {"slurm", "pbs", "sge"}
+        The batch system whose jobs run the Dask workers.
+    options : ClusterOptions, optional
+        The jobs' queue, cores, memory, walltime, number and prologue.
+    """
+    from pathzoo.harness.executors.jobqueue import JobQueueExecutor
+
+    return JobQueueExecutor(kind, options)
+
+
 def worker_count(jobs: Any, default: Any = None) -> Any:
     """How many runs go in parallel: ``jobs`` when given, else the experiment's ``default``, else the CPU count.
 
@@ -48,8 +66,9 @@ def make_executor(spec: "str | RunExecutor", jobs: int, *, require_sandbox: bool
     Parameters
     ----------
     spec : str or RunExecutor
-        ``"process"``, ``"inline"``, ``"dask"`` (a local Dask cluster) or
-        ``"dask:tcp://host:8786"`` (an existing scheduler).
+        ``"process"``, ``"inline"``, ``"dask"`` (a local Dask cluster),
+        ``"dask:tcp://host:8786"`` (an existing scheduler), or ``"slurm"``,
+        ``"pbs"``, ``"sge"`` (jobs with default :class:`ClusterOptions`).
     jobs : int
         Worker count for ``process`` and the local Dask cluster.
     require_sandbox : bool
@@ -76,6 +95,8 @@ def make_executor(spec: "str | RunExecutor", jobs: int, *, require_sandbox: bool
         return ProcessExecutor(jobs, sandbox=True if require_sandbox else None)
     if spec == "inline":
         return InlineExecutor()
+    if spec in ("slurm", "pbs", "sge"):
+        return jobqueue_executor(str(spec))
     if spec == "dask" or (isinstance(spec, str) and spec.startswith("dask:")):
         return dask_executor(spec[len("dask:"):] if spec != "dask" else None, jobs)
     raise InvalidExperimentError(f"unknown executor {spec!r}; allowed: {', '.join(EXECUTORS)} or 'dask:<address>'")

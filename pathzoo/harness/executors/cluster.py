@@ -294,7 +294,10 @@ class DaskExecutor(RunExecutor):
         return future
 
     def shutdown(self) -> None:
-        """Cancel outstanding tasks, stop the planners' processes, close the client (and the local cluster)."""
+        """Cancel outstanding tasks, stop the planners' processes, close the client and the cluster it made or was
+        given (a second call does nothing)."""
+        if self._closing.is_set():
+            return
         self._closing.set()
         self._watchdog.join()
         with self._lock:
