@@ -1,10 +1,11 @@
-"""Baseline planners against their targets (issues 9, 15 and 21), each figure printed beside its target.
+"""Baseline planners against their targets (issues 9, 15, 21 and 37), each figure printed beside its target.
 
 Run from the repository root (the scenario packs must be installed)::
 
     python benchmarks/baselines.py                 # every section
     python benchmarks/baselines.py --quick         # fewer problems and seeds
     python benchmarks/baselines.py --section metaheuristics
+    python benchmarks/baselines.py --section rivals  # issue 37: the pure metaheuristics at equal evaluations
     python benchmarks/baselines.py --section ompl   # OMPL motion checks/s, rrtconnect on 8room, any-angle bound
 
 Sections (each a function in :data:`SECTIONS`):
@@ -12,30 +13,27 @@ Sections (each a function in :data:`SECTIONS`):
 ``metaheuristics`` (issue 21)
     The pure (default) configurations of ``swarm.pso``, ``evo.ga``,
     ``swarm.cuckoo``, ``swarm.coa`` and ``evo.fuzzy_rate_ga``, which run no
-    global shortest-path search:
+    global shortest-path search, at their defaults (the same evaluation count
+    for every planner, so every run is bit-identical for its seed), on
+    ``fgdaco.scenario1-3`` (``dynamic``: moving obstacles checked at the time
+    of passage) and ``dsaco.simple/medium/complex`` (``air3d``), 3 seeds (1
+    with ``--quick``): every run ends with a path the judge accepts or with a
+    stated failure, never a crash (target: 0 crashes, 0 unstated failures, 0
+    solved paths the judge rejects). Their figures on the 2-D maps are the
+    ``rivals`` section's.
 
-    - on the three 32 x 32 MovingAI maps (``random-32-32-20``,
-      ``room-32-32-4``, ``maze-32-32-2``), 10 problems each (4 with
-      ``--quick``), spread evenly over the map's buckets, about 2 CPU s per
-      run: success rate (target >= 90 %) and median length / 8-connected
-      optimum (target <= 1.25), with the honest figures where they fall short;
-    - on ``fgdaco.scenario1-3`` (``dynamic``: moving obstacles checked at the
-      time of passage) and ``dsaco.simple/medium/complex`` (``air3d``), 3 seeds
-      (1 with ``--quick``), the same budget: every run ends with a path the
-      judge accepts or with a stated failure, never a crash (target: 0
-      crashes, 0 unstated failures, 0 solved paths the judge rejects);
-    - over every valid path on the 2-D maps: the number that touch a blocked
-      cell's closed square under an exact rational test
-      (``tests/baselines/exact_touch.py``; target 0, issue 15).
-
-    **Budget.** The harness's CPU-time budget is not available to planners
-    yet, so each run gets an *evaluation* budget sized to about 2 CPU s: for
-    each planner and group of maps, two calibration runs on the group's first
-    problem give this host's CPU seconds per evaluation
-    (:func:`two_cpu_second_budget`), and the budget is ``2 s / that``
-    (rounded to 1 000); the cost of an evaluation varies between problems. The budgets and the median CPU time per
-    run are printed, so the reader can check the 2 s. An evaluation budget
-    keeps every run bit-identical for its seed.
+``rivals`` (issue 37)
+    The same five pure planners at their defaults, hence at equal work
+    (:data:`~pathzoo_baselines.search.DEFAULT_EVALUATIONS` evaluations each),
+    on 5 problems from the upper two thirds of the length range of each of
+    ``random-32-32-20``, ``room-32-32-4``, ``maze-32-32-2`` and the Dragon Age
+    map ``arena``, 2 seeds each (1 seed with ``--quick``): success (target
+    >= 90 %), median length / 8-connected optimum (target <= 1.25) and, beside
+    them, the same figures for the best *initial* candidate alone (a budget of
+    one population), which shows how much of the result the obstacle-aware
+    start gives and how much the optimiser adds, and for the plain waypoint
+    form (:data:`PLAIN_FORM`) at the same count. Every path of the defaults is
+    also checked by the exact rational touch test (target: 0 touching).
 
 ``ompl``
     - motion checks per CPU second of the OMPL motion validator on
@@ -77,13 +75,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests" / "baseline
 from exact_touch import touching_segments  # noqa: E402
 
 PURE_METAHEURISTICS = ("swarm.pso", "evo.ga", "swarm.cuckoo", "swarm.coa", "evo.fuzzy_rate_ga")
-SMALL_MAPS = ("random-32-32-20", "room-32-32-4", "maze-32-32-2")
 DYNAMIC_SCENARIOS = ("fgdaco.scenario1", "fgdaco.scenario2", "fgdaco.scenario3")
 AIR_SCENARIOS = ("dsaco.simple", "dsaco.medium", "dsaco.complex")
-CPU_TARGET_S = 2.0
-"""CPU seconds per run the evaluation budgets are sized to."""
-CALIBRATION_EVALUATIONS = 4000
-"""Evaluations of the run that measures a planner's CPU seconds per evaluation on a group of maps."""
 SUCCESS_TARGET = 0.90
 RATIO_TARGET = 1.25
 
@@ -168,60 +161,88 @@ def _line(label: str, value: str, target: str, met: bool) -> str:
     return f"  {label:<50} {value:>10}   target {target:<8} {'ok' if met else 'FAILED'}"
 
 
-def two_cpu_second_budget(planner_id: str, scenario_id: str) -> pathzoo.Budget:
-    """An evaluation budget sized to about :data:`CPU_TARGET_S` CPU seconds of ``planner_id`` on ``scenario_id``.
-
-    Two calibration runs, of :data:`CALIBRATION_EVALUATIONS` and four times
-    as many evaluations: the difference of their CPU times over the
-    difference of their evaluations is the cost of one evaluation, without
-    the fixed cost of a run (building the encoding, the final check).
-    """
-    scenario = pathzoo.load_scenario(scenario_id)
-    planner = pathzoo.make_planner(planner_id)
-    spent = []
-    for evaluations in (CALIBRATION_EVALUATIONS, 4 * CALIBRATION_EVALUATIONS):
-        started = time.process_time()
-        result = planner.plan(scenario, budget=pathzoo.Budget(evaluations=evaluations), rng=np.random.default_rng(1))
-        spent.append((time.process_time() - started, result.evaluations))
-    (t1, e1), (t2, e2) = spent
-    per_evaluation = max(t2 - t1, 1e-9) / max(e2 - e1, 1)
-    return pathzoo.Budget(evaluations=max(1000, int(round(CPU_TARGET_S / per_evaluation, -3))))
-
-
 def metaheuristics(quick: bool) -> bool:
-    """The ``metaheuristics`` section (issue 21); True when every target is met."""
-    per_map = 4 if quick else 10
+    """The ``metaheuristics`` section (issue 21): moving obstacles and air volumes; True when every target is met."""
     seeds = 1 if quick else 3
+    budget = pathzoo.Budget()  # every planner's default evaluation count
     all_met = True
     for pid in PURE_METAHEURISTICS:
         print(f"\n{pid} (default, pure)", flush=True)
-        touching = 0
-        for stem in SMALL_MAPS:
-            problems = spread_problems(stem, per_map)
-            budget = two_cpu_second_budget(pid, problems[0])
-            t = run_group(pid, problems, 1, budget)
-            touching += t.touching
-            median = float(np.median(t.ratios)) if t.ratios else float("nan")
-            met_s, met_r = t.success >= SUCCESS_TARGET, median <= RATIO_TARGET
-            all_met &= met_s and met_r and not t.crashes
-            print(_line(f"{stem}: success ({t.runs} runs)", f"{t.success:.0%}", f">= {SUCCESS_TARGET:.0%}", met_s))
-            print(_line(f"{stem}: median length / 8-conn optimum", f"{median:.3f}", f"<= {RATIO_TARGET}", met_r))
-            print(f"    budget {budget.evaluations:,} evaluations, median CPU per run {np.median(t.cpu):.2f} s",
-                  *(f"\n    failed {f}" for f in t.failures[:2]), *(f"\n    CRASH {c}" for c in t.crashes[:2]))
         for group, ids in (("dynamic", DYNAMIC_SCENARIOS), ("air3d", AIR_SCENARIOS)):
-            budget = two_cpu_second_budget(pid, ids[0])
             t = run_group(pid, list(ids), seeds, budget)
-            touching += t.touching
-            clean = not t.crashes and t.unstated == 0 and t.rejected == 0
+            clean = not t.crashes and t.unstated == 0 and t.rejected == 0 and t.touching == 0
             all_met &= clean
             outcome = f"{t.solved}/{t.runs} valid"
             print(_line(f"{group} ({', '.join(ids)}): every run valid or stated", outcome, "no crash", clean))
             print(f"    {len(t.failures)} stated failure(s), {len(t.crashes)} crash(es), {t.rejected} rejected, "
-                  f"{t.unstated} unstated; budget {budget.evaluations:,} evaluations, "
-                  f"median CPU per run {np.median(t.cpu):.2f} s",
+                  f"{t.unstated} unstated, {t.touching} touching; median CPU per run {np.median(t.cpu):.2f} s",
                   *(f"\n    failed {f}" for f in t.failures[:3]), *(f"\n    CRASH {c}" for c in t.crashes[:3]))
+    return all_met
+
+
+RIVAL_MAPS = ("random-32-32-20", "room-32-32-4", "maze-32-32-2", "arena")
+RIVAL_PROBLEMS = 5
+"""Problems per map, from the upper two thirds of its length range."""
+POPULATION_PARAMETER = {"swarm.pso": "particles", "swarm.cuckoo": "nests", "swarm.coa": "cuckoos",
+                        "evo.ga": "population", "evo.fuzzy_rate_ga": "population"}
+"""The parameter holding each planner's initial population size (the budget of the start-only figures)."""
+PLAIN_FORM = {"init": "uniform", "smoothing": 0, "waypoints": 8}
+"""The families' plain waypoint form (uniform start, no smoothing, 8 waypoints), measured beside the defaults."""
+
+
+def upper_two_thirds(map_stem: str, count: int) -> list[str]:
+    """``count`` problems of a MovingAI map spread over those in the upper two thirds of its length range.
+
+    A problem's bucket is its optimal length divided by 4, rounded down (the
+    MovingAI convention), so the range is the buckets' ``[lo, hi]`` and the
+    problems kept are those from bucket ``lo + (hi - lo) / 3`` on.
+    """
+    buckets = [_order(s)[0] for s in get_registry().match("scenarios", f"movingai.{map_stem}.*")]
+    lo, hi = min(buckets), max(buckets)
+    return spread_problems(map_stem, count, min_bucket=int(np.ceil(lo + (hi - lo) / 3)))
+
+
+def _cell(t: Tally) -> str:
+    median = f"{np.median(t.ratios):.3f}" if t.ratios else "-"
+    return f"{t.solved}/{t.runs}, {median}"
+
+
+def rivals(quick: bool) -> bool:
+    """The ``rivals`` section (issue 37); True when every planner meets both targets on every map."""
+    from pathzoo_baselines.search import DEFAULT_EVALUATIONS
+
+    seeds = 1 if quick else 2
+    budget = pathzoo.Budget(evaluations=DEFAULT_EVALUATIONS)
+    problems = {stem: upper_two_thirds(stem, RIVAL_PROBLEMS) for stem in RIVAL_MAPS}
+    print(f"{DEFAULT_EVALUATIONS:,} evaluations per run (every planner's default); {seeds} seed(s); "
+          f"cell = solved/runs, median length / 8-connected optimum; targets >= {SUCCESS_TARGET:.0%}, "
+          f"<= {RATIO_TARGET}")
+    for stem, ids in problems.items():
+        print(f"  {stem}: {', '.join(i.split('.', 2)[2] for i in ids)}")
+    all_met = True
+    rows = []
+    for pid in PURE_METAHEURISTICS:
+        start_budget = pathzoo.Budget(evaluations=int(getattr(pathzoo.make_planner(pid), POPULATION_PARAMETER[pid])))
+        row = [pid]
+        touching = 0
+        for stem, ids in problems.items():
+            t = run_group(pid, ids, seeds, budget)
+            start = run_group(pid, ids, seeds, start_budget)
+            plain = run_group(pid, ids, seeds, budget, **PLAIN_FORM)
+            touching += t.touching
+            median = float(np.median(t.ratios)) if t.ratios else float("nan")
+            met = t.success >= SUCCESS_TARGET and median <= RATIO_TARGET and not t.crashes
+            all_met &= met
+            row.append(f"{_cell(t)} {'ok' if met else 'FAILED'} (start {_cell(start)}; plain {_cell(plain)}; "
+                       f"{np.median(t.cpu):.2f} s)")
         all_met &= touching == 0
-        print(_line("valid paths touching a blocked closed square", str(touching), "0", touching == 0))
+        row.append(str(touching))
+        rows.append(row)
+        print(" | ".join(row), flush=True)
+    print("\n| planner | " + " | ".join(f"`{m}`" for m in RIVAL_MAPS) + " | touching |")
+    print("|---" * (len(RIVAL_MAPS) + 2) + "|")
+    for row in rows:
+        print("| `" + row[0] + "` | " + " | ".join(row[1:]) + " |")
     return all_met
 
 
@@ -414,7 +435,9 @@ def ompl_section(quick: bool) -> bool:
             and clean)
 
 
-SECTIONS: dict[str, Callable[[bool], bool]] = {"metaheuristics": metaheuristics, "ompl": ompl_section}
+SECTIONS: dict[str, Callable[[bool], bool]] = {
+    "metaheuristics": metaheuristics, "rivals": rivals, "ompl": ompl_section,
+}
 
 
 def main(argv: list[str] | None = None) -> int:

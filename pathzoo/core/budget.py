@@ -120,8 +120,8 @@ class Budget:
         """True when a clock limit (``cpu_s`` or ``time_s``) is set."""
         return self.time_s is not None or self.cpu_s is not None
 
-    def or_default(self, iterations: int) -> "Budget":
-        """The budget a planner runs: this one, or its own count ``iterations`` when no limit is set at all.
+    def or_default(self, iterations: int | None = None, *, evaluations: int | None = None) -> "Budget":
+        """The budget a planner runs: this one, or its own count (``iterations`` or ``evaluations``) when no limit is set.
 
         The one budget rule of every family (``docs/timing.md``): a count
         (``iterations`` or ``evaluations``) ends the run by that count; a
@@ -135,8 +135,10 @@ class Budget:
         Budget(iterations=100, evaluations=None, time_s=None, cpu_s=None)
         >>> Budget(cpu_s=2.0).or_default(100).iterations is None
         True
+        >>> Budget().or_default(evaluations=5000).evaluations
+        5000
         """
-        return replace(self, iterations=iterations) if self.unlimited else self
+        return replace(self, iterations=iterations, evaluations=evaluations) if self.unlimited else self
 
     def count_reached(self, iterations: int, evaluations: int) -> StopReason | None:
         """``"iterations"`` or ``"evaluations"`` when these counts reach that limit, else None."""

@@ -136,7 +136,7 @@ class CoaPlanner(BaselinePlanner):
     """
 
     id: ClassVar[str] = "swarm.coa"
-    version: ClassVar[str] = "1"
+    version: ClassVar[str] = "2"
     summary: ClassVar[str] = "Cuckoo Optimization Algorithm (Rajabioun 2011; FGDACO's COA) over K straight-segment waypoints"
     preload: ClassVar[tuple[str, ...]] = ("scipy.cluster.vq",)
     params: ClassVar[Mapping[str, Param]] = {

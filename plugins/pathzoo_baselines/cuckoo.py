@@ -57,7 +57,7 @@ class CuckooPlanner(BaselinePlanner):
     """
 
     id: ClassVar[str] = "swarm.cuckoo"
-    version: ClassVar[str] = "3"
+    version: ClassVar[str] = "4"
     summary: ClassVar[str] = "Cuckoo search (Yang & Deb) with Mantegna Lévy flights over K straight-segment waypoints"
     params: ClassVar[Mapping[str, Param]] = {
         **ENCODING_PARAMS,

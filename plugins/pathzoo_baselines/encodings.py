@@ -7,6 +7,7 @@ from typing import Any, Mapping, Protocol
 import numpy as np
 
 from pathzoo.core import Scenario, UnsupportedScenarioError
+from pathzoo_baselines.params import waypoint_count
 
 __all__ = ["Encoding", "FEASIBLE_ENCODINGS", "make_encoding"]
 
@@ -97,9 +98,12 @@ def make_encoding(scenario: Scenario, params: Mapping[str, Any]) -> Encoding:
 
     return WaypointEncoding(
         scenario,
-        waypoints=params["waypoints"],
+        waypoints=waypoint_count(params["waypoints"], scenario.kind),
         spline=params["encoding"] == "spline",
         spline_samples=params["spline_samples"],
         penalty=params["penalty"],
         repair_window=params.get("repair_window", 0),
+        smoothing=params.get("smoothing", 0),
+        init=params.get("init", "uniform"),
+        walk_bias=params.get("walk_bias", 0.5),
     )

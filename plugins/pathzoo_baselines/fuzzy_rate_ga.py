@@ -27,7 +27,7 @@ class FuzzyRateGaPlanner(GaPlanner):
     """
 
     id: ClassVar[str] = "evo.fuzzy_rate_ga"
-    version: ClassVar[str] = "3"
+    version: ClassVar[str] = "4"
     summary: ClassVar[str] = "GA whose crossover/mutation rates a fuzzy controller sets (our design; DEAP + scikit-fuzzy)"
     preload: ClassVar[tuple[str, ...]] = (*GaPlanner.preload, "skfuzzy", "pathzoo_baselines.fuzzy")
     params: ClassVar[Mapping[str, Param]] = {

@@ -114,7 +114,7 @@ class GaPlanner(BaselinePlanner):
     """
 
     id: ClassVar[str] = "evo.ga"
-    version: ClassVar[str] = "3"
+    version: ClassVar[str] = "4"
     summary: ClassVar[str] = "Genetic algorithm (DEAP) over K straight-segment waypoints (or grid moves), no graph search"
     preload: ClassVar[tuple[str, ...]] = ("deap.algorithms", "deap.base", "deap.tools")
     requires: ClassVar[Mapping[str, str]] = {"deap": "evo"}  # optional dependency -> extra

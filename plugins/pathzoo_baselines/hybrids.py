@@ -30,15 +30,16 @@ from pathzoo_baselines.pso import PsoPlanner
 
 __all__ = ["PsoAstarPlanner", "CuckooAstarPlanner", "GaAstarPlanner", "FuzzyRateGaAstarPlanner"]
 
-_ROUTED_ONLY = {"encoding": hybrid_encoding("routed", ("routed",))}
-_GA_HYBRID = {"encoding": hybrid_encoding("cells", HYBRID_ENCODINGS), **CELLS_PARAMS}
+_ROUTED_WAYPOINTS = Param(8, "K, the number of intermediate waypoints the A*-routed decoder joins", low=1, high=256)
+_ROUTED_ONLY = {"encoding": hybrid_encoding("routed", ("routed",)), "waypoints": _ROUTED_WAYPOINTS}
+_GA_HYBRID = {"encoding": hybrid_encoding("cells", HYBRID_ENCODINGS), "waypoints": _ROUTED_WAYPOINTS, **CELLS_PARAMS}
 
 
 class PsoAstarPlanner(PsoPlanner):
     """``swarm.pso`` over the A*-routed waypoint decoder (hybrid, label ``pso+astar``)."""
 
     id: ClassVar[str] = "swarm.pso_astar"
-    version: ClassVar[str] = "1"
+    version: ClassVar[str] = "2"
     summary: ClassVar[str] = "PSO over K waypoints joined by A* grid routes where a straight segment is blocked"
     kinds: ClassVar[frozenset[str]] = HYBRID_KINDS
     hybrid: ClassVar[bool] = True
@@ -49,7 +50,7 @@ class CuckooAstarPlanner(CuckooPlanner):
     """``swarm.cuckoo`` over the A*-routed waypoint decoder (hybrid, label ``cuckoo+astar``)."""
 
     id: ClassVar[str] = "swarm.cuckoo_astar"
-    version: ClassVar[str] = "1"
+    version: ClassVar[str] = "2"
     summary: ClassVar[str] = "Cuckoo search over K waypoints joined by A* grid routes where a segment is blocked"
     kinds: ClassVar[frozenset[str]] = HYBRID_KINDS
     hybrid: ClassVar[bool] = True
@@ -60,7 +61,7 @@ class GaAstarPlanner(GaPlanner):
     """``evo.ga`` over A*-routed cell chains or waypoints (hybrid, label ``ga+astar``)."""
 
     id: ClassVar[str] = "evo.ga_astar"
-    version: ClassVar[str] = "1"
+    version: ClassVar[str] = "2"
     summary: ClassVar[str] = "GA over feasible cell chains whose operators reroute by A* (or A*-routed waypoints)"
     kinds: ClassVar[frozenset[str]] = HYBRID_KINDS
     hybrid: ClassVar[bool] = True
@@ -71,7 +72,7 @@ class FuzzyRateGaAstarPlanner(FuzzyRateGaPlanner):
     """``evo.fuzzy_rate_ga`` over A*-routed cell chains or waypoints (hybrid, label ``fuzzy_rate_ga+astar``)."""
 
     id: ClassVar[str] = "evo.fuzzy_rate_ga_astar"
-    version: ClassVar[str] = "1"
+    version: ClassVar[str] = "2"
     summary: ClassVar[str] = "Fuzzy-rate GA over feasible cell chains whose operators reroute by A*"
     kinds: ClassVar[frozenset[str]] = HYBRID_KINDS
     hybrid: ClassVar[bool] = True

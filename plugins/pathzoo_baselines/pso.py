@@ -34,7 +34,7 @@ class PsoPlanner(BaselinePlanner):
     """
 
     id: ClassVar[str] = "swarm.pso"
-    version: ClassVar[str] = "3"
+    version: ClassVar[str] = "4"
     summary: ClassVar[str] = "Particle swarm optimisation (pyswarms) of K straight-segment waypoints, no graph search"
     preload: ClassVar[tuple[str, ...]] = ("pathzoo_baselines.pyswarms_backend",)
     requires: ClassVar[Mapping[str, str]] = {"pyswarms": "evo"}  # optional dependency -> extra

@@ -14,8 +14,9 @@ Budgets
   and every few evaluations, so on very large maps the overshoot is a few
   candidates, not a generation (the candidates left get ``inf``, uncounted,
   and missing initial candidates are copies of the ones drawn).
-- No limit at all: :data:`DEFAULT_ITERATIONS` generations (:meth:`Budget.or_default`); a clock-only
-  budget runs generations until the clock.
+- No limit at all: :data:`DEFAULT_EVALUATIONS` evaluations (:meth:`Budget.or_default`), the same
+  count for every metaheuristic (one evaluation: one candidate decoded and costed), so that their
+  defaults do equal work; a clock-only budget runs generations until the clock.
 
 Result
 ------
@@ -48,10 +49,10 @@ from pathzoo.grid.segments import to_cell_units
 from pathzoo_baselines.encodings import Encoding
 from pathzoo_baselines.margin import MARGIN_CELLS, polylines_clear
 
-__all__ = ["DEFAULT_ITERATIONS", "Search", "seeded_global_random"]
+__all__ = ["DEFAULT_EVALUATIONS", "Search", "seeded_global_random"]
 
-DEFAULT_ITERATIONS = 200
-"""Generations run when the budget sets no limit at all."""
+DEFAULT_EVALUATIONS = 5000
+"""Evaluations run when the budget sets no limit at all (every metaheuristic; ``docs/planners/metaheuristics.md``)."""
 
 _TIMED_CHUNK = 4
 """Candidates of a costly encoding evaluated between two looks at the clock."""
@@ -98,7 +99,7 @@ class Search:
     ):
         self.scenario = scenario
         self.encoding = encoding
-        self.budget = budget.or_default(DEFAULT_ITERATIONS)
+        self.budget = budget.or_default(evaluations=DEFAULT_EVALUATIONS)
         self.clock = self.budget.start()
         if started is not None:
             self.clock.started = started

@@ -6,10 +6,17 @@ coordinates (``d = 3``, with ``z``, in air volumes), bounded by the map
 
 This encoding runs no global search of any kind: it is the one the pure
 configurations of the metaheuristics use (``docs/planners/metaheuristics.md``).
-On the 2-D occupancy grids (``grid2d``, ``dynamic``) a segment that touches a
-blocked cell between two points at most ``repair_window`` cells apart is
-routed around it inside a small box (:mod:`pathzoo_baselines.local_repair`);
-``repair_window = 0`` turns this off.
+On the 2-D occupancy grids (``grid2d``, ``dynamic``) every decoded path goes
+through two local operators, each with a stated reach:
+
+- repair (:mod:`pathzoo_baselines.local_repair`, ``repair_window``): a
+  segment that touches a blocked cell between two points at most
+  ``repair_window`` cells apart is routed around it inside a small box;
+- smoothing (:mod:`pathzoo_baselines.smoothing`, ``smoothing``): each point
+  is joined by a straight segment to the farthest of the next ``smoothing``
+  points it sees.
+
+``0`` turns either off.
 
 - ``waypoints``: the path is ``start, p1, ..., pK, goal`` joined by straight
   segments.
@@ -19,10 +26,11 @@ routed around it inside a small box (:mod:`pathzoo_baselines.local_repair`);
   spline starts at the first and ends at the last control point, and the
   curve stays in the control points' convex hull, hence inside the map.
 
-Initial candidates draw their points uniformly over the map and then sort
-them along the start-goal axis, so a first path moves roughly towards the goal
-instead of zig-zagging across the map (our choice; the baselines' papers do
-not say how they initialise).
+Initial candidates (``init``): with ``'walk'`` (the default; ``grid2d`` and
+``dynamic`` maps) each candidate's points are spread along a goal-biased
+random walk over free cells (:mod:`pathzoo_baselines.walk_init`), so a first
+path follows free space; with ``'uniform'``, and on the other kinds, points
+are drawn uniformly over the map and sorted along the start-goal axis.
 """
 
 from __future__ import annotations
@@ -35,8 +43,13 @@ from pathzoo.grid.segments import to_cell_units
 from pathzoo_baselines.cost import PathCost
 from pathzoo_baselines.local_repair import repair_polylines
 from pathzoo_baselines.margin import MARGIN_CELLS
+from pathzoo_baselines.smoothing import smooth_polylines
+from pathzoo_baselines.walk_init import walk_candidates
 
-__all__ = ["WaypointEncoding", "spline_basis"]
+__all__ = ["WaypointEncoding", "spline_basis", "WALK_STEPS_PER_CELL"]
+
+WALK_STEPS_PER_CELL = 20
+"""Steps an initial walk may take per cell of the map before its candidate falls back to uniform points."""
 
 
 def spline_basis(n_control: int, n_samples: int) -> np.ndarray:
@@ -65,13 +78,21 @@ class WaypointEncoding:
         Largest distance in cells between the ends of a blocked segment that
         the local repair routes around (0: no repair). Used on ``grid2d``
         and ``dynamic`` maps only.
+    smoothing : int
+        How many points ahead the smoothing looks (0: no smoothing); ``grid2d``
+        and ``dynamic`` maps only.
+    init : {'uniform', 'walk'}
+        Initial candidates: uniform points, or points along goal-biased walks
+        (``grid2d`` and ``dynamic`` maps only; uniform elsewhere).
+    walk_bias : float
+        Probability that a walk step heads for the goal.
     """
 
     integer = False
 
     def __init__(
         self, scenario: Scenario, *, waypoints: int, spline: bool, spline_samples: int, penalty: float,
-        repair_window: int = 0,
+        repair_window: int = 0, smoothing: int = 0, init: str = "uniform", walk_bias: float = 0.5,
     ):
         self.scenario = scenario
         self.k = int(waypoints)
@@ -82,7 +103,11 @@ class WaypointEncoding:
         self.high = np.tile(inside, self.k)
         self._basis = spline_basis(self.k + 2, spline_samples) if spline else None
         self._cost = PathCost(scenario, penalty)
-        self._repair = int(repair_window) if scenario.kind in ("grid2d", "dynamic") else 0
+        grid = scenario.kind in ("grid2d", "dynamic")
+        self._repair = int(repair_window) if grid else 0
+        self._smoothing = int(smoothing) if grid else 0
+        self._walk = init == "walk" and grid
+        self._walk_bias = float(walk_bias)
 
     def polylines(self, genes: np.ndarray) -> np.ndarray:
         """Paths of shape (n, m, d) for candidates of shape (n, dK), clipped to the map and repaired.
@@ -95,11 +120,17 @@ class WaypointEncoding:
     def decode(self, genes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """``(paths, lengths)``: :meth:`polylines` and the number of real points of each path."""
         pts = self._points(genes)
-        if self._repair <= 0:
+        if self._repair <= 0 and self._smoothing <= 0:
             return pts, np.full(len(pts), pts.shape[1], dtype=np.int64)
         cs = self.scenario.cell_size
-        out, lengths = repair_polylines(self.scenario.blocked, to_cell_units(pts, cs), self._repair, MARGIN_CELLS)
-        out *= cs
+        blocked = self.scenario.blocked
+        out = to_cell_units(pts, cs)
+        lengths = np.full(len(pts), pts.shape[1], dtype=np.int64)
+        if self._repair > 0:
+            out, lengths = repair_polylines(blocked, out, self._repair, MARGIN_CELLS)
+        if self._smoothing > 0:
+            lengths = smooth_polylines(blocked, out, lengths, self._smoothing, MARGIN_CELLS)
+        out = out * cs
         out[:, 0] = pts[:, 0]  # the exact start and goal, not their round trip through cell units
         tail = np.arange(out.shape[1])[None, :] >= lengths[:, None] - 1
         out[tail] = np.repeat(pts[:, -1], out.shape[1] - lengths + 1, axis=0)
@@ -121,12 +152,27 @@ class WaypointEncoding:
         return pts
 
     def initial(self, rng: np.random.Generator, n: int) -> np.ndarray:
-        """``n`` random candidates, points sorted along the start-goal axis."""
+        """``n`` initial candidates: points along goal-biased walks (``init='walk'``), else uniform, sorted.
+
+        Uniform points are sorted along the start-goal axis. A walk that does
+        not reach the goal within :data:`WALK_STEPS_PER_CELL` steps per cell
+        of the map leaves its candidate uniform.
+        """
         sc = self.scenario
         pts = rng.uniform(0.0, 1.0, size=(n, self.k, self.dim)) * self.high[: self.dim]
         along = (pts - sc.start) @ (sc.goal - sc.start)
         order = np.argsort(along, axis=1, kind="stable")
-        return np.take_along_axis(pts, order[..., None], axis=1).reshape(n, self.n_genes)
+        pts = np.take_along_axis(pts, order[..., None], axis=1)
+        if self._walk:
+            cs = sc.cell_size
+            walks = walk_candidates(
+                sc.blocked, to_cell_units(sc.start, cs), to_cell_units(sc.goal, cs), self.k, n, rng,
+                self._walk_bias, WALK_STEPS_PER_CELL * sc.blocked.size,
+            )
+            for i, points in enumerate(walks):
+                if points is not None:
+                    pts[i] = np.clip(points * cs, self.low[:2], self.high[:2])
+        return pts.reshape(n, self.n_genes)
 
     def evaluate(self, genes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """``(cost, violation)`` of candidates of shape (n, dK)."""

@@ -8,7 +8,7 @@ import pytest
 from pathzoo import Budget, Status, make_planner
 from pathzoo.rules import validate_path
 from pathzoo.testing import check_scenario
-from pathzoo_baselines.search import DEFAULT_ITERATIONS, Search
+from pathzoo_baselines.search import DEFAULT_EVALUATIONS, Search
 
 BASELINES = ["swarm.pso", "swarm.cuckoo", "swarm.coa", "evo.ga", "evo.fuzzy_rate_ga"]
 HYBRIDS = ["swarm.pso_astar", "swarm.cuckoo_astar", "evo.ga_astar", "evo.fuzzy_rate_ga_astar"]
@@ -86,13 +86,15 @@ def test_time_budget_stops_the_search(pid, monkeypatch):
     reads = itertools.count()
     monkeypatch.setattr(time, "perf_counter", lambda: 0.01 * next(reads))  # each look at the clock costs 10 ms
     result = _plan(planner, scenario, Budget(time_s=0.3))
-    assert 1 < result.iterations < DEFAULT_ITERATIONS
+    assert 1 < result.iterations < 30
     assert next(reads) < 0.3 / 0.01 + 20  # it stopped soon after the limit: a few reads past 30
 
 
-def test_unlimited_budget_runs_the_default_number_of_generations():
-    result = _plan(make_planner("swarm.cuckoo", nests=4), check_scenario("grid2d"), Budget())
-    assert result.iterations == DEFAULT_ITERATIONS
+@pytest.mark.parametrize("pid", BASELINES + HYBRIDS)
+def test_unlimited_budget_runs_the_default_number_of_evaluations(pid):
+    """Every metaheuristic, pure or hybrid, does the same work at its defaults: DEFAULT_EVALUATIONS evaluations."""
+    result = _plan(make_planner(pid), check_scenario("grid2d"), Budget())
+    assert result.evaluations == DEFAULT_EVALUATIONS
 
 
 @pytest.mark.parametrize(("pid", "params"), CONFIGS)

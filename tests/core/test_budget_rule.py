@@ -13,6 +13,7 @@ from pathzoo.plugins.lookup import make_planner
 
 def test_or_default_fills_in_a_count_only_when_no_limit_is_set():
     assert Budget().or_default(7) == Budget(iterations=7)
+    assert Budget().or_default(evaluations=7) == Budget(evaluations=7)
     for budget in (Budget(cpu_s=1.0), Budget(time_s=1.0), Budget(evaluations=3), Budget(iterations=2, cpu_s=1.0)):
         assert budget.or_default(7) is budget
 
@@ -21,7 +22,7 @@ def test_or_default_fills_in_a_count_only_when_no_limit_is_set():
 OWN_COUNTS = [
     ("aco.acs", {"n_ants": 2, "iterations": 3}, 3),
     ("aco.dsaco", {"n_ants": 2, "iterations": 3}, 3),
-    ("swarm.pso", {}, 200),
+    ("swarm.pso", {}, 99),  # 5,000 evaluations: the initial 50 particles, then 99 iterations of 50
     ("search.movns", {}, 50),
     ("ompl.rrtstar", {}, 200),
 ]
