@@ -80,6 +80,7 @@ only, and the first result comes sooner.
 
 from __future__ import annotations
 
+import itertools
 import math
 import os
 import shutil
@@ -117,6 +118,9 @@ if TYPE_CHECKING:
 
 __all__ = ["ProcessExecutor", "WorkerStartError", "default_start_method", "process_cpu_time", "configuration",
            "MAX_START_FAILURES"]
+
+_WORKER_SERIALS = itertools.count(1)
+"""Numbers of the sandboxed workers of this process, over all its executors (their cgroups' names)."""
 
 _clock = time.perf_counter  # bound at import: a later patch of time.perf_counter does not reach the harness
 
@@ -300,7 +304,6 @@ class ProcessExecutor(RunExecutor):
         if not self.sandboxed:
             start_server(start_method)  # from this thread, not the monitor: the server dies with its starting thread
         self._scratch_root = tempfile.mkdtemp(prefix="pathzoo-sandbox-") if self.sandboxed else ""
-        self._serial = 0
         self._readable_dirs: set[str] = set()
         self._start_failures = 0
         self._lock = threading.Lock()
@@ -386,10 +389,10 @@ class ProcessExecutor(RunExecutor):
         flag = self._ctx.RawArray("b", 1)
         if self.sandboxed:
             assert config is not None
-            self._serial += 1
-            group = ProcessGroup(f"w{self._serial}", memory_bytes=self.limits.memory_bytes,
+            serial = next(_WORKER_SERIALS)  # of this process: two executors here never share a cgroup
+            group = ProcessGroup(f"w{serial}", memory_bytes=self.limits.memory_bytes,
                                  max_tasks=self.limits.max_tasks)
-            scratch = os.path.join(self._scratch_root, f"w{self._serial}")
+            scratch = os.path.join(self._scratch_root, f"w{serial}")
             process: Any = SandboxedProcess(target=_worker_main, args=(child, harness_alive(), flag, True),
                                             name="pathzoo-worker")
             process.sandbox_prefix = sandboxed_command(
