@@ -15,7 +15,25 @@ Within a scenario, configurations are ordered by
 3. then the **median over successful runs**.
 
 Configurations equal on all three keys share a rank (competition ranking:
-1, 2, 2, 4). Metric values are compared to 12 significant digits
+1, 2, 2, 4).
+
+Path models
+-----------
+A grid planner's length and an any-angle planner's length are not measured
+against the same optimum, so a raw metric never ranks planners of different
+path models together: the ranking is made within each scenario *and path
+model* (one section per model, rows sorted by model), and the table says so.
+Ranked by ``model_ratio`` (each planner over the optimum of its own model)
+all models share one ranking.
+
+Work
+----
+Every row carries its path model, the median CPU seconds and the median
+evaluations of its runs (``path_model``, ``median_cpu_s``,
+``median_evaluations`` in CSV and JSON). When the median CPU of the ranked
+rows of a scenario differs by more than :data:`CPU_SPREAD_LIMIT` times (CPU
+below 1 ms counted as 1 ms), a one-line warning says that the rows did unequal
+work. Metric values are compared to 12 significant digits
 (:func:`pathzoo.analysis.frame.round_measurements`), so two planners whose
 lengths differ only by floating-point summation order tie. Success rate is always reported in its own column; the median,
 IQR and SD columns describe successful runs only.
@@ -29,12 +47,12 @@ import pandas as pd
 from pathzoo.analysis.formatting import format_number, format_percent, render_table
 from pathzoo.analysis.frame import Direction, with_config
 from pathzoo.analysis.hybrid import HYBRID_MARK, HYBRID_NOTE, hybrid_planners
-from pathzoo.analysis.path_models import MODEL_RATIO, REFERENCE_COLUMN, with_model_ratio
+from pathzoo.analysis.path_models import MODEL_COLUMN, MODEL_RATIO, REFERENCE_COLUMN, path_models, with_model_ratio
 from pathzoo.analysis.summary import summarize
 from pathzoo.core.budget import CLOCK_STOPS
 
-__all__ = ["leaderboard", "format_leaderboard", "clock_stops", "power_note", "RANKING_RULE", "MODEL_RATIO_NOTE",
-           "CLOCK_MARK", "CLOCK_NOTE"]
+__all__ = ["leaderboard", "format_leaderboard", "clock_stops", "work_done", "cpu_spread_warning", "power_note",
+           "RANKING_RULE", "MODEL_RATIO_NOTE", "PATH_MODEL_NOTE", "CLOCK_MARK", "CLOCK_NOTE", "CPU_SPREAD_LIMIT"]
 
 RANKING_RULE = (
     "Rank within each scenario: penalized median (failed runs count as worst), "
@@ -47,6 +65,17 @@ MODEL_RATIO_NOTE = (
     "'optimum' names it: graph optimum (moves between neighbouring cells), any-angle optimum (straight segments "
     "in any direction), earliest arrival of SIPP (dynamic maps)."
 )
+
+PATH_MODEL_NOTE = (
+    "Ranked within each path model (grid: moves between neighbouring cells; anyangle: straight segments in any "
+    "direction; timed: waits among moving obstacles): their raw values do not share an optimum. "
+    "Rank by model_ratio (--metric model_ratio) for one ranking."
+)
+
+CPU_SPREAD_LIMIT = 10.0
+"""Ratio of the largest to the smallest median CPU among a scenario's ranked rows above which a warning appears."""
+
+_CPU_FLOOR_S = 1e-3
 
 CLOCK_MARK = " (clock)"
 """Appended to a configuration whose runs include some a clock limit ended."""
@@ -80,7 +109,7 @@ def power_note(table: pd.DataFrame) -> str:
     )
 
 
-def _rank_within(summary: pd.DataFrame, direction: Direction) -> pd.Series:
+def _rank_within(summary: pd.DataFrame, direction: Direction, by: list[str]) -> pd.Series:
     sign = 1.0 if direction == "min" else -1.0
     keys = pd.DataFrame(
         {
@@ -91,7 +120,7 @@ def _rank_within(summary: pd.DataFrame, direction: Direction) -> pd.Series:
         index=summary.index,
     )
     ranks = pd.Series(0, index=summary.index, dtype=int)
-    for _, idx in summary.groupby("scenario").groups.items():
+    for _, idx in summary.groupby(by if len(by) > 1 else by[0]).groups.items():
         k = keys.loc[idx].sort_values(["pen", "rate", "med"])
         tuples = list(k.itertuples(index=False, name=None))
         r = [1]
@@ -140,11 +169,14 @@ def leaderboard(
     Returns
     -------
     DataFrame
-        Columns ``scenario, rank, planner, config, params_hash, n_runs,
-        success_rate, median, iqr, sd, clock_stops`` (plus the reference
-        columns; ``clock_stops`` counts the runs a clock limit ended, whose
-        results depend on the machine: ``docs/timing.md``), sorted
-        by scenario and rank. ``attrs["metric"]`` is the metric's
+        Columns ``scenario, rank, planner, config, params_hash, path_model,
+        n_runs, success_rate, median, iqr, sd, median_cpu_s,
+        median_evaluations, clock_stops`` (plus the reference columns;
+        ``clock_stops`` counts the runs a clock limit ended, whose results
+        depend on the machine: ``docs/timing.md``), sorted by scenario,
+        path model (unless ranked by ``model_ratio``) and rank.
+        ``attrs["sectioned"]`` is True when ranks are per path model and
+        ``attrs["cpu_warning"]`` holds :func:`cpu_spread_warning`'s line. ``attrs["metric"]`` is the metric's
         :class:`~pathzoo.analysis.frame.MetricInfo`; ``attrs["reference"]``
         and ``attrs["alpha"]`` are set too. See the module docstring for the
         ranking rule.
@@ -153,9 +185,14 @@ def leaderboard(
         runs = with_model_ratio(runs)
     summary = summarize(runs, metric, direction=direction)
     info = summary.attrs["metric"]
-    summary["rank"] = _rank_within(summary, info.direction)
-    cols = ["scenario", "rank", "planner", "config", "params_hash", "n_runs", "success_rate", "median", "iqr", "sd"]
-    table = summary[cols].merge(clock_stops(runs, metric), on=["scenario", "config"], how="left")
+    planners = summary["planner"].astype(str)
+    summary[MODEL_COLUMN] = planners.map(path_models(planners.unique()))
+    sectioned = metric != MODEL_RATIO
+    summary["rank"] = _rank_within(summary, info.direction, ["scenario", MODEL_COLUMN] if sectioned else ["scenario"])
+    cols = ["scenario", "rank", "planner", "config", "params_hash", MODEL_COLUMN, "n_runs", "success_rate", "median",
+            "iqr", "sd"]
+    table = summary[cols].merge(work_done(runs, metric), on=["scenario", "config"], how="left")
+    table = table.merge(clock_stops(runs, metric), on=["scenario", "config"], how="left")
     if reference is not None:
         from pathzoo.analysis.stats import pairwise_tests
 
@@ -171,9 +208,43 @@ def leaderboard(
         table.loc[table["config"] == reference, "vs_reference"] = "reference"
     if REFERENCE_COLUMN in runs.columns:
         table = table.merge(_references_used(runs), on=["scenario", "config"], how="left")
-    table = table.sort_values(["scenario", "rank", "config"], kind="stable").reset_index(drop=True)
-    table.attrs.update(metric=info, reference=reference, alpha=alpha)
+    order = ["scenario", MODEL_COLUMN, "rank", "config"] if sectioned else ["scenario", "rank", "config"]
+    table = table.sort_values(order, kind="stable").reset_index(drop=True)
+    table.attrs.update(metric=info, reference=reference, alpha=alpha, sectioned=sectioned,
+                       cpu_warning=cpu_spread_warning(table))
     return table
+
+
+def work_done(runs: pd.DataFrame, metric: str = "length") -> pd.DataFrame:
+    """``scenario, config, median_cpu_s, median_evaluations``: the median CPU seconds and evaluations of all runs."""
+    df = with_config(runs, metric)
+    keys = [df["scenario"], df["config"]]
+    cpu = pd.to_numeric(df["cpu_time_s"], errors="coerce") if "cpu_time_s" in df else pd.Series(np.nan, index=df.index)
+    evals = pd.to_numeric(df["evaluations"], errors="coerce") if "evaluations" in df else pd.Series(np.nan, index=df.index)
+    return pd.DataFrame({"median_cpu_s": cpu.groupby(keys).median(),
+                         "median_evaluations": evals.groupby(keys).median()}).reset_index()
+
+
+def cpu_spread_warning(table: pd.DataFrame) -> str:
+    """One line when a scenario's rows differ in median CPU by more than :data:`CPU_SPREAD_LIMIT` times, else ``""``.
+
+    The scenario with the largest spread is named; CPU below 1 ms counts as 1 ms.
+    """
+    if "median_cpu_s" not in table.columns or table.empty:
+        return ""
+    cpu = table["median_cpu_s"].astype(float).clip(lower=_CPU_FLOOR_S)
+    spans = cpu.groupby(table["scenario"]).agg(["min", "max"]).dropna()
+    if spans.empty:
+        return ""
+    ratio = (spans["max"] / spans["min"]).to_numpy(dtype=float)
+    i = int(np.argmax(ratio))
+    if not ratio[i] > CPU_SPREAD_LIMIT:
+        return ""
+    worst, low, high = str(spans.index[i]), float(spans["min"].iloc[i]), float(spans["max"].iloc[i])
+    low_text = "under 1 ms" if low <= _CPU_FLOOR_S else f"{format_number(low)} s"
+    return (f"Warning: the ranked rows' median CPU differs up to {ratio[i]:.0f}x (on {worst}: "
+            f"{low_text} to {format_number(high)} s): they did unequal work; give every planner one count "
+            "budget to compare equal work (docs/timing.md).")
 
 
 def _references_used(runs: pd.DataFrame) -> pd.DataFrame:
@@ -219,14 +290,22 @@ def format_leaderboard(table: pd.DataFrame, fmt: str = "text") -> str:
             "scenario": table["scenario"].astype(str),
             "rank": table["rank"].astype(str),
             "planner": names + np.where(table["clock_stops"] > 0, CLOCK_MARK, ""),
+            "model": table[MODEL_COLUMN].astype(str),
             "runs": table["n_runs"].astype(str),
             "success": table["success_rate"].map(format_percent),
             "median": table["median"].map(format_number),
             "IQR": table["iqr"].map(format_number),
             "SD": table["sd"].map(format_number),
+            "CPU s": table["median_cpu_s"].map(format_number),
+            "evals": table["median_evaluations"].map(lambda x: f"{x:.0f}" if pd.notna(x) else "–"),
         }
     )
     notes = [RANKING_RULE]
+    if table.attrs.get("sectioned") and table[MODEL_COLUMN].nunique() > 1:
+        notes.append(PATH_MODEL_NOTE)
+    notes.append("CPU s, evals: median CPU seconds and evaluations per run (all runs).")
+    if table.attrs.get("cpu_warning"):
+        notes.insert(0, table.attrs["cpu_warning"])
     if "optimum" in table.columns:
         display["optimum"] = table["optimum"].fillna("").astype(str)
         notes.append(MODEL_RATIO_NOTE)

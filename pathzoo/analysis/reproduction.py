@@ -50,6 +50,7 @@ from pathzoo.core.errors import InvalidExperimentError, InvalidParameterError, P
 __all__ = [
     "PAPERS",
     "NOT_AVAILABLE",
+    "RIVAL_FAILED",
     "PaperDataError",
     "PaperPlanner",
     "PaperMetric",
@@ -61,6 +62,11 @@ __all__ = [
     "planner_status",
     "selected_scenarios",
     "build_experiments",
+    "planner_groups",
+    "paper_budget",
+    "experiment_name",
+    "label_runs",
+    "add_derived",
     "run_paper",
     "compare_paper",
     "format_reproduction",
@@ -301,9 +307,31 @@ def build_experiments(
     from pathzoo.core.budget import Budget
     from pathzoo.harness.experiment import Experiment
 
+    groups = planner_groups(paper, iterations)
+    n = seeds if seeds is not None else paper.runs
+    name = experiment_name(paper, n, iterations)
+    ids = list(selected_scenarios(paper, scenarios).values())
+    return [
+        Experiment.build(planners=specs, scenarios=[sid + variant for sid in ids], seeds=n,
+                         budget=Budget(**paper_budget(paper, iterations)), name=name + variant.replace("_", "."), db=db)
+        for variant, specs in sorted(groups.items())
+    ]
+
+
+def planner_groups(paper: PaperData, iterations: int | None = None,
+                   keys: Callable[[PaperPlanner], bool] = lambda p: True) -> dict[str, list[tuple[str, dict[str, Any]]]]:
+    """The available planners (of those ``keys`` accepts) as ``(id, params)`` per scenario variant.
+
+    ``iterations`` caps every planner's ``iterations`` parameter (see :func:`build_experiments`).
+
+    Raises
+    ------
+    InvalidExperimentError
+        When none of the paper's planners is available.
+    """
     groups: dict[str, list[tuple[str, dict[str, Any]]]] = {}
     for p in paper.planners:
-        if planner_status(p):
+        if planner_status(p) or not keys(p):
             continue
         params = dict(p.params)
         if iterations is not None and "iterations" in _param_names(p.id):
@@ -311,17 +339,20 @@ def build_experiments(
         groups.setdefault(p.variant, []).append((p.id, params))
     if not groups:
         raise InvalidExperimentError(f"paper '{paper.name}': none of its planners is available")
+    return groups
+
+
+def paper_budget(paper: PaperData, iterations: int | None = None) -> dict[str, Any]:
+    """The paper's budget as keyword arguments of :class:`~pathzoo.core.budget.Budget`, ``iterations`` replacing its count."""
     budget = dict(paper.budget)
     if iterations is not None:
         budget["iterations"] = iterations
-    n = seeds if seeds is not None else paper.runs
-    name = f"reproduce.{paper.name}.s{n}" + (f".i{iterations}" if iterations is not None else "")
-    ids = list(selected_scenarios(paper, scenarios).values())
-    return [
-        Experiment.build(planners=specs, scenarios=[sid + variant for sid in ids], seeds=n, budget=Budget(**budget),
-                         name=name + variant.replace("_", "."), db=db)
-        for variant, specs in sorted(groups.items())
-    ]
+    return budget
+
+
+def experiment_name(paper: PaperData, seeds: int, iterations: int | None = None) -> str:
+    """The name of a rerun's experiment: the paper, the seed count and any iteration override."""
+    return f"reproduce.{paper.name}.s{seeds}" + (f".i{iterations}" if iterations is not None else "")
 
 
 def _param_names(planner_id: str) -> set[str]:
@@ -330,7 +361,7 @@ def _param_names(planner_id: str) -> set[str]:
     return set(info_of(planner_id, {}).declared)
 
 
-def _label_runs(paper: PaperData, runs: pd.DataFrame, experiment: Any) -> pd.DataFrame:
+def label_runs(paper: PaperData, runs: pd.DataFrame, experiment: Any) -> pd.DataFrame:
     """Runs labelled by the paper's planner key (one configuration per key), variants under the paper's scenario id."""
     by_spec = {}
     for spec in experiment.planners:
@@ -347,7 +378,7 @@ def _label_runs(paper: PaperData, runs: pd.DataFrame, experiment: Any) -> pd.Dat
     return out
 
 
-def _add_derived(paper: PaperData, runs: pd.DataFrame, db: str | Path, experiment: str) -> pd.DataFrame:
+def add_derived(paper: PaperData, runs: pd.DataFrame, db: str | Path, experiment: str) -> pd.DataFrame:
     """Columns for the paper's derived metrics, computed from each stored path."""
     from pathzoo.plugins.lookup import load_scenario
     from pathzoo.harness.store import read_path
@@ -388,7 +419,7 @@ def run_paper(
     frames, names = [], []
     for exp in build_experiments(paper, seeds=seeds, iterations=iterations, scenarios=scenarios, db=db):
         runs = run_experiment(exp, db=db, jobs=jobs, executor=executor, progress=progress)
-        frames.append(_label_runs(paper, _add_derived(paper, runs, db, exp.name), exp))
+        frames.append(label_runs(paper, add_derived(paper, runs, db, exp.name), exp))
         names.append(exp.name)
     return pd.concat(frames, ignore_index=True), names
 
@@ -403,8 +434,10 @@ class Reproduction:
     table : DataFrame
         One row per (metric, scenario, planner): the paper's ``paper_value,
         paper_sd, paper_mark`` and our ``median, sd, mean, success_rate,
-        n_runs, mark`` (in the paper's unit), ``status`` (empty, or why the
-        planner did not run) and ``verdict`` (rivals only).
+        n_runs, mark`` (in the paper's unit), ``ref_success_rate`` (the
+        reference's on that scenario), ``status`` (empty, or why the planner
+        did not run) and ``verdict`` (rivals only; :data:`RIVAL_FAILED` for a
+        claim that holds only because the rival failed most runs).
     wtl : DataFrame
         Per (metric, rival): the paper's and our wins/ties/losses of the
         reference over the scenarios.
@@ -442,6 +475,24 @@ def _verdict(paper_mark: str, ours: str, status: str, has_runs: bool) -> str:
     if paper_mark == "≈":
         return "differs"
     return "not shown" if ours == "≈" else "reversed"
+
+
+RIVAL_FAILED = "holds: only because the rival failed"
+"""Verdict of a claim that holds while the rival solved at most half of its runs and fewer than the reference:
+its failures rank worst, so the claim says nothing about the paths it finds."""
+
+
+def _with_reference_success(table: pd.DataFrame, reference: str) -> pd.DataFrame:
+    """Add ``ref_success_rate`` (the reference's on the same metric and scenario); mark a "holds" resting on failures."""
+    if table.empty:
+        return table.assign(ref_success_rate=pd.Series(dtype=float))
+    ref = table[table["planner"] == reference].set_index(["metric", "scenario"])["success_rate"]
+    keys = list(zip(table["metric"], table["scenario"]))
+    table["ref_success_rate"] = [float(ref.get(k, math.nan)) for k in keys]
+    rival_failed = ((table["verdict"] == "holds") & (table["paper_mark"] == "↑")
+                    & (table["success_rate"] <= 0.5) & (table["success_rate"] < table["ref_success_rate"]))
+    table.loc[rival_failed, "verdict"] = RIVAL_FAILED
+    return table
 
 
 def compare_paper(paper: PaperData, runs: pd.DataFrame, *, alpha: float = 0.05) -> Reproduction:
@@ -489,7 +540,7 @@ def compare_paper(paper: PaperData, runs: pd.DataFrame, *, alpha: float = 0.05) 
                     rec["status"] = status = "not run: the planner does not handle this scenario kind"
                 rec["verdict"] = "" if is_ref else _verdict(paper_mark, rec["mark"], status, rec["n_runs"] > 0)
                 rows.append(rec)
-    table = pd.DataFrame(rows)
+    table = _with_reference_success(pd.DataFrame(rows), paper.reference)
     wtl_rows = []
     for (metric, planner), g in table[table["planner"] != paper.reference].groupby(["metric", "planner"], sort=False):
         count = {k: (g["paper_mark"] == k).sum() for k in _PAPER_MARKS}
@@ -506,6 +557,10 @@ def compare_paper(paper: PaperData, runs: pd.DataFrame, *, alpha: float = 0.05) 
 
 def _cell(value: float, digits: int = 5) -> str:
     return format_number(value, digits) if np.isfinite(value) else "–"
+
+
+def _percent(value: float) -> str:
+    return format_percent(value) if np.isfinite(value) else "–"
 
 
 def _planner_cell(p: PaperPlanner) -> str:
@@ -546,6 +601,10 @@ def format_reproduction(rep: Reproduction, fmt: str = "text") -> str:
         display["success"] = [("" if b else format_percent(v) if np.isfinite(v) else "–")
                               for b, v in zip(blank, t["success_rate"])]
         display["runs"] = [("" if b else str(n)) for b, n in zip(blank, t["n_runs"])]
+        display["success ref : this"] = [
+            "" if b or not v else f"{_percent(r)} : {_percent(s)}"
+            for b, v, r, s in zip(blank, t["verdict"], t["ref_success_rate"], t["success_rate"])
+        ]
         display["verdict"] = t["verdict"].to_numpy()
         parts.append(render_table(display, fmt, title=f"{paper.table}, {m.label}",
                                   left=("scenario", "planner", "ours median", "verdict")))
@@ -561,7 +620,10 @@ def format_reproduction(rep: Reproduction, fmt: str = "text") -> str:
         "are the printed ones, else from its numbers; ours from two-sided rank tests "
         f"(Holm-corrected per scenario and metric, alpha={rep.alpha:g}; failed runs rank worst).",
         "Verdict per claim: holds (same mark), not shown (we find no significant difference), reversed, "
-        "differs (the paper has ≈), not testable (rival not reconstructed or not run).",
+        "differs (the paper has ≈), not testable (rival not reconstructed or not run). "
+        f"'{RIVAL_FAILED}': the rival solved at most half of its runs and fewer than {ref_label}; failed runs "
+        "rank worst, so the claim says nothing about the paths the rival finds. "
+        f"success ref : this: the success rates of {ref_label} and of the row's planner beside every verdict.",
         f"Claim: {paper.claim}",
         *paper.notes,
     ]

@@ -212,3 +212,38 @@ def test_numbers_just_below_a_power_of_ten_keep_the_same_width():
     assert format_number(0.99999999) == format_number(1.0) == "1.0000"
     assert format_number(9.9999999) == "10.000"
     assert format_number(0.999994) == "0.99999"
+
+
+def test_rows_carry_path_model_cpu_and_evaluations_in_every_format():
+    runs = make_runs({"s": {"exact.astar": [2.0, 2.0], "exact.thetastar": [1.9, 1.9]}})
+    runs.loc[runs["planner"] == "exact.thetastar", "cpu_time_s"] = [0.5, 0.7]
+    runs.loc[runs["planner"] == "exact.thetastar", "evaluations"] = [30, 50]
+    lb = leaderboard(runs)
+    rows = {r["config"]: r for r in json.loads(format_leaderboard(lb, "json"))["rows"]}
+    assert rows["exact.thetastar"]["path_model"] == "anyangle" and rows["exact.astar"]["path_model"] == "grid"
+    assert rows["exact.thetastar"]["median_cpu_s"] == pytest.approx(0.6)
+    assert rows["exact.thetastar"]["median_evaluations"] == 40 and rows["exact.astar"]["median_evaluations"] == 100
+    csv = format_leaderboard(lb, "csv").splitlines()[0].split(",")
+    assert {"path_model", "median_cpu_s", "median_evaluations"} <= set(csv)
+    text = format_leaderboard(lb, "text")
+    assert "anyangle" in text and "CPU s" in text and "evals" in text
+
+
+def test_planners_of_different_path_models_are_ranked_within_their_model():
+    runs = make_runs({"s": {"exact.astar": [2.0, 2.0], "exact.dijkstra": [2.5, 2.5], "exact.thetastar": [1.9, 1.9]}})
+    lb = leaderboard(runs).set_index("config")
+    assert lb.loc["exact.thetastar", "rank"] == 1 and lb.loc["exact.astar", "rank"] == 1
+    assert lb.loc["exact.dijkstra", "rank"] == 2
+    assert "Ranked within each path model" in format_leaderboard(leaderboard(runs), "text")
+    one_model = make_runs({"s": {"exact.astar": [2.0, 2.0], "exact.dijkstra": [2.5, 2.5]}})
+    assert "Ranked within each path model" not in format_leaderboard(leaderboard(one_model), "text")
+
+
+def test_a_cpu_spread_over_ten_times_is_one_warning_line():
+    runs = make_runs({"s": {"a": [1.0, 1.0], "b": [2.0, 2.0]}})
+    runs.loc[runs["planner"] == "b", "cpu_time_s"] = 0.099  # 9.9x the 0.01 s of "a"
+    assert not leaderboard(runs).attrs["cpu_warning"]
+    runs.loc[runs["planner"] == "b", "cpu_time_s"] = 0.2  # 20x
+    lb = leaderboard(runs)
+    warnings = [line for line in format_leaderboard(lb, "text").splitlines() if line.startswith("Warning:")]
+    assert len(warnings) == 1 and "20x" in warnings[0] and "unequal work" in warnings[0]

@@ -74,8 +74,9 @@ def test_run_stores_validated_runs_and_prints_the_leaderboard(experiment, tmp_pa
     medians = runs.groupby("planner")["length"].median().sort_values()
     assert medians["exact.thetastar"] < medians["exact.astar"]  # any-angle paths are shorter here
     assert [r[2] for r in rows] == list(medians.index)
-    assert [r[1] for r in rows] == ["1", "2"]
-    assert [float(r[5]) for r in rows] == pytest.approx(list(medians), rel=1e-4)
+    assert [r[3] for r in rows] == ["anyangle", "grid"]  # one section per path model, each ranked on its own
+    assert [r[1] for r in rows] == ["1", "1"]
+    assert [float(r[6]) for r in rows] == pytest.approx(list(medians), rel=1e-4)
     # the same table comes back from the database
     assert run_cli(capsys, "leaderboard", str(db)) == out
 

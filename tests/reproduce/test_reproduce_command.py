@@ -8,6 +8,7 @@ import pytest
 
 from pathzoo.analysis.reproduction import (
     NOT_AVAILABLE,
+    RIVAL_FAILED,
     compare_paper,
     format_reproduction,
     load_paper,
@@ -120,6 +121,23 @@ def test_verdicts_follow_the_marks():
         assert t.loc["flaco", "verdict"] == "not testable: rival not reconstructed"
     assert t.loc["coa", "median"] == pytest.approx(np.median(base + 10.0))
     assert t.loc["fgdaco", "verdict"] == ""  # the reference makes no claim about itself
+
+
+@pytest.mark.slow
+def test_a_claim_resting_on_the_rivals_failures_is_marked_and_success_rates_are_shown():
+    paper = load_paper("fgdaco")
+    base = np.linspace(126.0, 127.0, 8)
+    runs = _runs({"fgdaco": list(base), "coa": list(base + 10.0), "fuzzy_ga": list(base - 20.0)})
+    failed = (runs["planner"] == "fuzzy_ga") & (runs["seed_index"] >= 1)  # solves 1 run of 8, the shortest path
+    runs.loc[failed, "status"] = "failed"
+    runs.loc[failed, "valid"] = False
+    rep = compare_paper(paper, runs)
+    t = rep.table[rep.table["metric"] == "length"].set_index("planner")
+    assert t.loc["coa", "verdict"] == "holds" and t.loc["fuzzy_ga", "verdict"] == RIVAL_FAILED
+    assert t.loc["fuzzy_ga", "ref_success_rate"] == 1.0 and t.loc["fuzzy_ga", "success_rate"] == 1 / 8
+    text = format_reproduction(rep)
+    assert "100% : 12%" in text or "100% : 13%" in text
+    assert "100% : 100%" in text and RIVAL_FAILED in text
 
 
 @pytest.mark.slow
