@@ -68,23 +68,31 @@ def _run(args: argparse.Namespace) -> int:
 
     paper = load_paper(args.paper)
     db = args.db or DEFAULT_DB
+    options = dict(db=db, seeds=args.seeds, iterations=args.iterations, scenarios=args.scenarios, jobs=args.jobs,
+                   executor=args.executor, progress=not args.no_progress)
+    equal = ""
     try:
-        runs, experiments = run_paper(paper, db=db, seeds=args.seeds, iterations=args.iterations,
-                                     scenarios=args.scenarios, jobs=args.jobs, executor=args.executor,
-                                     progress=not args.no_progress)
+        if args.equal == "evaluations":
+            from pathzoo.analysis.equal_budget import equal_sentence, run_paper_equal_evaluations
+
+            runs, experiments, evaluations = run_paper_equal_evaluations(paper, **options)
+            equal = " " + equal_sentence(paper, evaluations)
+        else:
+            runs, experiments = run_paper(paper, **options)
     except KeyboardInterrupt:
         raise CommandError(
             f"interrupted; finished runs are stored in {db}, run the same command again to resume") from None
     print(f"experiments {', '.join(experiments)}: {len(runs)} runs stored in {db}", file=sys.stderr)
     rep = compare_paper(paper, runs, alpha=args.alpha)
     print(f"{paper.title}: {paper.table}, {rep.seeds} run(s) per planner and scenario (the paper: {paper.runs}). "
-          + scope_sentence(paper, rep.seeds, args.iterations, args.scenarios) + "\n")
+          + scope_sentence(paper, rep.seeds, args.iterations, args.scenarios) + equal + "\n")
     sys.stdout.write(format_reproduction(rep, "text"))
     if args.markdown:
         command = " ".join(["pathzoo reproduce", args.paper]
                            + ([f"--seeds {args.seeds}"] if args.seeds else [])
                            + ([f"--iterations {args.iterations}"] if args.iterations else [])
-                           + ([f"--scenarios '{args.scenarios}'"] if args.scenarios else []))
+                           + ([f"--scenarios '{args.scenarios}'"] if args.scenarios else [])
+                           + ([f"--equal {args.equal}"] if args.equal else []))
         replace_section(Path(args.markdown), args.paper,
                         markdown_section(rep, command, args.iterations, args.scenarios))
         print(f"section '{args.paper}' written to {args.markdown}", file=sys.stderr)
@@ -114,6 +122,9 @@ def add_parser(subparsers: Any) -> None:
     parser.add_argument("--iterations", type=positive_int, metavar="N",
                         help="cap every planner's iterations (for quick checks; not the paper's setting)")
     parser.add_argument("--scenarios", metavar="GLOB", help="only the paper's scenarios whose id matches GLOB")
+    parser.add_argument("--equal", choices=("evaluations",),
+                        help="give every rival the proposed method's median evaluation count on each scenario as "
+                        "its only count budget (docs/reproduction.md)")
     parser.add_argument("--db", metavar="FILE", help=f"SQLite results file (default: {DEFAULT_DB})")
     parser.add_argument("--jobs", type=positive_int, metavar="N", help="worker processes (default: number of CPUs)")
     parser.add_argument("--executor", choices=EXECUTORS, default="process",

@@ -53,3 +53,9 @@ def test_page_names_only_registered_planners(page: Path) -> None:
     registered = set(get_registry().table("planners"))
     unknown = named_ids(page.read_text(encoding="utf-8"), _families()) - registered - NOT_RECONSTRUCTED - EXAMPLES
     assert not unknown, f"{page.relative_to(REPO_ROOT)} names unregistered planner id(s): {sorted(unknown)}"
+
+
+@pytest.mark.parametrize("page", sorted((REPO_ROOT / "docs" / "planners").glob("*.md")), ids=lambda p: p.stem)
+def test_every_planner_page_says_what_one_evaluation_is(page: Path) -> None:
+    text = page.read_text(encoding="utf-8")
+    assert "\n## One evaluation\n" in text, f"{page.relative_to(REPO_ROOT)} has no '## One evaluation' section"
