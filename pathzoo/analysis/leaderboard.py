@@ -41,18 +41,22 @@ IQR and SD columns describe successful runs only.
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pandas as pd
 
 from pathzoo.analysis.formatting import format_number, format_percent, render_table
-from pathzoo.analysis.frame import Direction, with_config
+from pathzoo.analysis.frame import Direction, config_labels, with_config
 from pathzoo.analysis.hybrid import HYBRID_MARK, HYBRID_NOTE, hybrid_planners
-from pathzoo.analysis.path_models import MODEL_COLUMN, MODEL_RATIO, REFERENCE_COLUMN, path_models, with_model_ratio
+from pathzoo.analysis.path_models import (MODEL_COLUMN, MODEL_RATIO, REFERENCE_COLUMN, SOURCE_COLUMNS, path_models,
+                                          with_model_ratio)
 from pathzoo.analysis.summary import summarize
 from pathzoo.core.budget import CLOCK_STOPS
+from pathzoo.core.errors import InvalidParameterError
 
-__all__ = ["leaderboard", "format_leaderboard", "clock_stops", "work_done", "cpu_spread_warning", "power_note",
-           "RANKING_RULE", "MODEL_RATIO_NOTE", "PATH_MODEL_NOTE", "CLOCK_MARK", "CLOCK_NOTE", "CPU_SPREAD_LIMIT"]
+__all__ = ["leaderboard", "leaderboard_from_db", "format_leaderboard", "clock_stops", "work_done", "cpu_spread_warning",
+           "power_note", "RANKING_RULE", "MODEL_RATIO_NOTE", "PATH_MODEL_NOTE", "CLOCK_MARK", "CLOCK_NOTE", "CPU_SPREAD_LIMIT"]
 
 RANKING_RULE = (
     "Rank within each scenario: penalized median (failed runs count as worst), "
@@ -245,6 +249,77 @@ def cpu_spread_warning(table: pd.DataFrame) -> str:
     return (f"Warning: the ranked rows' median CPU differs up to {ratio[i]:.0f}x (on {worst}: "
             f"{low_text} to {format_number(high)} s): they did unequal work; give every planner one count "
             "budget to compare equal work (docs/timing.md).")
+
+
+def leaderboard_from_db(
+    db: str | Path,
+    experiment: str,
+    metric: str = "length",
+    *,
+    direction: Direction | None = None,
+    reference: str | None = None,
+    alpha: float = 0.05,
+    paired: bool | str = "auto",
+    chunk_runs: int = 20_000,
+) -> pd.DataFrame:
+    """:func:`leaderboard` of a stored experiment, in memory that does not grow with the number of runs.
+
+    Every statistic of the leaderboard is within one scenario, so the runs
+    are read a chunk of whole scenarios at a time
+    (:func:`pathzoo.harness.store_scan.scenario_chunks`, only the columns
+    the ranking needs) and ranked chunk by chunk. Configurations are named
+    from the whole experiment first (:func:`~pathzoo.analysis.frame.config_labels`
+    over its distinct configurations), so the names, and the table, equal
+    ``leaderboard(read_runs(db, experiment), ...)``.
+
+    Parameters
+    ----------
+    db : path
+        Results database.
+    experiment : str
+        Experiment name.
+    metric, direction, reference, alpha, paired
+        As for :func:`leaderboard`.
+    chunk_runs : int
+        About this many runs are in memory at once (a scenario is never split).
+
+    Returns
+    -------
+    DataFrame
+        The table of :func:`leaderboard`.
+
+    Raises
+    ------
+    ResultsDatabaseError
+        Missing or foreign file, or unknown experiment.
+    InvalidParameterError
+        ``reference`` is not a configuration of the experiment.
+    """
+    from pathzoo.harness.store_scan import CHUNK_COLUMNS, configurations, scenario_chunks
+
+    configs = configurations(db, experiment)
+    names = config_labels(configs)
+    name_of = dict(zip(zip(configs["planner"], configs["params_hash"], configs["label"]), names))
+    if reference is not None and reference not in set(names):
+        raise InvalidParameterError(
+            f"reference '{reference}' is not among the planners: {', '.join(sorted(set(names)))}")
+    needed = [metric] if metric != MODEL_RATIO else list(SOURCE_COLUMNS)
+    parts = []
+    for chunk in scenario_chunks(db, experiment, needed, chunk_runs=chunk_runs):
+        chunk["label"] = [name_of[k] for k in zip(chunk["planner"], chunk["params_hash"], chunk["label"])]
+        here = reference if reference in set(chunk["label"]) else None  # scenarios without it: no test, as in memory
+        parts.append(leaderboard(chunk, metric, direction=direction, reference=here, alpha=alpha, paired=paired))
+    if not parts:
+        empty = pd.DataFrame(columns=[*CHUNK_COLUMNS, *needed])
+        parts.append(leaderboard(empty, metric, direction=direction, alpha=alpha, paired=paired))
+    attrs = dict(parts[0].attrs)
+    table = pd.concat(parts, ignore_index=True)
+    if "runs_needed" in table.columns:
+        table["runs_needed"] = table["runs_needed"].astype("Int64")
+    order = ["scenario", MODEL_COLUMN, "rank", "config"] if attrs["sectioned"] else ["scenario", "rank", "config"]
+    table = table.sort_values(order, kind="stable").reset_index(drop=True)
+    table.attrs.update(attrs, reference=reference, cpu_warning=cpu_spread_warning(table))
+    return table
 
 
 def _references_used(runs: pd.DataFrame) -> pd.DataFrame:

@@ -24,7 +24,7 @@ from typing import Iterable
 import numpy as np
 import pandas as pd
 
-__all__ = ["MODEL_RATIO", "REFERENCE_COLUMN", "MODEL_COLUMN", "REFERENCES", "path_models", "with_model_ratio"]
+__all__ = ["MODEL_RATIO", "REFERENCE_COLUMN", "MODEL_COLUMN", "REFERENCES", "SOURCE_COLUMNS", "path_models", "with_model_ratio"]
 
 MODEL_RATIO = "model_ratio"
 """Column: the ratio to the reference of the planner's own path model (1 = optimal in that model)."""
@@ -41,6 +41,9 @@ REFERENCES: dict[str, tuple[str, str]] = {
     "timed": ("arrival_ratio", "earliest arrival (SIPP)"),
 }
 """Path model -> (metric column, name of its reference) on static scenarios; ``timed`` is used on dynamic ones."""
+
+SOURCE_COLUMNS: tuple[str, ...] = (*dict.fromkeys(c for c, _ in REFERENCES.values()), "length_ratio_anyangle_bound")
+"""The metric columns :func:`with_model_ratio` reads (a reader of a few columns asks for these)."""
 
 _DYNAMIC_NAMES = {
     "grid": "earliest arrival (SIPP)",

@@ -19,9 +19,7 @@ opens offline in any browser. Sections:
 
 from __future__ import annotations
 
-import base64
 import datetime as _dt
-from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Callable, Mapping, Sequence
 
@@ -32,6 +30,7 @@ from pathzoo.analysis.formatting import format_number, render_table
 from pathzoo.analysis.frame import metric_info, with_config
 from pathzoo.analysis.leaderboard import format_leaderboard, leaderboard
 from pathzoo.analysis.path_models import MODEL_RATIO, with_model_ratio
+from pathzoo.analysis.report_page import VECTOR_FORMATS, ReportPage
 from pathzoo.core.budget import CLOCK_STOPS
 from pathzoo.core.errors import InvalidParameterError, PathzooError
 from pathzoo.core.scenario import Scenario
@@ -42,102 +41,11 @@ __all__ = ["write_report", "render_report", "ReportPage", "BOX_METRICS", "TABLE_
 BOX_METRICS: tuple[str, ...] = ("length_ratio", "planning_time", "energy", "turns")
 """Metrics shown as box plots besides the ranked metric (when present and not all NaN)."""
 
-VECTOR_FORMATS: tuple[str, ...] = ("svg", "pdf")
-"""Formats every report figure is also written in, to ``figures/`` beside ``index.html``."""
-
 TABLE_METRICS: tuple[str, ...] = (
     "length", "length_ratio", "length_ratio_anyangle", "planning_time", "cpu_time", "travel_time", "energy", "turns",
     "turning_angle", "smoothness", "clearance_min", "clearance_mean",
 )  # fmt: skip
 """Metrics summarised (median and IQR) in the report's metric tables."""
-
-@dataclass
-class ReportPage:
-    """An HTML page being assembled as a list of blocks, rendered by the ``report.html.j2`` template.
-
-    Blocks are dicts with a ``kind`` (``heading``, ``note``, ``meta``, ``nav``,
-    ``table``, ``figure``, ``grid``, ``details``); ``grid`` and ``details``
-    hold ``children``. Every text is escaped by the template; only tables
-    rendered by :func:`~pathzoo.analysis.formatting.render_table` (themselves
-    from an autoescaping template) are inserted as HTML.
-    """
-
-    embed: bool = True
-    blocks: list[dict[str, Any]] = field(default_factory=list)
-    files: dict[str, bytes] = field(default_factory=dict)
-    n_figures: int = 0
-    _open: list[list[dict[str, Any]]] = field(default_factory=list, repr=False)
-
-    def _add(self, kind: str, **fields: Any) -> dict[str, Any]:
-        block = dict(kind=kind, **fields)
-        (self._open[-1] if self._open else self.blocks).append(block)
-        return block
-
-    def heading(self, level: int, text: str, anchor: str | None = None) -> None:
-        """Add ``<hN>`` (with an id for the navigation bar)."""
-        self._add("heading", level=level, text=text, anchor=anchor)
-
-    def note(self, text: str, cls: str = "pz-note") -> None:
-        """Add a paragraph (``cls="warn"`` for a warning box)."""
-        self._add("note", text=text, cls=cls)
-
-    def meta(self, lines: Mapping[str, str]) -> None:
-        """Add the header lines (label to value)."""
-        self._add("meta", lines=list(lines.items()))
-
-    def nav(self, links: Sequence[tuple[str, str]]) -> None:
-        """Add the navigation bar: ``(anchor, text)`` pairs."""
-        self._add("nav", links=list(links))
-
-    def table(self, rendered_html: str) -> None:
-        """Add a table from :func:`~pathzoo.analysis.formatting.render_table` (``fmt="html"``)."""
-        from markupsafe import Markup
-
-        self._add("table", html=Markup(rendered_html))
-
-    def begin(self, kind: str, summary: str = "") -> None:
-        """Open a ``grid`` (figures side by side) or a ``details`` block (collapsed, with ``summary``)."""
-        self._open.append(self._add(kind, summary=summary, children=[])["children"])
-
-    def end(self) -> None:
-        """Close the innermost open ``grid`` or ``details`` block."""
-        self._open.pop()
-
-    def figure(self, ax_or_fig: Any, name: str, caption: str) -> None:
-        """Render a matplotlib Axes or Figure and add it with a caption.
-
-        The page shows a PNG (embedded, or in ``figures/``); the same figure
-        is also kept as SVG and PDF (:data:`VECTOR_FORMATS`) for
-        ``figures/``, linked from the caption, so it can go into a paper.
-        """
-        from pathzoo.plotting.figure import figure_bytes
-
-        fig = getattr(ax_or_fig, "figure", ax_or_fig)
-        stem = f"{self.n_figures:02d}-{_slug(name)}"
-        self.n_figures += 1
-        data = figure_bytes(fig, "png")
-        if self.embed:
-            src = "data:image/png;base64," + base64.b64encode(data).decode("ascii")
-        else:
-            self.files[f"{stem}.png"] = data
-            src = f"figures/{stem}.png"
-        links = []
-        for fmt in VECTOR_FORMATS:
-            self.files[f"{stem}.{fmt}"] = figure_bytes(fig, fmt)
-            links.append((fmt.upper(), f"figures/{stem}.{fmt}"))
-        self._add("figure", src=src, caption=caption, files=links)
-
-    def html(self, title: str) -> str:
-        """The complete document."""
-        from pathzoo.analysis.templates import environment
-
-        return environment().get_template("report.html.j2").render(title=title, blocks=self.blocks)
-
-
-def _slug(text: str) -> str:
-    keep = "".join(c if c.isalnum() or c in "-_." else "-" for c in text)
-    return keep.strip("-")[:60] or "figure"
-
 
 def _present(runs: pd.DataFrame, metric: str) -> bool:
     return metric in runs.columns and bool(pd.to_numeric(runs[metric], errors="coerce").notna().any())
@@ -195,6 +103,7 @@ def render_report(
     meta: Mapping[str, str] | None = None,
     embed: bool = True,
     max_scenarios: int = 12,
+    detail: Sequence[str] = (),
 ) -> ReportPage:
     """Assemble the report of a runs frame (no database needed).
 
@@ -223,7 +132,12 @@ def render_report(
     embed : bool
         Embed figures as data URIs (else they go to ``ReportPage.files``).
     max_scenarios : int
-        At most this many scenarios get per-scenario figures.
+        Up to this many scenarios, every scenario gets its own figures (box
+        plot panels, map, convergence); with more, the box plots summarise
+        across scenarios (:func:`~pathzoo.plotting.boxplots.plot_relative_medians`)
+        and only the scenarios of ``detail`` get their own.
+    detail : sequence of str
+        Scenarios to draw on their own figures whatever their number.
 
     Returns
     -------
@@ -233,7 +147,7 @@ def render_report(
     from pathzoo.analysis.comparison_table import format_paper_table, paper_table
     from pathzoo.analysis.ranks import friedman
     from pathzoo.analysis.summary import median_runs
-    from pathzoo.plotting.boxplots import plot_metric_panels
+    from pathzoo.plotting.boxplots import plot_metric_panels, plot_relative_medians
     from pathzoo.plotting.cd_diagram import plot_cd_diagram
     from pathzoo.plotting.convergence import plot_convergence
     from pathzoo.plotting.ecdf import plot_time_to_target_ecdf
@@ -245,6 +159,10 @@ def render_report(
     if df.empty:
         raise InvalidParameterError("runs is empty: nothing to report")
     scenario_ids = sorted(df["scenario"].unique())
+    unknown = [s for s in detail if s not in set(scenario_ids)]
+    if unknown:
+        raise InvalidParameterError(f"scenario '{unknown[0]}' has no runs in this experiment")
+    shown_ids = _detailed(scenario_ids, detail, max_scenarios)
     configs = sorted(df["config"].unique())
     has_history = history is not None and len(history) > 0
     palette = planner_colors(configs)
@@ -327,16 +245,25 @@ def render_report(
 
     page.heading(2, "Distributions", "boxes")
     box_metrics = [m for m in dict.fromkeys((metric, *BOX_METRICS)) if _present(runs, m)]
+    summarised = len(scenario_ids) > max_scenarios
     for m in box_metrics:
         mi = metric_info(m)
-        page.figure(plot_metric_panels(runs, m, palette=palette), f"box-{m}",
-                    f"{mi.label} over successful runs, one panel (and axis) per scenario; red numbers are success "
-                    "rates below 100%.")
+        if summarised:
+            page.figure(plot_relative_medians(runs, m, palette=palette), f"box-{m}",
+                        f"Across {len(scenario_ids)} scenarios: each planner's median {mi.label} on a scenario over "
+                        "the best planner's median there (one value per scenario); red numbers are the share of "
+                        "scenarios with a successful run, when below 100%.")
+        if shown_ids:
+            page.figure(plot_metric_panels(runs, m, scenarios=shown_ids, palette=palette),
+                        f"box-{m}" + ("-named" if summarised else ""),
+                        f"{mi.label} over successful runs, one panel (and axis) per scenario; red numbers are "
+                        "success rates below 100%.")
 
     page.heading(2, "Per scenario", "scenarios")
-    shown_ids = scenario_ids[:max_scenarios]
     if len(scenario_ids) > max_scenarios:
-        page.note(f"Figures for the first {max_scenarios} of {len(scenario_ids)} scenarios.")
+        page.note(f"{len(scenario_ids)} scenarios: figures of their own for "
+                  + (", ".join(shown_ids) if shown_ids else "none")
+                  + " (name scenarios with --scenario on the command line, detail= in Python).")
     typical = median_runs(runs, metric) if path_of is not None else None
     missing = [s for s in shown_ids if not scenarios or s not in scenarios]
     if path_of is not None and missing:
@@ -348,6 +275,7 @@ def render_report(
         if scenarios and sid in scenarios and typical is not None:
             picks = typical[typical["scenario"] == sid]
             paths, colors = {}, {}
+            row: Any  # a DataFrame row: its fields are whatever the columns hold
             for row in picks.itertuples(index=False):
                 p = path_of(row.run_key)  # type: ignore[misc]
                 if p is not None and len(p):
@@ -401,12 +329,17 @@ def render_report(
     return page
 
 
-def _load_experiment_scenarios(config: Mapping[str, Any]) -> dict[str, Scenario]:
+def _detailed(scenario_ids: Sequence[str], detail: Sequence[str], max_scenarios: int) -> list[str]:
+    """The scenarios drawn on figures of their own: all up to ``max_scenarios``, else those of ``detail``."""
+    return list(scenario_ids) if len(scenario_ids) <= max_scenarios else sorted(set(detail))
+
+
+def _load_experiment_scenarios(config: Mapping[str, Any], wanted: set[str]) -> dict[str, Scenario]:
     from pathzoo.harness.specs import ScenarioSpec
 
     out: dict[str, Scenario] = {}
     for desc in config.get("scenarios", []):
-        if desc.get("source") not in ("registry", "file"):
+        if desc.get("source") not in ("registry", "file") or desc["id"] not in wanted:
             continue
         try:
             out[desc["id"]] = ScenarioSpec(desc["id"], desc.get("kind", ""), desc["source"], desc["location"]).load()
@@ -426,6 +359,7 @@ def write_report(
     scenarios: Sequence[Scenario] | Mapping[str, Scenario] | None = None,
     embed: bool = True,
     max_scenarios: int = 12,
+    detail: Sequence[str] = (),
 ) -> Path:
     """Write ``out_dir/index.html``, the report of one stored experiment.
 
@@ -451,8 +385,8 @@ def write_report(
     embed : bool
         Embed the PNG figures in the HTML (default) or write them to
         ``out_dir/figures``; the SVG and PDF copies always go there.
-    max_scenarios : int
-        At most this many scenarios get per-scenario figures.
+    max_scenarios, detail
+        As for :func:`render_report`: which scenarios get figures of their own.
 
     Returns
     -------
@@ -469,7 +403,8 @@ def write_report(
     from pathzoo.harness.store import read_path
 
     exp = load_experiment(db, experiment)
-    known = _load_experiment_scenarios(exp.config)
+    known = _load_experiment_scenarios(exp.config, set(_detailed(sorted(exp.runs["scenario"].unique()), detail,
+                                                                 max_scenarios)))
     if scenarios is not None:
         known.update(scenarios if isinstance(scenarios, Mapping) else {s.id: s for s in scenarios})
     meta = {"database": str(Path(db).resolve()), "experiment": exp.name, "budget per run": exp.budget_text,
@@ -477,7 +412,7 @@ def write_report(
     page = render_report(
         exp.runs, exp.history, metric=metric, reference=reference, alpha=alpha, scenarios=known,
         path_of=lambda key: read_path(db, exp.name, key)[0], title=f"pathzoo report: {exp.name}", meta=meta,
-        embed=embed, max_scenarios=max_scenarios,
+        embed=embed, max_scenarios=max_scenarios, detail=detail,
     )
     add_tuning_section(page, db, exp.name, exp.runs, metric=metric, alpha=alpha)  # only for 'pathzoo tune' results
     out = Path(out_dir)

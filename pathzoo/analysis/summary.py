@@ -9,7 +9,7 @@ import pandas as pd
 
 from pathzoo.analysis.frame import Direction, loss_values, metric_info, with_config
 
-__all__ = ["summarize", "summarize_metrics", "median_runs", "SUMMARY_COLUMNS"]
+__all__ = ["summarize", "summarize_metrics", "median_runs", "relative_medians", "SUMMARY_COLUMNS"]
 
 SUMMARY_COLUMNS: tuple[str, ...] = (
     "scenario",
@@ -143,3 +143,27 @@ def median_runs(runs: pd.DataFrame, metric: str = "length") -> pd.DataFrame:
     good = good.sort_values(["scenario", "config", "_gap", "seed_index"], kind="stable")
     best = good.groupby(["scenario", "config"], sort=True).head(1)
     return best[["scenario", "config", "run_key", "seed_index", metric]].reset_index(drop=True)
+
+
+def relative_medians(runs: pd.DataFrame, metric: str = "length") -> pd.DataFrame:
+    """Each configuration's median on each scenario over the best configuration's median there.
+
+    The median is over successful runs (:func:`summarize`); the best is the
+    lowest median of a ``min`` metric, the highest of a ``max`` one, so the
+    best configuration of a scenario has ratio 1 and scales of different
+    maps do not mix. The ratio is NaN where the configuration has no
+    successful run or the best median is not positive.
+
+    Returns
+    -------
+    DataFrame
+        ``scenario, config, median, ratio``; ``attrs["metric"]`` as in :func:`summarize`.
+    """
+    table = summarize(runs, metric)
+    info = table.attrs["metric"]
+    median = table["median"].astype(float)
+    best = median.groupby(table["scenario"]).transform("min" if info.direction == "min" else "max")
+    out = pd.DataFrame({"scenario": table["scenario"], "config": table["config"], "median": median,
+                        "ratio": median / best.where(best > 0)})
+    out.attrs["metric"] = info
+    return out

@@ -8,12 +8,15 @@ from __future__ import annotations
 
 import hashlib
 import json
-from typing import Any, Mapping, Sequence
+from typing import TYPE_CHECKING, Any, Iterator, Mapping, Sequence
 
 import numpy as np
 import pandas as pd
 
-__all__ = ["RUN_FRAME_COLUMNS", "make_runs", "random_runs", "random_history"]
+if TYPE_CHECKING:
+    from pathzoo.core.results import RunRecord
+
+__all__ = ["RUN_FRAME_COLUMNS", "make_runs", "random_runs", "random_history", "random_records"]
 
 RUN_FRAME_COLUMNS: tuple[str, ...] = (
     "run_key", "experiment", "planner", "planner_version", "params_hash", "params", "scenario",
@@ -145,3 +148,53 @@ def random_history(runs: pd.DataFrame, *, n_points: int = 30, seed: int = 0) -> 
         )
     cols = ["run_key", "iteration", "evaluations", "best_cost", "time_s"]
     return pd.concat(parts, ignore_index=True)[cols] if parts else pd.DataFrame(columns=cols)
+
+
+def random_records(
+    n_scenarios: int,
+    n_seeds: int,
+    planners: Sequence[str] = ("aco.a", "aco.b", "exact.dijkstra"),
+    *,
+    experiment: str = "synthetic",
+    seed: int = 0,
+    failure_rate: float = 0.1,
+) -> "Iterator[RunRecord]":
+    """Random but plausible stored runs (as :func:`random_runs` draws them), for building a database.
+
+    Yields ``n_scenarios x len(planners) x n_seeds`` :class:`~pathzoo.core.results.RunRecord`
+    objects, scenario by scenario, for :meth:`ResultStore.insert_batch
+    <pathzoo.harness.store.ResultStore.insert_batch>`: scenarios
+    ``s00000, s00001, ...`` with metrics ``length``, ``length_ratio`` and
+    ``planning_time``, no path and no history. A few runs per hundred end
+    by the clock (``stopped_by="wall_time"``).
+    """
+    from pathzoo.core.results import RunRecord
+    from pathzoo.core.status import RunStatus
+
+    rng = np.random.default_rng(seed)
+    phash = _hash({})
+    versions = {"pathzoo": "synthetic", "python": "3", "peak_rss_mb": "1"}
+    nan = float("nan")
+    for si in range(n_scenarios):
+        scenario = f"s{si:05d}"
+        optimum = 50.0 + (si % 97)
+        for pi, planner in enumerate(planners):
+            exact = pi == len(planners) - 1
+            ok = exact | (rng.random(n_seeds) >= failure_rate * (1 + pi))
+            excess = np.zeros(n_seeds) if exact else rng.gamma(2.0, 0.02 * (1 + pi), n_seeds)
+            times = rng.lognormal(-3 + pi, 0.4, n_seeds)
+            clock = rng.random(n_seeds) < 0.02
+            for i in range(n_seeds):
+                good = bool(ok[i])
+                length = optimum * (1 + float(excess[i]))
+                yield RunRecord(
+                    run_key=f"{planner}|{phash}|{scenario}|{i}", experiment=experiment, planner_id=planner,
+                    planner_version="1", params={}, params_hash=phash, scenario_id=scenario, seed_index=i,
+                    seed=1000 + i, status=RunStatus.SOLVED if good else RunStatus.FAILED, valid=good,
+                    invalid_reason="", message="", wall_time_s=float(times[i]) * 1.1, cpu_time_s=float(times[i]),
+                    iterations=100, evaluations=1000, path=None, times=None, history=(),
+                    metrics={"length": length if good else nan, "length_ratio": length / optimum if good else nan,
+                             "planning_time": float(times[i]) if good else nan},
+                    versions=versions, started_at="2026-01-01T00:00:00Z",
+                    stopped_by="wall_time" if clock[i] else "none",
+                )

@@ -21,7 +21,7 @@ from pathzoo.analysis.frame import with_config
 if TYPE_CHECKING:
     import optuna
 
-    from pathzoo.analysis.report import ReportPage
+    from pathzoo.analysis.report_page import ReportPage
 
 __all__ = [
     "TUNING_STAGES",

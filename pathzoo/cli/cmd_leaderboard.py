@@ -6,50 +6,58 @@ import argparse
 import json
 import sys
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Callable
 
 from pathzoo.cli.errors import CommandError
 
 if TYPE_CHECKING:
     import pandas as pd
 
-__all__ = ["add_parser", "add_table_options", "load_runs", "render_leaderboard", "experiment_facts"]
+__all__ = ["add_parser", "add_table_options", "experiment_name", "render_leaderboard", "experiment_facts",
+           "stored_experiment_facts"]
 
 FORMATS = ("text", "markdown", "csv", "json", "latex", "html")
 
 
-def load_runs(db: str | Path, experiment: str | None) -> "pd.DataFrame":
-    """The stored runs of one experiment.
+def experiment_name(db: str | Path, experiment: str | None) -> str:
+    """``experiment``, or the name of the one experiment ``db`` holds.
 
     Raises
     ------
     ResultsDatabaseError
-        ``db`` is missing or not a results database, or holds no experiment ``experiment``.
+        ``db`` is missing or not a results database.
     CommandError
         ``db`` holds no experiment, or several and none was chosen.
     """
-    from pathzoo.harness.store import read_experiments, read_runs
+    from pathzoo.harness.store import read_experiments
 
-    if experiment is None:
-        names = [str(n) for n in read_experiments(db)["name"]]
-        if len(names) > 1:
-            raise CommandError(f"{db} holds experiments {', '.join(sorted(names))}; choose one with --experiment")
-        if not names:
-            raise CommandError(f"{db}: no experiment stored yet")
-        experiment = names[0]
-    return read_runs(db, experiment)
+    if experiment is not None:
+        return experiment
+    names = [str(n) for n in read_experiments(db)["name"]]
+    if len(names) > 1:
+        raise CommandError(f"{db} holds experiments {', '.join(sorted(names))}; choose one with --experiment")
+    if not names:
+        raise CommandError(f"{db}: no experiment stored yet")
+    return names[0]
 
 
 def render_leaderboard(runs: "pd.DataFrame", args: argparse.Namespace, db: str | Path | None = None) -> str:
     """The leaderboard of ``runs`` in ``args.format``; JSON also carries the facts of :func:`experiment_facts`."""
-    from pathzoo.analysis.leaderboard import format_leaderboard, leaderboard
+    from pathzoo.analysis.leaderboard import leaderboard
 
     table = leaderboard(runs, args.metric, reference=args.reference)
-    text = format_leaderboard(table, args.format)
-    if args.format != "json" or db is None:
+    facts = experiment_facts(db, runs) if args.format == "json" and db is not None else None
+    return _rendered(table, args.format, facts)
+
+
+def _rendered(table: "pd.DataFrame", fmt: str, facts: dict[str, Any] | None) -> str:
+    from pathzoo.analysis.leaderboard import format_leaderboard
+
+    text = format_leaderboard(table, fmt)
+    if facts is None:
         return text
     document = json.loads(text)
-    document["experiment"] = experiment_facts(db, runs)
+    document["experiment"] = facts
     return json.dumps(document, ensure_ascii=False, indent=1) + "\n"
 
 
@@ -60,11 +68,9 @@ def experiment_facts(db: str | Path, runs: "pd.DataFrame") -> dict[str, Any]:
     library (pathzoo, Python, numpy, ...), the version the runs used, or the
     sorted list of versions when the runs used several.
     """
-    from pathzoo.harness.store import read_experiments, read_versions
+    from pathzoo.harness.store import read_versions
 
     name = str(runs["experiment"].iloc[0]) if len(runs) else ""
-    stored = read_experiments(db)
-    row = stored[stored["name"] == name].iloc[0]
     libraries: dict[str, set[str]] = {}
     keys = set(runs["run_key"])
     for key, versions in read_versions(db, name).items():
@@ -74,14 +80,35 @@ def experiment_facts(db: str | Path, runs: "pd.DataFrame") -> dict[str, Any]:
                     libraries.setdefault(lib, set()).add(str(version))
     labels = runs["label"].where(runs["label"].astype(str) != "", runs["planner"]) if "label" in runs else runs["planner"]
     planners = dict(sorted(zip(labels.astype(str), runs["planner_version"].astype(str))))
+    return _facts(db, name, planners, {lib: sorted(v) for lib, v in libraries.items()},
+                  lambda: sorted(set(int(i) for i in runs["seed_index"])))
+
+
+def stored_experiment_facts(db: str | Path, name: str) -> dict[str, Any]:
+    """:func:`experiment_facts` of every stored run of an experiment, aggregated by SQLite (no runs frame)."""
+    from pathzoo.harness.store_scan import configurations, library_versions
+
+    configs = configurations(db, name)
+    labels = configs["label"].where(configs["label"].astype(str) != "", configs["planner"])
+    planners = dict(sorted(zip(labels.astype(str), configs["planner_version"].astype(str))))
+    return _facts(db, name, planners, library_versions(db, name, skip=sorted(_MACHINE_FACTS)), list)
+
+
+def _facts(db: str | Path, name: str, planners: dict[str, str], libraries: dict[str, list[str]],
+           seeds: "Callable[[], list[int]]") -> dict[str, Any]:
+    """The JSON facts; ``seeds`` gives the seed indices of a stored configuration that lists none."""
+    from pathzoo.harness.store import read_experiments
+
+    stored = read_experiments(db)
+    row = stored[stored["name"] == name].iloc[0]
     return {
         "name": name,
         "seed": int(row["seed"]),
-        "seeds": list(row["config"].get("seeds", sorted(set(int(i) for i in runs["seed_index"])))),
+        "seeds": list(row["config"]["seeds"]) if "seeds" in row["config"] else seeds(),
         "budget": row["budget"],
         "timeout_s": float(row["timeout_s"]),
         "versions": {"planners": planners,
-                     **{lib: (v.pop() if len(v) == 1 else sorted(v)) for lib, v in sorted(libraries.items())}},
+                     **{lib: (v[0] if len(v) == 1 else v) for lib, v in sorted(libraries.items())}},
     }
 
 
@@ -91,10 +118,15 @@ _MACHINE_FACTS = frozenset({"cpu", "cpu_count", "peak_rss_mb"})
 
 def isolation_note(runs: "pd.DataFrame") -> str:
     """A warning line when some runs were not isolated (``inline`` executor), else ``""``."""
-    if "isolated" not in runs.columns or runs["isolated"].all():
+    if "isolated" not in runs.columns:
         return ""
-    n = int((~runs["isolated"].astype(bool)).sum())
-    return (f"pathzoo: note: {n} of {len(runs)} runs ran inline, in the harness's own process (not isolated, "
+    return _isolation_text(len(runs), int((~runs["isolated"].astype(bool)).sum()))
+
+
+def _isolation_text(n_runs: int, n_inline: int) -> str:
+    if not n_inline:
+        return ""
+    return (f"pathzoo: note: {n_inline} of {n_runs} runs ran inline, in the harness's own process (not isolated, "
             "for debugging only); use --executor process for results")
 
 
@@ -113,9 +145,14 @@ def add_table_options(parser: argparse.ArgumentParser) -> None:
 
 
 def _run(args: argparse.Namespace) -> int:
-    runs = load_runs(args.db, args.experiment)
-    sys.stdout.write(render_leaderboard(runs, args, args.db))
-    note = isolation_note(runs)
+    from pathzoo.analysis.leaderboard import leaderboard_from_db
+    from pathzoo.harness.store_scan import isolation_counts
+
+    name = experiment_name(args.db, args.experiment)
+    table = leaderboard_from_db(args.db, name, args.metric, reference=args.reference)  # memory bounded
+    facts = stored_experiment_facts(args.db, name) if args.format == "json" else None
+    sys.stdout.write(_rendered(table, args.format, facts))
+    note = _isolation_text(*isolation_counts(args.db, name))
     if note:
         print(note, file=sys.stderr)
     return 0

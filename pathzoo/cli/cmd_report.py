@@ -11,7 +11,8 @@ __all__ = ["add_parser"]
 def _run(args: argparse.Namespace) -> int:
     from pathzoo.analysis.report import write_report
 
-    index = write_report(args.db, args.output, args.experiment, metric=args.metric, reference=args.reference)
+    index = write_report(args.db, args.output, args.experiment, metric=args.metric, reference=args.reference,
+                         detail=args.scenario or ())
     print(index)
     return 0
 
@@ -30,4 +31,7 @@ def add_parser(subparsers: Any) -> None:
     parser.add_argument("--experiment", metavar="NAME", help="experiment to report (needed when DB holds several)")
     parser.add_argument("--metric", default="length", help="metric to rank by (default: length)")
     parser.add_argument("--reference", metavar="PLANNER", help="planner the others are tested against")
+    parser.add_argument("--scenario", metavar="ID", action="append",
+                        help="draw this scenario's own figures (repeatable); with at most 12 scenarios every one "
+                        "gets them, with more the figures summarise across scenarios and only these are drawn alone")
     parser.set_defaults(handler=_run)

@@ -42,7 +42,7 @@ import sqlite3
 import time
 from contextlib import contextmanager, suppress
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Collection, Iterator, Mapping
+from typing import TYPE_CHECKING, Any, Collection, Iterator, Mapping, Sequence
 
 import numpy as np
 
@@ -370,8 +370,30 @@ class ResultStore:
         interrupted retry never loses the old row. ``label`` is the
         configuration's name (:attr:`PlannerSpec.name`).
         """
+        return self.insert_batch([record], replace_statuses, [label]) == 1
+
+    def insert_batch(self, records: Sequence[RunRecord], replace_statuses: tuple[str, ...] = (),
+                     labels: Sequence[str] | None = None) -> int:
+        """Store several runs and their histories in one transaction; the number newly stored.
+
+        Each run is stored as :meth:`insert` stores it (keys already stored
+        are skipped); one transaction for all of them is what makes building
+        a large database (``benchmarks/scale.py``) fast. ``labels`` gives each
+        record's configuration name (empty by default).
+        """
+        names = [""] * len(records) if labels is None else list(labels)
+        if len(names) != len(records):
+            raise ValueError(f"insert_batch: {len(records)} records but {len(names)} labels")
+        self._ensure_metric_columns(list(dict.fromkeys(m for r in records for m in r.metrics if _METRIC_ID.match(m))))
+        stored = 0
+        with _transaction(self.conn, self.path):
+            for record, label in zip(records, names):
+                stored += self._insert_one(record, replace_statuses, label)
+        return stored
+
+    def _insert_one(self, record: RunRecord, replace_statuses: tuple[str, ...], label: str) -> bool:
+        """The statements of one run, inside the caller's transaction (metric columns already there)."""
         metric_ids = [m for m in record.metrics if _METRIC_ID.match(m)]
-        self._ensure_metric_columns(metric_ids)
         returned = record.status in RETURNED
         values: dict[str, Any] = {
             "experiment": record.experiment,
@@ -407,24 +429,23 @@ class ResultStore:
             values[f"metric:{mid}"] = _real(record.metrics[mid])
         cols = ", ".join(f'"{c}"' for c in values)
         marks = ", ".join("?" for _ in values)
-        with _transaction(self.conn, self.path):
-            if replace_statuses:
-                marks_ = ", ".join("?" for _ in replace_statuses)
-                old = self.conn.execute(
-                    f"DELETE FROM runs WHERE experiment = ? AND run_key = ? AND status IN ({marks_})",
-                    (record.experiment, record.run_key, *replace_statuses),
-                )
-                if old.rowcount:
-                    self.conn.execute("DELETE FROM history WHERE experiment = ? AND run_key = ?",
-                                      (record.experiment, record.run_key))
-            cur = self.conn.execute(f"INSERT OR IGNORE INTO runs ({cols}) VALUES ({marks})", tuple(values.values()))
-            if cur.rowcount == 0:
-                return False
-            self.conn.executemany(
-                "INSERT INTO history VALUES (?, ?, ?, ?, ?, ?)",
-                [(record.experiment, record.run_key, p.iteration, p.evaluations, _real(p.best_cost), p.time_s)
-                 for p in record.history],
+        if replace_statuses:
+            marks_ = ", ".join("?" for _ in replace_statuses)
+            old = self.conn.execute(
+                f"DELETE FROM runs WHERE experiment = ? AND run_key = ? AND status IN ({marks_})",
+                (record.experiment, record.run_key, *replace_statuses),
             )
+            if old.rowcount:
+                self.conn.execute("DELETE FROM history WHERE experiment = ? AND run_key = ?",
+                                  (record.experiment, record.run_key))
+        cur = self.conn.execute(f"INSERT OR IGNORE INTO runs ({cols}) VALUES ({marks})", tuple(values.values()))
+        if cur.rowcount == 0:
+            return False
+        self.conn.executemany(
+            "INSERT INTO history VALUES (?, ?, ?, ?, ?, ?)",
+            [(record.experiment, record.run_key, p.iteration, p.evaluations, _real(p.best_cost), p.time_s)
+             for p in record.history],
+        )
         return True
 
 
@@ -463,12 +484,12 @@ def read_runs(db: str | Path, experiment: str | None = None, run_keys: "Collecti
         present = {str(r[1]) for r in conn.execute("PRAGMA table_info(runs)")}
         defaults = {"label": "''", "isolated": "1", "sandboxed": "0", "stopped_by": "''"}
         base = ", ".join(f'"{c}"' if c in present else f'{defaults.get(c, "NULL")} AS "{c}"' for c in RUN_COLUMNS)
+        if run_keys is not None:  # the keys go to SQLite as one JSON array: no row outside them is read
+            where += (" AND" if where else " WHERE") + " run_key IN (SELECT value FROM json_each(?))"
+            args = (*args, json.dumps(list(run_keys)))
         rows = conn.execute(f"SELECT {base}, metrics FROM runs{where} ORDER BY id", args).fetchall()
     finally:
         conn.close()
-    if run_keys is not None:
-        wanted = set(run_keys)
-        rows = [r for r in rows if r[0] in wanted]
     frame = pd.DataFrame([r[: len(RUN_COLUMNS)] for r in rows], columns=list(RUN_COLUMNS))
     frame["params"] = [json.loads(p) for p in frame["params"]]
     frame["valid"] = frame["valid"].astype(bool)

@@ -17,7 +17,7 @@ from pathzoo.analysis.frame import Direction, MetricInfo, metric_info, with_conf
 from pathzoo.analysis.formatting import format_number, format_percent
 from pathzoo.plotting.figure import new_axes, new_figure, palette_for
 
-__all__ = ["plot_metric_boxes", "plot_metric_panels", "clip_outliers", "SQUASH_FACTOR"]
+__all__ = ["plot_metric_boxes", "plot_metric_panels", "plot_relative_medians", "clip_outliers", "SQUASH_FACTOR"]
 
 
 def plot_metric_boxes(
@@ -154,6 +154,34 @@ def plot_metric_panels(
     for ax in axes[len(order):]:
         ax.set_visible(False)
     fig.suptitle(f"{info.label} over successful runs ({info.better})", fontsize="medium")
+    return fig
+
+
+def plot_relative_medians(runs: pd.DataFrame, metric: str = "length", *,
+                          palette: Mapping[str, Any] | None = None) -> Figure:
+    """One panel for all scenarios: each planner's median on a scenario over the best planner's median there.
+
+    A box per configuration holds one value per scenario, its
+    :func:`~pathzoo.analysis.summary.relative_medians` ratio (1 is the best
+    on that scenario); scenarios without a ratio are left out. The number above a box is
+    the share of scenarios on which the configuration had a successful run,
+    when below 100 %. The figure's cost does not grow with the number of
+    scenarios beyond its one table of medians.
+    """
+    from pathzoo.analysis.summary import relative_medians
+
+    table = relative_medians(runs, metric)
+    info = table.attrs["metric"]
+    frame = pd.DataFrame({"config": table["config"], metric: table["ratio"], "success": table["median"].notna()})
+    configs = sorted(frame["config"].unique())
+    palette = palette_for(configs, palette)
+    label_room = 0.09 * max((len(c) for c in configs), default=1)
+    fig = new_figure((max(1.0 + 0.7 * len(configs), 5.0), 3.4 + label_room))
+    ax = fig.subplots()
+    _planner_panel(ax, frame, metric, info, palette, False)
+    ax.set_ylabel(f"{info.label} / best median")
+    n = table["scenario"].nunique()
+    fig.suptitle(f"{info.label}: median over the best median, {n} scenarios ({info.better})", fontsize="medium")
     return fig
 
 

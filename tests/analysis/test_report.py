@@ -58,19 +58,22 @@ def assert_offline(doc: str) -> None:
 @pytest.mark.slow
 def test_report_from_frames_is_self_contained():
     runs = random_runs(("a", "b"), ("s1", "s2"), n_seeds=8, seed=3)
-    page = render_report(runs, random_history(runs), reference="a", meta={"note": "x<y"}, max_scenarios=1)
+    page = render_report(runs, random_history(runs), reference="a", meta={"note": "x<y"}, max_scenarios=1,
+                         detail=["s2"])
     doc = page.html("t")
     assert_offline(doc)
     for anchor in ("outcomes", "leaderboard", "comparison", "ranks", "boxes", "scenarios", "anytime", "metrics",
                    "failures"):
         assert f'id="{anchor}"' in doc and f'href="#{anchor}"' in doc
     assert "x&lt;y" in doc  # escaped
-    assert "Figures for the first 1 of 2 scenarios" in doc
+    assert "2 scenarios: figures of their own for s2 (name scenarios with --scenario" in doc
     imgs = re.findall(r'<img src="data:image/png;base64,', doc)
-    # CD diagram, 4 box plots (length, planning_time, energy, turns), 1 convergence figure, ECDF
-    assert len(imgs) == 7  # embedded; only their SVG and PDF copies are files
+    # CD diagram, 4 box plots across scenarios (length, planning_time, energy, turns) and 4 of the named
+    # scenario s2, its convergence figure, ECDF
+    boxes = [f"box-{m}{tail}" for m in ("length", "planning_time", "energy", "turns") for tail in ("", "-named")]
+    assert len(imgs) == 11  # embedded; only their SVG and PDF copies are files
     assert sorted(page.files) == sorted(f"{i:02d}-{n}.{x}" for i, n in enumerate(
-        ["cd", "box-length", "box-planning_time", "box-energy", "box-turns", "conv-s1", "ecdf"]) for x in ("svg", "pdf"))
+        ["cd", *boxes, "conv-s2", "ecdf"]) for x in ("svg", "pdf"))
     assert "Leaderboard: length [m], lower is better" in doc and "w/t/l of a" in doc
 
 

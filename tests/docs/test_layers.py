@@ -48,7 +48,7 @@ every other name covers its submodules too.
 """
 
 UNIT_MODULES: dict[str, tuple[str, ...]] = {
-    "report": ("pathzoo.analysis.report", "pathzoo.analysis.tuning_report"),
+    "report": ("pathzoo.analysis.report", "pathzoo.analysis.report_page", "pathzoo.analysis.tuning_report"),
 }
 """Units made of named modules: the HTML report, which draws with :mod:`pathzoo.plotting`."""
 

@@ -195,3 +195,18 @@ def test_another_io_error_is_not_called_a_full_disk(tmp_path, experiment):
         with pytest.raises(sqlite3.OperationalError, match="disk I/O error"):
             store.insert(make_record("b"))
         store.conn = store.conn.conn
+
+
+def test_insert_batch_stores_each_run_once_in_one_transaction(tmp_path, experiment):
+    db = tmp_path / "b.sqlite"
+    with ResultStore(db) as store:
+        store.add_experiment(experiment)
+        assert store.insert_batch([make_record("a"), make_record("b")], labels=["one", "two"]) == 2
+        assert store.insert_batch([make_record("b"), make_record("c")]) == 1  # b is stored already
+        with pytest.raises(ValueError, match="3 records but 1 labels"):
+            store.insert_batch([make_record("d"), make_record("e"), make_record("f")], labels=["x"])
+        assert store.count_runs("store") == 3
+    frame = read_runs(db, "store")
+    assert list(frame.run_key) == ["a", "b", "c"] and list(frame.label) == ["one", "two", ""]
+    assert len(read_history(db, "store")) == 6
+    assert list(read_runs(db, "store", run_keys=["c", "a", "zz"]).run_key) == ["a", "c"]  # filtered by SQLite

@@ -1,0 +1,162 @@
+"""Reading a large result database in bounded memory: runs a scenario chunk at a time, facts aggregated in SQL.
+
+:func:`~pathzoo.harness.store.read_runs` builds one frame of every run,
+parameters and all metrics; at a million runs that is gigabytes. The
+leaderboard needs much less: per run the configuration, the scenario, the
+outcome and one metric, and only the runs of one scenario at a time (a
+configuration is ranked within each scenario). :func:`scenario_chunks`
+streams exactly that, sorted by scenario, in frames of whole scenarios of
+about ``chunk_runs`` runs; SQLite's sorter spills to a temporary file, so
+the peak memory is set by the chunk, not by the database. The facts that
+describe a whole experiment (its configurations, library versions, how
+many runs were isolated) are aggregated by SQLite itself.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import TYPE_CHECKING, Any, Iterator, Sequence
+
+from pathzoo.harness.store import _connect, _experiment_filter
+
+if TYPE_CHECKING:
+    import pandas as pd
+
+__all__ = ["CHUNK_COLUMNS", "scenario_chunks", "configurations", "library_versions", "isolation_counts"]
+
+CHUNK_COLUMNS: tuple[str, ...] = (
+    "run_key", "experiment", "planner", "planner_version", "params_hash", "scenario", "seed_index", "seed",
+    "status", "valid", "wall_time_s", "cpu_time_s", "iterations", "evaluations", "label", "isolated", "sandboxed",
+    "stopped_by",
+)
+"""The columns of :data:`~pathzoo.harness.store.RUN_COLUMNS` a chunk holds (not the parameters or messages)."""
+
+_NUMERIC = ("wall_time_s", "cpu_time_s", "iterations", "evaluations")
+
+
+def _metric_expression(metric: str, present: set[str]) -> str:
+    """SQL for one metric's value: its own REAL column, else the value in the run's metrics JSON."""
+    if f"metric:{metric}" in present:
+        return f'"metric:{metric}"'
+    return "json_extract(metrics, '$.' || json_quote(?))"
+
+
+def scenario_chunks(db: str | Path, experiment: str, metrics: Sequence[str], *,
+                    chunk_runs: int = 20_000) -> "Iterator[pd.DataFrame]":
+    """The runs of one experiment as frames of whole scenarios, in scenario order.
+
+    Parameters
+    ----------
+    db : path
+        Results database.
+    experiment : str
+        Experiment name (checked to exist).
+    metrics : sequence of str
+        Metric ids to include as float columns (NaN where a run has none).
+    chunk_runs : int
+        A frame is handed out once it holds at least this many runs and the
+        next run is of another scenario; a scenario is never split.
+
+    Yields
+    ------
+    DataFrame
+        :data:`CHUNK_COLUMNS` (``valid``, ``isolated``, ``sandboxed`` as bool)
+        and one column per metric, rows ordered by scenario, then as stored.
+
+    Raises
+    ------
+    ResultsDatabaseError
+        Missing or foreign file, or unknown experiment.
+    """
+    import numpy as np
+    import pandas as pd
+
+    path = Path(db)
+    conn = _connect(path, create=False)
+    try:
+        where, args = _experiment_filter(conn, path, experiment)
+        present = {str(r[1]) for r in conn.execute("PRAGMA table_info(runs)")}
+        wanted = [m for m in dict.fromkeys(metrics) if m not in CHUNK_COLUMNS]
+        exprs: list[str] = []
+        metric_args: list[str] = []
+        for m in wanted:
+            expr = _metric_expression(m, present)
+            exprs.append(f"{expr} AS \"m:{len(exprs)}\"")
+            if "?" in expr:
+                metric_args.append(m)
+        defaults = {"label": "''", "isolated": "1", "sandboxed": "0", "stopped_by": "''"}
+        base = [f'"{c}"' if c in present else f'{defaults.get(c, "NULL")} AS "{c}"' for c in CHUNK_COLUMNS]
+        cursor = conn.execute(f"SELECT {', '.join(base + exprs)} FROM runs{where} ORDER BY scenario, id",
+                              (*metric_args, *args))
+
+        def frame(rows: list[tuple[Any, ...]]) -> pd.DataFrame:
+            out = pd.DataFrame(rows, columns=[*CHUNK_COLUMNS, *wanted])
+            for col in ("valid", "isolated", "sandboxed"):
+                out[col] = out[col].astype(bool)
+            for col in (*_NUMERIC, *wanted):
+                out[col] = pd.to_numeric(out[col], errors="coerce").astype(np.float64)
+            return out
+
+        scenario_at = CHUNK_COLUMNS.index("scenario")
+        buffer: list[tuple[Any, ...]] = []
+        while batch := cursor.fetchmany(4096):
+            for row in batch:
+                if len(buffer) >= chunk_runs and row[scenario_at] != buffer[-1][scenario_at]:
+                    yield frame(buffer)
+                    buffer = []
+                buffer.append(row)
+        if buffer:
+            yield frame(buffer)
+    finally:
+        conn.close()
+
+
+def configurations(db: str | Path, experiment: str) -> "pd.DataFrame":
+    """``planner, params_hash, label, planner_version``: each distinct combination the experiment's runs hold."""
+    import pandas as pd
+
+    path = Path(db)
+    conn = _connect(path, create=False)
+    try:
+        where, args = _experiment_filter(conn, path, experiment)
+        present = {str(r[1]) for r in conn.execute("PRAGMA table_info(runs)")}
+        label = "label" if "label" in present else "'' AS label"
+        rows = conn.execute(f"SELECT DISTINCT planner, params_hash, {label}, planner_version FROM runs{where} "
+                            "ORDER BY planner, params_hash, label, planner_version", args).fetchall()
+    finally:
+        conn.close()
+    return pd.DataFrame(rows, columns=["planner", "params_hash", "label", "planner_version"])
+
+
+def library_versions(db: str | Path, experiment: str, skip: Sequence[str] = ()) -> dict[str, list[str]]:
+    """Each key of the runs' stored ``versions`` (but ``skip``) with the sorted distinct values the runs hold."""
+    path = Path(db)
+    conn = _connect(path, create=False)
+    try:
+        where, args = _experiment_filter(conn, path, experiment)
+        rows = conn.execute(
+            f"SELECT DISTINCT j.key, CAST(j.value AS TEXT) FROM (SELECT versions FROM runs{where}) r, "
+            "json_each(r.versions) j WHERE j.key NOT IN (SELECT value FROM json_each(?))",
+            (*args, json.dumps(list(skip))),
+        ).fetchall()
+    finally:
+        conn.close()
+    out: dict[str, set[str]] = {}
+    for key, value in rows:
+        out.setdefault(str(key), set()).add(str(value))
+    return {key: sorted(values) for key, values in sorted(out.items())}
+
+
+def isolation_counts(db: str | Path, experiment: str) -> tuple[int, int]:
+    """``(runs, runs not isolated)`` of one experiment (runs of the ``inline`` executor are not isolated)."""
+    path = Path(db)
+    conn = _connect(path, create=False)
+    try:
+        where, args = _experiment_filter(conn, path, experiment)
+        present = {str(r[1]) for r in conn.execute("PRAGMA table_info(runs)")}
+        inline = "SUM(isolated = 0)" if "isolated" in present else "0"
+        total, not_isolated = conn.execute(f"SELECT COUNT(*), {inline} FROM runs{where}", args).fetchone()
+    finally:
+        conn.close()
+    return int(total), int(not_isolated or 0)
