@@ -312,7 +312,7 @@ def leaderboard_from_db(
     if not parts:
         empty = pd.DataFrame(columns=[*CHUNK_COLUMNS, *needed])
         parts.append(leaderboard(empty, metric, direction=direction, alpha=alpha, paired=paired))
-    attrs = dict(parts[0].attrs)
+    attrs = {str(k): v for k, v in parts[0].attrs.items()}
     table = pd.concat(parts, ignore_index=True)
     if "runs_needed" in table.columns:
         table["runs_needed"] = table["runs_needed"].astype("Int64")
