@@ -155,3 +155,16 @@ def test_ctrl_c_cancels_the_jobs(slurm, tmp_path):
             proc.kill()
     assert proc.returncode == 2 and "interrupted" in err.splitlines()[-1], err
     assert _no_job_left(slurm, tmp_path) == []
+
+
+def test_a_refused_job_is_one_line(slurm, tmp_path, monkeypatch, capsys):
+    """sbatch refuses the partition: its own error, in one line, at once (not a traceback and an endless wait)."""
+    monkeypatch.setenv("SLURM_CONF", slurm)
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "small.toml").write_text(EXPERIMENT)
+    started = time.monotonic()
+    assert main(["run", "small.toml", "--executor", "slurm", "--cluster-queue", "no-such-partition"]) == 2
+    err = capsys.readouterr().err
+    assert err.splitlines()[-1] == ("pathzoo: error: the slurm job was refused: "
+                                    "sbatch: error: invalid partition specified: no-such-partition"), err
+    assert time.monotonic() - started < 60 and _no_job_left(slurm, tmp_path) == []

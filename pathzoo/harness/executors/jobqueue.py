@@ -31,6 +31,7 @@ Job scripts and their output go to ``pathzoo-jobs/`` in the working directory.
 from __future__ import annotations
 
 import os
+import shutil
 import signal
 import time
 from pathlib import Path
@@ -77,6 +78,31 @@ def _import_jobqueue() -> Any:
     return dask_jobqueue
 
 
+async def _submit(cluster: Any, jobs: int) -> None:
+    """Submit ``jobs`` jobs and wait for the batch system's answer (on the cluster's event loop).
+
+    ``scale`` leaves the submission to a callback whose failure is only
+    logged (a traceback, then a wait for workers that never come); awaiting
+    the cluster's own state correction raises it instead.
+    """
+    while len(cluster.worker_spec) < jobs:
+        cluster.worker_spec.update(cluster.new_worker_spec())
+    await cluster._correct_state()
+
+
+def _forget_refused(cluster: Any) -> None:
+    """Cancel the jobs of a submission that was refused in part, and forget them all (so that it closes)."""
+    for job in list(cluster.workers.values()):
+        if getattr(job, "job_id", None):
+            try:
+                cluster.sync(job.close)
+            except Exception:  # noqa: BLE001 - a job that cannot be cancelled has ended
+                pass
+    cluster.workers.clear()
+    cluster.worker_spec.clear()
+    cluster._created.clear()
+
+
 class JobQueueExecutor(DaskExecutor):
     """Runs on Dask workers that are jobs of a batch system (see the module docstring).
 
@@ -116,9 +142,21 @@ class JobQueueExecutor(DaskExecutor):
             )
         except (OSError, ValueError, RuntimeError) as exc:
             raise PathzooError(f"cannot set up the {kind} cluster: {' '.join(str(exc).split())}") from None
+        submit = getattr(cluster.job_cls, "submit_command", "")
+        if submit and shutil.which(submit.split()[0]) is None:
+            cluster.close()
+            raise PathzooError(f"--executor {kind} needs the batch system's {submit.split()[0]!r} command, not found "
+                               "here: run pathzoo where jobs are submitted (a login node)")
+        jobs = options.value("jobs")
         try:
-            jobs = options.value("jobs")
-            cluster.adapt(minimum_jobs=jobs, maximum_jobs=jobs)
+            try:
+                cluster.sync(_submit, cluster, jobs)  # submitted now: a refused job is an error here, not a traceback
+            except RuntimeError as exc:  # dask-jobqueue's "Command exited with non-zero exit code", with stderr
+                _forget_refused(cluster)
+                said = [line.strip() for line in str(exc).splitlines() if "error" in line.lower()]
+                raise PathzooError(f"the {kind} job was refused: {said[0] if said else ' '.join(str(exc).split())}"
+                                   ) from None
+            cluster.adapt(minimum_jobs=jobs, maximum_jobs=jobs)  # a job that ends is replaced while runs remain
             super().__init__(cluster=cluster)
         except BaseException:
             cluster.close()
@@ -127,8 +165,7 @@ class JobQueueExecutor(DaskExecutor):
                     LOG_DIRECTORY)
 
     def connected_threads(self) -> int:
-        """Threads of the workers connected now."""
-        self._follow_workers()
+        """Threads of the workers connected now (as the executor's watchdog last saw them)."""
         return sum(self._workers.values())
 
     def prepare(self, tasks: "list[RunTask]") -> None:
