@@ -1,4 +1,4 @@
-"""The kernel of colonies with a local update (walk_local.py) against the generic kernel on the same colonies.
+"""The kernel of colonies with a local update (walk_sequential.py) against the generic kernel on the same colonies.
 
 Both kernels are called directly with fresh buffers, as ``WalkEngine.walk``
 calls them, and must leave every output the same: outcomes, steps, depths,
@@ -20,8 +20,7 @@ from pathzoo_aco.engine import ABORTED, EXHAUSTED, REACHED, STEP_CAP, STUCK, Col
 from pathzoo_aco.engine import WalkRules
 from pathzoo_aco.engine.outcomes import DONE, FRESH
 from pathzoo_aco.engine.walk import _colony, _seed
-from pathzoo_aco.engine.walk_local import local_colony
-from pathzoo_aco.engine.walk_weighted import unsigned_lists
+from pathzoo_aco.engine.walk_sequential import local_colony, unsigned_lists
 
 from aco_maps import hill, open_grid, walled_grid
 
@@ -56,7 +55,7 @@ def _run(specialised: bool, problem: ColonyProblem, rules: WalkRules, trail: Phe
         while True:
             out["calls"] += 1
             if specialised:
-                status = local_colony(*unsigned_lists(problem, engine.indices, adjacency),
+                status = local_colony(*unsigned_lists(problem, engine.indices, adjacency), None,
                                       problem.horizontal_offsets, rules.turn, x, scale, trail.lo, trail.hi,
                                       trail.on_nodes, rules.tau_exp, rules.q0, rules.local_keep, rules.local_add,
                                       powers, power_stamp, colony, problem.start, problem.goal, rules.backtrack,

@@ -1,4 +1,4 @@
-"""The sequential weighted kernel (walk_weighted.py) against the generic kernel on the same colonies.
+"""The sequential weighted kernel (walk_sequential.py) against the generic kernel on the same colonies.
 
 Both kernels are called directly with fresh buffers, as ``WalkEngine.walk``
 calls them, and must leave every output the same: outcomes, steps, depths,
@@ -20,7 +20,7 @@ from pathzoo_aco.engine import ABORTED, EXHAUSTED, REACHED, STEP_CAP, STUCK, Col
 from pathzoo_aco.engine import WalkRules
 from pathzoo_aco.engine.outcomes import DONE, FRESH
 from pathzoo_aco.engine.walk import _colony, _seed
-from pathzoo_aco.engine.walk_weighted import unsigned_lists, weighted_colony
+from pathzoo_aco.engine.walk_sequential import unsigned_lists, weighted_colony
 
 from aco_maps import hill, open_grid, walled_grid
 
@@ -50,8 +50,10 @@ def _run(specialised: bool, problem: ColonyProblem, rules: WalkRules, trail: Phe
         calls += 1
         if specialised:
             status = weighted_colony(*unsigned_lists(problem, engine.indices, adjacency), weights,
-                                     problem.horizontal_offsets, rules.turn,
-                                     rules.q0, problem.start, problem.goal, rules.backtrack, rules.max_steps,
+                                     problem.horizontal_offsets, rules.turn, trail.x, trail.scale, trail.lo,
+                                     trail.hi, trail.on_nodes, rules.tau_exp, rules.q0, rules.local_keep,
+                                     rules.local_add, engine.powers, engine.power_stamp, 0,
+                                     problem.start, problem.goal, rules.backtrack, rules.max_steps,
                                      allowance, 1, stamps[0], stacks[0], prevs[0], engine.cand_w,
                                      depth, steps, flags, counters, flat, offsets)
         else:

@@ -23,13 +23,12 @@ import numba
 import numpy as np
 
 from pathzoo_aco.engine.outcomes import (ABORTED, DONE, EXHAUSTED, FRESH, NEED_SPACE, OUTRUN, REACHED, RUNNING,
-                                         STEP_CAP, STUCK)
+                                         STEP_CAP, STUCK, stop_before_step)
 from pathzoo_aco.engine.pheromone import Pheromone
 from pathzoo_aco.engine.prefetch import AHEAD, prefetch
 from pathzoo_aco.engine.problem import ColonyProblem
 from pathzoo_aco.engine.rules import WalkRules
-from pathzoo_aco.engine.walk_local import local_colony
-from pathzoo_aco.engine.walk_weighted import Adjacency, choose, unsigned_lists, weighted_colony
+from pathzoo_aco.engine.walk_sequential import Adjacency, choose, local_colony, unsigned_lists, weighted_colony
 
 __all__ = ["Walks", "WalkEngine", "REACHED", "STUCK", "STEP_CAP", "EXHAUSTED", "ABORTED", "OUTRUN"]
 
@@ -137,14 +136,8 @@ def _colony(indices, offset_id, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, 
         flag = RUNNING
         full = False  # stopped before a step for want of room on the stack (not after a race step that filled it)
         while True:
-            if c == goal:
-                flag = REACHED
-                break
-            if n >= max_steps:
-                flag = STEP_CAP
-                break
-            if total >= allowance:
-                flag = ABORTED
+            flag = stop_before_step(c, goal, n, max_steps, total, allowance)
+            if flag != RUNNING:
                 break
             if d >= stack_e.size:
                 full = True
@@ -536,8 +529,8 @@ class WalkEngine:
         offsets = np.zeros(n_ants + 1, dtype=np.int64)
         adjacency = self.adjacency(rules)
         weights = self.colony_weights(rules, trail)
-        weighted = weights is not None and not rules.race  # the common case, compiled on its own (walk_weighted.py)
-        local = weights is None and not rules.race and rules.pre_add.size == 0  # local updates (walk_local.py)
+        weighted = weights is not None and not rules.race  # the common case (walk_sequential.py)
+        local = weights is None and not rules.race and rules.pre_add.size == 0  # local updates (walk_sequential.py)
         if weighted or local:
             if self.lists[0] is not adjacency:  # the same lists serve every colony of a run
                 self.lists = (adjacency, unsigned_lists(p, self.indices, adjacency))
@@ -549,16 +542,9 @@ class WalkEngine:
             self._number_colony(trail.x.size)
         _seed(seed)
         while True:
-            if weighted:
-                status = weighted_colony(
-                    *lists, weights, p.horizontal_offsets, rules.turn,
-                    rules.q0, p.start, p.goal, rules.backtrack, rules.max_steps, allowance, self.walk_base,
-                    self.stamps[0], stacks[0], prevs[0], self.cand_w, depth, steps, flags, counters,
-                    self.flat, offsets,
-                )
-            elif local:
-                status = local_colony(
-                    *lists, p.horizontal_offsets, rules.turn, trail.x, trail.scale, trail.lo, trail.hi,
+            if weighted or local:
+                status = (weighted_colony if weighted else local_colony)(
+                    *lists, weights, p.horizontal_offsets, rules.turn, trail.x, trail.scale, trail.lo, trail.hi,
                     trail.on_nodes, rules.tau_exp, rules.q0, rules.local_keep, rules.local_add,
                     self.powers, self.power_stamp, self.colony,
                     p.start, p.goal, rules.backtrack, rules.max_steps, allowance, self.walk_base,
