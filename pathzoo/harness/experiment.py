@@ -593,7 +593,8 @@ class Experiment:
             "budget": self.budget.to_dict(),
             "timeout_s": self.timeout_s,
             "planners": [
-                {"id": p.id, "params": dict(p.params), **({"label": p.label} if p.label else {})} for p in self.planners
+                {"id": p.id, "version": p.version, "params": dict(p.params), **({"label": p.label} if p.label else {})}
+                for p in self.planners
             ],
             "scenarios": [s.describe() for s in self.scenarios],
             "source": self.source,

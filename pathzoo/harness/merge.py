@@ -2,7 +2,7 @@
 
 Every database must hold the *same* experiment under each name it shares
 with the others: the same seed, budget, hard limit, planner configurations
-(id, parameters, label) and scenarios (id, kind and
+(id, version, parameters, label) and scenarios (id, kind and
 :meth:`~pathzoo.harness.specs.ScenarioSpec.content_digest`: a file
 scenario is compared by its content, not by where it lay on each machine).
 Only the seed indices may differ (a resume with more seeds). Anything else
@@ -53,6 +53,18 @@ def _identity(row: Any) -> dict[str, Any]:
     planners = sorted(json.dumps(p, sort_keys=True) for p in config.get("planners", []))
     return {"seed": row["seed"], "budget": row["budget"], "timeout_s": row["timeout_s"],
             "planner configurations": planners, "scenarios": scenarios}
+
+
+def _unversioned(planners: list[str]) -> list[str]:
+    """Planner configurations without their versions (for a database written before versions were stored)."""
+    return sorted(json.dumps({k: v for k, v in json.loads(p).items() if k != "version"}, sort_keys=True)
+                  for p in planners)
+
+
+def _same(field: str, first: Any, second: Any) -> bool:
+    if field == "planner configurations" and not all("version" in json.loads(p) for p in [*first, *second]):
+        return _unversioned(first) == _unversioned(second)
+    return bool(first == second)
 
 
 def _difference(field: str, first: Any, second: Any) -> str:
@@ -112,7 +124,7 @@ def merge_databases(inputs: Sequence[str | Path], output: str | Path) -> list[Me
             if name in known:
                 where, first, _ = known[name]
                 for field, value in first.items():
-                    if identity[field] != value:
+                    if not _same(field, value, identity[field]):
                         raise ResultsDatabaseError(
                             f"{path}: experiment '{name}' is not the one in {where}: "
                             f"{_difference(field, value, identity[field])}; refusing to merge")

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import sqlite3
 from pathlib import Path
 
@@ -90,6 +91,32 @@ def test_a_different_experiment_is_refused_before_writing(forged, tmp_path):
         with pytest.raises(ResultsDatabaseError, match=what):
             merge_databases([shard, db], out)
         assert not out.exists()
+
+
+def _set_planner_versions(db: Path, version: str | None) -> None:
+    """Rewrite the stored planner versions (None: drop them, as in files written before they were stored)."""
+    with sqlite3.connect(db) as conn:
+        config = json.loads(conn.execute("SELECT config FROM experiments").fetchone()[0])
+        for planner in config["planners"]:
+            planner.pop("version")
+            if version is not None:
+                planner["version"] = version
+        conn.execute("UPDATE experiments SET config = ?", (json.dumps(config),))
+
+
+def test_another_planner_version_is_refused_and_a_file_without_versions_is_not(forged, tmp_path):
+    a, b = tmp_path / "a.sqlite", tmp_path / "b.sqlite"
+    for db, k in ((a, 1), (b, 2)):
+        run_experiment(_experiment(forged), db=db, executor="inline", progress=False, shard=Shard(k, 2))
+    with sqlite3.connect(a) as conn:
+        assert all(p["version"] for p in json.loads(conn.execute("SELECT config FROM experiments").fetchone()[0])
+                   ["planners"])
+    _set_planner_versions(b, "9.9.9")
+    with pytest.raises(ResultsDatabaseError, match="planner configurations differ"):
+        merge_databases([a, b], tmp_path / "out.sqlite")
+    _set_planner_versions(b, None)
+    (merged,) = merge_databases([a, b], tmp_path / "out.sqlite")
+    assert merged.total == 18
 
 
 def test_merge_command_one_line_and_exit_codes(forged, tmp_path, capsys):
