@@ -126,6 +126,7 @@ def _execute(
         done, _ = wait(waited, return_when=FIRST_COMPLETED)
         for future in done:
             if future is grown:
+                times.parallel = executor.capacity  # the time left, costed with the workers present now
                 continue
             task = in_flight.pop(future)
             outcome = bound_outcome(future.result())
