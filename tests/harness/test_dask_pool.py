@@ -79,4 +79,4 @@ def test_a_worker_that_joins_late_runs_in_parallel_and_none_means_a_clear_wait(f
     late = [iv for iv in intervals if iv[1] > joined["second"]]
     assert _most_at_once(intervals) >= 2 and _most_at_once(late) >= 2, intervals
     before = [iv for iv in intervals if iv[1] <= joined["second"]]
-    assert _most_at_once(before) == 1  # the control: one worker thread, one run at a time
+    assert _most_at_once(before) <= 1  # the control: one worker thread, one run at a time (none if it started slowly)
