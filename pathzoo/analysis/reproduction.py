@@ -102,6 +102,9 @@ class PaperPlanner:
     params: Mapping[str, Any] = field(default_factory=dict)
     variant: str = ""
     """Suffix of the scenario ids this planner runs on instead (``"_static"``: without moving obstacles)."""
+    in_table: bool = True
+    """False for a planner the paper's table does not have (e.g. the proposed method's parent): its rows carry
+    no paper numbers and no claim (``in_table = false`` in the TOML file)."""
 
 
 @dataclass(frozen=True)
@@ -217,7 +220,8 @@ def load_paper(name: str, path: str | Path | None = None) -> PaperData:
     for i, p in enumerate(_field(doc, "planner", list, where)):
         w = f"{where} [[planner]] {i}"
         planners.append(PaperPlanner(_field(p, "key", str, w), _field(p, "label", str, w), _field(p, "id", str, w),
-                                     dict(p.get("params", {})), str(p.get("variant", ""))))
+                                     dict(p.get("params", {})), str(p.get("variant", "")),
+                                     bool(p.get("in_table", True))))
     keys = [p.key for p in planners]
     if len(set(keys)) != len(keys):
         raise PaperDataError(f"{where}: planner keys repeat")
@@ -242,6 +246,8 @@ def load_paper(name: str, path: str | Path | None = None) -> PaperData:
             raise PaperDataError(f"{w}: unknown scenario key '{scen}'")
         if planner not in keys:
             raise PaperDataError(f"{w}: unknown planner key '{planner}'")
+        if not next(p for p in planners if p.key == planner).in_table:
+            raise PaperDataError(f"{w}: planner '{planner}' is marked in_table = false but has a row")
         marks = r.get("marks", {})
         for metric, mark in marks.items():
             if mark not in _PAPER_MARKS or metric not in metric_ids:

@@ -17,7 +17,6 @@ import numpy as np
 
 from pathzoo.core.planner import Param
 from pathzoo_aco.engine import (
-    AntColonyPlanner,
     ColonyProblem,
     ColonyState,
     Pheromone,
@@ -27,11 +26,12 @@ from pathzoo_aco.engine import (
     colony_params,
     deposit_walks,
 )
+from pathzoo_aco.timed_colony import TimedProductColony
 
 __all__ = ["AntColonySystem"]
 
 
-class AntColonySystem(AntColonyPlanner):
+class AntColonySystem(TimedProductColony):
     """Ant Colony System, Dorigo & Gambardella 1997, with its standard parameters."""
 
     id = "aco.acs"

@@ -12,12 +12,13 @@ from __future__ import annotations
 import numpy as np
 
 from pathzoo.core.planner import Param
-from pathzoo_aco.engine import AntColonyPlanner, ColonyProblem, ColonyState, Walks, colony_params, deposit_walks
+from pathzoo_aco.engine import ColonyProblem, ColonyState, Walks, colony_params, deposit_walks
+from pathzoo_aco.timed_colony import TimedProductColony
 
 __all__ = ["AntSystem"]
 
 
-class AntSystem(AntColonyPlanner):
+class AntSystem(TimedProductColony):
     """Ant System (ant-cycle), Dorigo, Maniezzo & Colorni 1996, with its standard parameters."""
 
     id = "aco.as"

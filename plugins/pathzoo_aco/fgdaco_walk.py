@@ -61,7 +61,7 @@ from pathzoo_aco.engine.walk import _seed
 from pathzoo_aco.fgdaco_fuzzy import clipped_centroid, compiled_priority, fired_strengths, rule_ceilings
 from pathzoo_aco.fgdaco_moving import obstacle_min_distance, obstacle_position, pack_obstacles, route_clearance
 
-__all__ = ["TimedWalkEngine"]
+__all__ = ["TimedWalkEngine", "timed_product_engine"]
 
 UNDER = 1.0 - 1e-12
 """Shrinks a measured distance that only serves as a bound, so that ``sqrt`` (faster than ``hypot``) stays below it.
@@ -72,7 +72,7 @@ The rounding of either is below 1e-15 of the distance; the bound only decides wh
 
 @numba.njit(cache=True)
 def _timed_walk(indptr, indices, offset_id, horizontal, turn, length,
-                x, scale, lo, hi, tau_exp, w_mul, beta,
+                x, scale, lo, hi, tau_exp, w_mul, beta, q0, local_keep, local_add,
                 start, goal, backtrack, max_steps, allowance, n_ants, walk_base,
                 stamp, stack_e, stack_prev, stack_t, stack_gap, cand_e, cand_w, cand_n, gap, near_ids, ahead,
                 flat, offsets, flags, steps_out,
@@ -82,6 +82,7 @@ def _timed_walk(indptr, indices, offset_id, horizontal, turn, length,
                 vertices, rules, cons, area_w, moment_w):
     use_turn = turn.shape[0] > 0
     no_prev = turn.shape[0] - 1
+    do_local = local_keep != 1.0 or local_add != 0.0
     degree = cand_e.size // stack_e.size  # candidate slots per depth
     n_obs = ob_count.size
     lo_pow = lo**tau_exp
@@ -242,14 +243,24 @@ def _timed_walk(indptr, indices, offset_id, horizontal, turn, length,
                 steps += 1
                 total += 1
                 continue
-            r = np.random.random() * total_w
             sel = cand_e[base + nc - 1]
-            acc = 0.0
-            for c in range(base, base + nc):
-                acc += cand_w[c]
-                if r < acc:
-                    sel = cand_e[c]
-                    break
+            if q0 > 0.0 and np.random.random() < q0:  # ACS: the first of the heaviest (walk_weighted.choose)
+                best = -1.0
+                for c in range(base, base + nc):
+                    if cand_w[c] > best:
+                        best = cand_w[c]
+                        sel = cand_e[c]
+            else:
+                r = np.random.random() * total_w
+                acc = 0.0
+                for c in range(base, base + nc):
+                    acc += cand_w[c]
+                    if r < acc:
+                        sel = cand_e[c]
+                        break
+            if do_local:  # ACS's local update on the edge just taken, as the static kernel does it
+                t = local_keep * min(max(scale * x[sel], lo), hi) + local_add
+                x[sel] = min(max(t, lo), hi) / scale
             t_cur += length[sel] / speed
             for k in range(n_obs):  # the gap shrinks by at most the distance both have moved
                 gap[k] -= length[sel] * shrink[k]
@@ -321,8 +332,11 @@ class TimedWalkEngine(WalkEngine):
     """Sends ants that keep time and avoid moving obstacles (see the module docstring).
 
     Supports the product rule ``τ^α η^β`` on edge trails with roulette
-    choice (FGDACO's eq. 10): ``rules.weight_mul`` must hold the static
-    priorities raised to ``beta``.
+    choice (FGDACO's eq. 10), and ACS's pseudo-random-proportional choice
+    (``rules.q0``) and local update (``rules.local_keep``, ``local_add``) on
+    each edge taken: ``rules.weight_mul`` must hold the static priorities
+    raised to ``beta``. With zero fuzzy inputs (:func:`timed_product_engine`)
+    no edge is ever re-weighed, so the weights are the rule's own.
 
     Parameters
     ----------
@@ -398,7 +412,7 @@ class TimedWalkEngine(WalkEngine):
         started, total = _timed_walk(
             *self.graph_arrays, rules.turn, self.length,
             trail.x, trail.scale, trail.lo, trail.hi, rules.tau_exp, rules.weight_mul, self.beta,
-            p.start, p.goal, rules.backtrack, rules.max_steps, allowance, n_ants, b.walk_base,
+            rules.q0, rules.local_keep, rules.local_add, p.start, p.goal, rules.backtrack, rules.max_steps, allowance, n_ants, b.walk_base,
             b.stamp, b.stack_e, b.stack_prev, b.stack_t, b.stack_gap, b.cand_e, b.cand_w, b.cand_n, b.gap, b.near_ids,
             b.ahead,
             b.flat, offsets, flags, steps,
@@ -411,3 +425,20 @@ class TimedWalkEngine(WalkEngine):
         self.total_steps += int(total)
         used = int(offsets[-1])
         return Walks(b.flat[:used].copy(), offsets, flags, steps, int(started))
+
+
+def timed_product_engine(problem: ColonyProblem, beta: float, sensing_m: float = 10.0) -> WalkEngine:
+    """The walks of a product-rule colony: timed among moving obstacles, else the shared static engine.
+
+    The timed engine gets zero fuzzy inputs, so an edge's weight is the
+    rule's ``τ^α η^β`` (with ACS's ``q0`` and local update when the rules
+    set them) and a moving obstacle only forbids the edges it would hit at
+    the time the ant drives them. ``sensing_m`` only scales the (unused)
+    obstacle input.
+    """
+    if not problem.scenario.moving_obstacles:
+        return WalkEngine(problem)
+    g = problem.graph
+    zeros_n = np.zeros(g.n_nodes)
+    return TimedWalkEngine(problem, target_in=zeros_n, angle_in=np.zeros(g.n_edges), clear_in=zeros_n,
+                           sensing_m=sensing_m, beta=beta)

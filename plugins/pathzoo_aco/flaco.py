@@ -126,14 +126,9 @@ class FLACO(AntColonyPlanner):
         clearance of 0 everywhere that never happens, so the weights stay
         ``τ^α η^β`` with FLACO's own ``η``.
         """
-        if not problem.scenario.moving_obstacles:
-            return WalkEngine(problem)
-        from pathzoo_aco.fgdaco_walk import TimedWalkEngine
+        from pathzoo_aco.fgdaco_walk import timed_product_engine
 
-        g = problem.graph
-        zeros_n = np.zeros(g.n_nodes)
-        return TimedWalkEngine(problem, target_in=zeros_n, angle_in=np.zeros(g.n_edges), clear_in=zeros_n,
-                               sensing_m=self.sensing_m, beta=self.beta)
+        return timed_product_engine(problem, self.beta, self.sensing_m)
 
     # ------------------------------------------------------------- trail
     def initial_trail(self, problem: ColonyProblem) -> float:

@@ -17,7 +17,8 @@ import numpy as np
 
 from pathzoo.core.errors import InvalidParameterError
 from pathzoo.core.planner import Param
-from pathzoo_aco.engine import AntColonyPlanner, ColonyProblem, ColonyState, Walks, colony_params, deposit_walks
+from pathzoo_aco.engine import ColonyProblem, ColonyState, Walks, colony_params, deposit_walks
+from pathzoo_aco.timed_colony import TimedProductColony
 
 __all__ = ["MaxMinAntSystem", "global_best_due", "GLOBAL_BEST_PERIOD"]
 
@@ -40,7 +41,7 @@ def global_best_due(iteration: int, growing: bool = False) -> bool:
     return iteration % period == 0
 
 
-class MaxMinAntSystem(AntColonyPlanner):
+class MaxMinAntSystem(TimedProductColony):
     """MAX-MIN Ant System, Stützle & Hoos 2000, with its standard parameters."""
 
     id = "aco.mmas"

@@ -10,18 +10,19 @@ from pathzoo.plugins.hookspecs import hookimpl
 __all__ = ["pathzoo_register_planners", "PLANNERS"]
 
 _GRID_TERRAIN_AIR = frozenset({"air3d", "grid2d", "terrain"})
+_GRID_TERRAIN_AIR_DYNAMIC = frozenset({"air3d", "dynamic", "grid2d", "terrain"})
 _GRID_TERRAIN = frozenset({"grid2d", "terrain"})
 _GRID_DYNAMIC = frozenset({"dynamic", "grid2d"})
 
 PLANNERS: tuple[LazyPlanner, ...] = (
     LazyPlanner("aco.as", "Ant System (Dorigo et al. 1996): every ant deposits Q/L on its walk",
-                "pathzoo_aco.ant_system:AntSystem", kinds=_GRID_TERRAIN_AIR),
+                "pathzoo_aco.ant_system:AntSystem", kinds=_GRID_TERRAIN_AIR_DYNAMIC),
     LazyPlanner("aco.mmas",
                 "MAX-MIN Ant System (Stützle & Hoos 2000): one best ant deposits, trails within [τmin, τmax]",
-                "pathzoo_aco.mmas:MaxMinAntSystem", kinds=_GRID_TERRAIN_AIR),
+                "pathzoo_aco.mmas:MaxMinAntSystem", kinds=_GRID_TERRAIN_AIR_DYNAMIC),
     LazyPlanner("aco.acs",
                 "Ant Colony System (Dorigo & Gambardella 1997): q0 exploitation, local and global-best updates",
-                "pathzoo_aco.acs:AntColonySystem", kinds=_GRID_TERRAIN_AIR),
+                "pathzoo_aco.acs:AntColonySystem", kinds=_GRID_TERRAIN_AIR_DYNAMIC),
     LazyPlanner("aco.ggaco",
                 "GGACO (Sangeetha & Ravichandran 2024): sigmoid gain toward the destination, energy deposits",
                 "pathzoo_aco.ggaco:GGACO", kinds=_GRID_TERRAIN),

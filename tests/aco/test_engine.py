@@ -14,6 +14,7 @@ import pytest
 import pathzoo
 from pathzoo import Budget, VehicleModel
 from pathzoo.rules import validate_path
+from pathzoo.rules import validate_path
 from pathzoo_aco.engine import (
     ABORTED,
     EXHAUSTED,
@@ -386,3 +387,35 @@ def test_colonies_that_change_the_trail_while_walking_compute_weights_per_step()
     trail = Pheromone(problem.graph.n_edges, 1.0)
     assert engine.colony_weights(_rules(problem, local_keep=0.9, local_add=0.01), trail) is None
     assert engine.colony_weights(_rules(problem, pre_add=np.full(problem.graph.n_edges, 0.1)), trail) is None
+
+
+def test_acs_choice_and_local_update_run_inside_the_timed_walks():
+    """On a dynamic scenario ACS's q0 (argmax) choice and local update happen in the timed walk itself."""
+    from pathzoo_aco.engine import ColonyProblem, Pheromone
+    from pathzoo_aco.fgdaco_walk import TimedWalkEngine, timed_product_engine
+
+    scenario = pathzoo.load_scenario("fgdaco.scenario1")
+    planner = pathzoo.make_planner("aco.acs", n_ants=4)
+    problem = ColonyProblem.of(scenario)
+    engine = timed_product_engine(problem, planner.beta)
+    assert isinstance(engine, TimedWalkEngine)
+    rules = planner.walk_rules(problem)
+    greedy = replace(rules, q0=1.0, local_keep=1.0, local_add=0.0)
+    walks = engine.walk(greedy, Pheromone(problem.graph.n_edges, 1.0), 4, 3)
+    assert walks.reached.all() and all(np.array_equal(walks.edges(0), walks.edges(k)) for k in range(4))
+    trail = Pheromone(problem.graph.n_edges, 1.0)
+    local = replace(rules, q0=1.0, local_keep=0.5, local_add=0.0)
+    walk = engine.walk(local, trail, 1, 3)
+    crossed = np.zeros(problem.graph.n_edges, bool)
+    crossed[walk.edges(0)] = True
+    assert walk.reached.all() and np.allclose(trail.x[crossed] * trail.scale, 0.5)
+    assert np.allclose(trail.x[~crossed] * trail.scale, 1.0)
+
+
+@pytest.mark.parametrize("pid", ["aco.as", "aco.mmas", "aco.acs"])
+def test_the_classic_systems_plan_among_moving_obstacles(pid):
+    scenario = pathzoo.load_scenario("fgdaco.scenario1")
+    planner = pathzoo.make_planner(pid, n_ants=5)
+    assert "dynamic" in planner.kinds
+    result = planner.plan(scenario, budget=Budget(iterations=3), rng=np.random.default_rng(0))
+    assert result.solved and validate_path(scenario, result.path)
