@@ -244,7 +244,7 @@ def _timed_walk(indptr, indices, offset_id, horizontal, turn, length,
                 total += 1
                 continue
             sel = cand_e[base + nc - 1]
-            if q0 > 0.0 and np.random.random() < q0:  # ACS: the first of the heaviest (walk_weighted.choose)
+            if q0 > 0.0 and np.random.random() < q0:  # ACS: the first of the heaviest (walk_sequential.choose)
                 best = -1.0
                 for c in range(base, base + nc):
                     if cand_w[c] > best:
