@@ -454,8 +454,12 @@ class Experiment:
             return InvalidExperimentError(f"{src}: field '{fld}': {msg}")
 
         def checked(fld: str, fn: Any) -> Any:
+            from pathzoo.harness.sandbox import SandboxImportError
+
             try:
                 return fn()
+            except SandboxImportError:
+                raise  # the sandbox's view of this Python, not the field
             except PathzooError as exc:
                 raise bad(fld, str(exc)) from None
 

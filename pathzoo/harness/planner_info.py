@@ -226,6 +226,14 @@ def describe(requests: Sequence[tuple[str, Mapping[str, Any]]],
 
 
 def _error(answer: Mapping[str, Any]) -> PathzooError:
+    if answer.get("error") == "ImportError":
+        from pathzoo.harness.sandbox import SandboxImportError, import_problem, sandbox_problem
+
+        problem = "" if sandbox_problem() else import_problem(str(answer.get("message", "")))
+        if problem:
+            return SandboxImportError(f"{str(answer.get('message', '')).split(':')[0]} could not be imported inside the "
+                                      f"sandbox: {problem}")
+        return InvalidExperimentError(str(answer.get("message", "")))
     kind = getattr(errors, str(answer.get("error")), None)
     cls = kind if isinstance(kind, type) and issubclass(kind, PathzooError) else InvalidExperimentError
     return cls(str(answer.get("message", "")))
@@ -233,13 +241,14 @@ def _error(answer: Mapping[str, Any]) -> PathzooError:
 
 def _ask_child(requests: list[tuple[str, dict[str, Any]]],
                plugin_modules: tuple[tuple[str, str], ...]) -> list[dict[str, Any]]:
-    from pathzoo.harness.sandbox import sandbox_problem, sandboxed_command
+    from pathzoo.harness.sandbox import SandboxImportError, import_problem, sandbox_problem, sandboxed_command
 
     command = [sys.executable, "-m", "pathzoo.harness.planner_info"]
     request = json.dumps({"plugin_modules": [list(m) for m in plugin_modules], "requests": requests,
                           "sys_path": [p or os.getcwd() for p in sys.path]})
     with tempfile.TemporaryDirectory(prefix="pathzoo-describe-") as scratch:
-        if not sandbox_problem():
+        sandboxed = not sandbox_problem()
+        if sandboxed:
             command = sandboxed_command(command, procs_files=(), scratch=Path(scratch),
                                         numba_cache=Path(scratch) / "numba")
         try:
@@ -262,7 +271,11 @@ def _ask_child(requests: list[tuple[str, dict[str, Any]]],
             if "error" not in answer:
                 answer["declared"] = {str(n): Param.from_json(d) for n, d in answer["declared"].items()}
     except (UnicodeDecodeError, ValueError) as exc:
-        tail = done.stderr.decode("utf-8", "replace").strip().splitlines()[-1:] or [f"exit code {done.returncode}"]
+        stderr = done.stderr.decode("utf-8", "replace")
+        problem = import_problem(stderr) if sandboxed else ""
+        if problem:  # the sandbox, not the planner or its parameters
+            raise SandboxImportError(f"the planners could not be described inside the sandbox: {problem}") from None
+        tail = stderr.strip().splitlines()[-1:] or [f"exit code {done.returncode}"]
         raise InvalidExperimentError(f"the planners could not be described ({exc}; {tail[0]})") from None
     return answers
 
@@ -289,6 +302,8 @@ def _main() -> None:
                             "name": info.name, "declared": {n: p.to_json() for n, p in info.declared.items()}})
         except PathzooError as exc:
             answers.append({"error": type(exc).__name__, "message": str(exc)})
+        except ImportError as exc:  # the planner's module or a library it needs: not its parameters
+            answers.append({"error": "ImportError", "message": f"{planner_id}: {type(exc).__name__}: {exc}"})
         except Exception as exc:  # noqa: BLE001 - a planner's own check that raised something else
             answers.append({"error": "InvalidParameterError", "message": f"{planner_id}: {type(exc).__name__}: {exc}"})
     out.write(json.dumps(answers))

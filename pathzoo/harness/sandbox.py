@@ -19,8 +19,9 @@ anything else runs, and ``bwrap`` (bubblewrap, as in Flatpak) then gives it:
   ``TMPDIR``: a memory file system of :attr:`SandboxLimits.scratch_bytes`,
   whose pages count towards the cgroup's memory, so a planner cannot fill
   the disk) and the numba cache of its planner (``NUMBA_CACHE_DIR``); the
-  directories of ``sys.path`` and of the scenario files under the hidden
-  ones are mounted back, read-only;
+  folders the import system resolves (:func:`import_roots`: ``sys.path``,
+  editable installs' mapped source folders, imported packages) and those of
+  the scenario files under the hidden ones are mounted back, read-only;
 - a PID namespace (it sees and can signal only its own processes: not the
   harness, the judge or other workers), a network namespace without any
   interface but loopback, and new IPC, UTS and cgroup namespaces;
@@ -57,8 +58,8 @@ from typing import Iterable, Sequence
 from pathzoo.core.errors import PathzooError
 from pathzoo.harness.cgroup import cgroup_problem
 
-__all__ = ["SandboxUnavailableError", "SandboxLimits", "sandbox_problem", "sandboxed_command", "worker_numba_cache",
-           "HIDDEN_DIRS"]
+__all__ = ["SandboxUnavailableError", "SandboxImportError", "SandboxLimits", "sandbox_problem", "sandboxed_command", "worker_numba_cache",
+           "import_roots", "import_problem", "HIDDEN_DIRS"]
 
 HIDDEN_DIRS = ("/tmp", "/var/tmp", "/run", "/dev/shm")
 """Replaced by empty directories inside the sandbox (sockets and files of other processes live there)."""
@@ -66,6 +67,10 @@ HIDDEN_DIRS = ("/tmp", "/var/tmp", "/run", "/dev/shm")
 
 class SandboxUnavailableError(PathzooError, RuntimeError):
     """A sandbox was required (``pathzoo run --require-sandbox``) but this system cannot provide one."""
+
+
+class SandboxImportError(PathzooError, RuntimeError):
+    """A module a sandboxed child needs cannot be imported inside the sandbox; the message names its folder."""
 
 
 @dataclass(frozen=True)
@@ -151,6 +156,56 @@ def _visible_again(paths: Iterable[str], hidden: Sequence[str]) -> list[str]:
     return [p for i, p in enumerate(found) if not any(_under(p, [q]) for q in found[:i])]
 
 
+def import_roots() -> list[str]:
+    """The folders this process's import system resolves modules from; the sandbox binds those it hides.
+
+    ``sys.path``; the folders that editable installs' finders on
+    ``sys.meta_path`` map packages to (setuptools' ``MAPPING`` and
+    ``NAMESPACES`` of its ``__editable___*_finder`` modules, which are not on
+    ``sys.path``); and the folders of the top-level packages already imported
+    (whatever finder found them).
+    """
+    roots = [p or os.getcwd() for p in sys.path]
+    for finder in sys.meta_path:
+        module = sys.modules.get(getattr(finder, "__module__", None) or type(finder).__module__)
+        for table in (getattr(module, "MAPPING", None), getattr(module, "NAMESPACES", None)):
+            if isinstance(table, dict):
+                for value in table.values():
+                    roots += [v for v in (value if isinstance(value, list) else [value]) if isinstance(v, str)]
+    for name, module in list(sys.modules.items()):
+        if "." not in name:  # a top-level package's own folder (a module's would be a whole directory, e.g. /tmp)
+            roots += [p for p in getattr(module, "__path__", None) or () if isinstance(p, str)]
+    return list(dict.fromkeys(roots))
+
+
+def import_problem(stderr: str) -> str:
+    """Why a sandboxed child could not import a module, in one line, from its stderr (``""`` when it is no such case).
+
+    Names the module's folder in this process and the hidden directory it is
+    under, or says that this process cannot import it either.
+    """
+    import importlib.util
+    import re
+
+    found = re.findall(r"No module named '([^']+)'", stderr)
+    if not found:
+        return ""
+    name = found[-1]
+    try:
+        spec = importlib.util.find_spec(name)
+    except (ImportError, ValueError):
+        spec = None
+    if spec is None:
+        return f"module '{name}' cannot be imported (not in this Python either)"
+    where = list(spec.submodule_search_locations or []) or [os.path.dirname(spec.origin or "")]
+    folder = os.path.realpath(where[0])
+    hidden = [root for root in _hidden_roots() if _under(folder, [root])]
+    if hidden:
+        return (f"module '{name}' is in {folder}, under {hidden[0]}, which the sandbox hides, and no import path or "
+                "editable finder of this Python names that folder")
+    return f"module '{name}' (in {folder}) cannot be imported inside the sandbox"
+
+
 def sandboxed_command(command: Sequence[str], *, procs_files: Sequence[str], scratch: Path, numba_cache: Path,
                       readable: Iterable[str] = (), scratch_bytes: int = SandboxLimits.scratch_bytes) -> list[str]:
     """``command`` wrapped to join the cgroup and run inside bubblewrap (see the module docstring).
@@ -189,7 +244,7 @@ def sandboxed_command(command: Sequence[str], *, procs_files: Sequence[str], scr
     # the interpreter's environment (a venv's pyvenv.cfg and bin/) as well as its import path: a venv made
     # under a hidden directory such as /tmp (CI's is) must still start Python with its site-packages
     python = [sys.prefix, sys.exec_prefix, os.path.dirname(os.path.abspath(sys.executable))]
-    for path in _visible_again([*python, *sys.path, *readable], hidden):
+    for path in _visible_again([*python, *import_roots(), *readable], hidden):
         args += ["--ro-bind", path, path]
     args += ["--size", str(int(scratch_bytes)), "--tmpfs", str(scratch), "--bind", str(numba_cache), str(numba_cache)]
     args += ["--unshare-all", "--cap-drop", "ALL", "--new-session", "--die-with-parent", "--chdir", str(scratch),
