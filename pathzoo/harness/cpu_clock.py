@@ -4,8 +4,9 @@ The harness charges a run the CPU time of the worker process *and* of every
 process it starts (an external planner's command, a solver's helpers), so
 ``budget.cpu_s`` limits the planner's whole process tree. Everything here
 is read from the kernel by the harness; nothing the planner's process
-reports is used. A cgroup's ``cpu.stat`` can later replace
-:class:`ProcessTreeCpu` with the same interface.
+reports is used. :class:`ChargedCpu` is what a run is charged: the larger of
+the process tree's and the worker cgroup's usage since the run was handed
+over.
 """
 
 from __future__ import annotations
@@ -14,8 +15,9 @@ import math
 import os
 import sys
 import time
+from typing import Callable
 
-__all__ = ["DESCENDANTS_REFRESH_S", "ProcessTreeCpu", "process_cpu_time"]
+__all__ = ["DESCENDANTS_REFRESH_S", "ProcessTreeCpu", "ChargedCpu", "process_cpu_time"]
 
 _clock = time.perf_counter  # bound at import: a later patch of the time module does not reach the harness
 _clock_gettime = getattr(time, "clock_gettime", None)
@@ -99,10 +101,10 @@ class ProcessTreeCpu:
         self._children: list[int] = []
         self._listed = -math.inf
 
-    def read(self) -> float:
-        """CPU seconds of the tree so far (NaN when the root is gone)."""
+    def read(self, *, relist: bool = False) -> float:
+        """CPU seconds of the tree so far (NaN when the root is gone); ``relist`` lists the descendants now."""
         now = _clock()
-        if now - self._listed >= DESCENDANTS_REFRESH_S:
+        if relist or now - self._listed >= DESCENDANTS_REFRESH_S:
             self._children = _descendants(self.pid)
             self._listed = now
         total = process_cpu_time(self.pid) + _reaped_children_cpu(self.pid)
@@ -111,3 +113,39 @@ class ProcessTreeCpu:
             if not math.isnan(own):
                 total += own + _reaped_children_cpu(child)
         return total
+
+
+class ChargedCpu:
+    """The CPU seconds a run is charged: the larger of its process tree's and its cgroup's usage since :meth:`start`.
+
+    The tree (:class:`ProcessTreeCpu`) has nanosecond resolution; the
+    cgroup's ``cpuacct.usage`` counts every process that was ever in it,
+    whatever it did to leave the tree (a double fork, a reparented daemon).
+    Taking the larger of the two differences charges the run for either.
+
+    Parameters
+    ----------
+    pid : int
+        The root of the worker's process tree.
+    cgroup : callable, optional
+        The cgroup's CPU seconds so far (:meth:`~pathzoo.harness.cgroup.ProcessGroup.cpu_seconds`);
+        none for an unsandboxed worker.
+    """
+
+    def __init__(self, pid: int, cgroup: Callable[[], float] | None = None) -> None:
+        self.tree = ProcessTreeCpu(pid)
+        self.cgroup = cgroup
+        self._tree0 = self._group0 = math.nan
+
+    def start(self) -> None:
+        """Mark the hand-over of a run (the descendants are listed afresh)."""
+        self._tree0 = self.tree.read(relist=True)
+        self._group0 = self.cgroup() if self.cgroup is not None else math.nan
+
+    def spent(self) -> float:
+        """CPU seconds charged since :meth:`start` (NaN before it)."""
+        tree = self.tree.read() - self._tree0
+        if self.cgroup is None:
+            return tree
+        group = self.cgroup() - self._group0
+        return group if math.isnan(tree) else max(tree, group)

@@ -72,6 +72,13 @@ __all__ = [
     "SETUP_TIMEOUT_S",
     "Report",
     "warm_up_for",
+    "as_array",
+    "message_text",
+    "stopped_by_of",
+    "provenance",
+    "versions_of",
+    "describe_exception",
+    "utc_now",
 ]
 
 SCENARIO_CACHE_SIZE = 4
@@ -352,7 +359,7 @@ def warm_up_for(task: "RunTask", planner: Any) -> None:
 
 
 # --------------------------------------------------------------------- runs
-def _versions(task: "RunTask") -> dict[str, str]:
+def versions_of(task: "RunTask") -> dict[str, str]:
     from pathzoo.plugins.manager import get_registry
     from pathzoo.version import installed_version
 
@@ -363,12 +370,12 @@ def _versions(task: "RunTask") -> dict[str, str]:
     return out
 
 
-def _provenance(versions: dict[str, str]) -> dict[str, str]:
+def provenance(versions: dict[str, str]) -> dict[str, str]:
     """``versions`` with the host, the run's peak RSS and the libraries loaded by now (after ``plan()``)."""
     return {**versions, **host(), PEAK_RSS_KEY: f"{peak_rss_mb():.1f}", **loaded_distributions()}
 
 
-def _as_array(value: Any) -> tuple[np.ndarray | None, str]:
+def as_array(value: Any) -> tuple[np.ndarray | None, str]:
     if value is None:
         return None, ""
     try:
@@ -381,7 +388,7 @@ Report = Callable[[str], None]
 """Callback through which :func:`execute_task` announces ``"started"`` (setup done), ``"planning"`` and ``"planned"``."""
 
 
-def _message(value: Any) -> str:
+def message_text(value: Any) -> str:
     """The planner's message as text; a ``__str__`` that fails or exits gives a note instead."""
     try:
         return bound_text(str(value))
@@ -417,10 +424,10 @@ def execute_task(task: "RunTask", report: Report | None = None, *, interruptible
             raise
         return RunOutcome(task.run_key, crash=True, message="KeyboardInterrupt raised in the run")
     except BaseException as exc:  # noqa: BLE001 - whatever a planner raises, the run is an outcome
-        return RunOutcome(task.run_key, crash=True, message=_message(describe_exception(exc)))
+        return RunOutcome(task.run_key, crash=True, message=message_text(describe_exception(exc)))
 
 
-def _stopped_by(task: "RunTask", stop: ClockStop | None, result: Any) -> str:
+def stopped_by_of(task: "RunTask", stop: ClockStop | None, result: Any) -> str:
     """The clock stop reported to the planner, else the count limit its result reached, else ``"none"``."""
     clock = None if stop is None else stop.reason()
     if clock is not None:
@@ -443,7 +450,7 @@ def _execute(task: "RunTask", report: Report, stop: ClockStop | None) -> RunOutc
                 f"{task.planner.id} is version {planner.version} in this worker, {task.planner_version} in the harness"
             )
         scenario, sealed = load_cached(task.scenario)
-        versions = _versions(task)
+        versions = versions_of(task)
     except Exception as exc:
         return RunOutcome(task.run_key, message="run setup failed: " + describe_exception(exc), crash=True,
                           started_at=started_at)
@@ -474,8 +481,8 @@ def _execute(task: "RunTask", report: Report, stop: ClockStop | None) -> RunOutc
     cpu = _cpu() - c0
     if not math.isnan(t0):
         report("planned")
-    stopped_by = _stopped_by(task, budget.stop, result)
-    versions = _provenance(versions)
+    stopped_by = stopped_by_of(task, budget.stop, result)
+    versions = provenance(versions)
     modified = not sealed.intact()
     if modified:
         evict(task.scenario)
@@ -484,13 +491,13 @@ def _execute(task: "RunTask", report: Report, stop: ClockStop | None) -> RunOutc
         versions=versions, started_at=started_at,
     )
     if crash is not None:
-        return RunOutcome(task.run_key, message=_message(describe_exception(crash)), crash=True, **common)
+        return RunOutcome(task.run_key, message=message_text(describe_exception(crash)), crash=True, **common)
     if not isinstance(result, PlanResult) or not isinstance(result.status, Status):
         what = type(result).__name__ if not isinstance(result, PlanResult) else f"status {type(result.status)}"
         return RunOutcome(task.run_key, message=f"plan() returned {what}, not a PlanResult with a Status", crash=True,
                           **common)
-    path, path_error = _as_array(result.path)
-    times, times_error = _as_array(result.times)
+    path, path_error = as_array(result.path)
+    times, times_error = as_array(result.times)
     return RunOutcome(
         task.run_key,
         status=result.status,
@@ -499,6 +506,6 @@ def _execute(task: "RunTask", report: Report, stop: ClockStop | None) -> RunOutc
         path_error=path_error or (f"times {times_error}" if times_error else ""),
         iterations=result.iterations,
         evaluations=result.evaluations,
-        message=_message(result.message),
+        message=message_text(result.message),
         **common,
     )

@@ -193,21 +193,22 @@ class ProcSys(_Clocked):
 
 
 class TrackerUnlink(_Clocked):
-    """Registers ``victim`` (a host ``/dev/shm`` name) as leaked shared memory on every pipe it may write to, so
-    that a resource tracker listening there would remove it when the harness exits."""
+    """Registers ``victim`` (a host ``/dev/shm`` name) as leaked shared memory on the resource tracker's pipe, if its
+    process holds one, so that the tracker would remove it when the harness exits."""
 
     id = "clock.tracker_unlink"
     params = {"victim": Param("/pathzoo-victim", "the shared memory name to have removed")}
 
     def plan(self, scenario: Scenario, *, budget: Budget, rng: np.random.Generator,
              progress: ProgressCallback | None = None) -> PlanResult:
-        line = f"REGISTER:{self.victim}:shared_memory\n".encode()
+        from multiprocessing import resource_tracker
+
+        fd = resource_tracker._resource_tracker._fd
         written = 0
-        for fd in range(3, 256):
+        if fd is not None:
             try:
-                if stat.S_ISFIFO(os.fstat(fd).st_mode):
-                    os.write(fd, line)
-                    written += 1
+                os.write(fd, f"REGISTER:{self.victim}:shared_memory\n".encode())
+                written = 1
             except OSError:
                 pass
         result = _search(scenario)

@@ -9,34 +9,45 @@ code, so nothing they send is unpickled: they send short tagged byte strings
 
 - ``R`` (ready) once started, ``I`` (idle) after each run when the process
   is still clean, ``T`` (tainted) when the run rebound module attributes
-  (:mod:`pathzoo.harness.tamper`): that worker is retired and a fresh one
-  started, so no planner's patch reaches another run;
-- ``S`` (started: planner built, scenario loaded and its graph built): the
-  hard limit ``timeout_s`` counts from the *first* ``S``; later ones are
-  ignored. The setup before it has its own limit,
+  (:mod:`pathzoo.harness.tamper`) or the warm-up left planner code running
+  (:class:`~pathzoo.harness.zygote.Residue`): that worker is retired and a
+  fresh one started, so no planner's patch reaches another run;
+- a new worker is first sent a :class:`~pathzoo.harness.zygote.WarmUp`
+  (the configuration and the scenario kind, nothing of any run): ``U``
+  once it has built the planner (the warm-up has the run's hard limit
+  ``timeout_s`` from there), ``W`` when its warm-up is done: the worker's
+  CPU is charged to its runs from then on, and the run is sent;
+- ``S`` (started: scenario loaded and its graph built): the hard limit
+  ``timeout_s`` counts from the *first* ``S``; later ones are ignored. The
+  setup before it has its own limit,
   :data:`~pathzoo.harness.worker.SETUP_TIMEOUT_S`, and is recorded as ``crash``;
-- ``P`` (planning, after the warm-up, before the measured planner is built):
-  the planning clocks start; ``E`` (``plan()`` returned, before the worker's
-  check of the scenario): they end. The worker waits for the harness's
-  ``G`` after each, so the clocks are read while it waits. Wall time is the harness's
-  ``time.perf_counter`` from ``P`` to ``E``, CPU time that of the worker's
-  process tree (:class:`~pathzoo.harness.cpu_clock.ProcessTreeCpu`; for a
-  sandboxed worker, the tree under its ``bwrap`` process, the planner's
-  children included) read from outside at the same two moments, so a planner cannot change its own
-  timings. While a run with a clock limit plans, the monitor reads these
-  clocks (for ``cpu_s``: see :data:`CLOCK_POLL_S`) and sets the worker's
-  shared stop byte (:class:`~pathzoo.harness.clock_stop.SharedClockStop`)
-  when a limit is spent; the run is stored with the stop the harness set
-  (``stopped_by``), whatever the planner did with the byte;
-- ``D`` + outcome: the future resolves;
+- ``P`` (hand-over, just before the worker forks the run's child): the wall
+  clock starts;
+- ``D`` + the child's CPU seconds (``wait4``) + the outcome, sent once the
+  child has exited and been reaped: the run ends. Wall time is the
+  harness's ``time.perf_counter`` from ``P`` to ``D``; CPU time is the
+  larger of the worker's process tree and cgroup
+  (:class:`~pathzoo.harness.cpu_clock.ChargedCpu`: for a sandboxed worker,
+  the tree under its ``bwrap`` process) from the end of the previous run
+  (or ``W``) to ``D``, and of the child's figure from ``D`` (which can only
+  raise it), all read from the kernel, so a planner cannot change its own
+  timings (``docs/sandbox.md``, "What a run is charged"). While a run with
+  a clock limit plans, the monitor reads these clocks (for ``cpu_s``: see
+  :data:`CLOCK_POLL_S`) and sets the worker's shared stop byte
+  (:class:`~pathzoo.harness.clock_stop.SharedClockStop`) when a limit is
+  spent; the run is stored with the stop the harness set (``stopped_by``),
+  whatever the planner did with the byte. A ``D`` before ``P`` (a failed
+  setup) is a ``crash`` whatever it says; any other frame while a run is
+  out (a repeated one, or one the planner's warm-up wrote on the control
+  socket) is ignored;
 - a worker past its hard limit gets ``SIGKILL`` (``Process.kill``), the run
   resolves as ``timed_out`` and a fresh worker replaces it; one that dies
   (``os._exit``, segfault, out of memory) gives a ``crash`` with the exit code
   or signal; one that sends anything else, or more than
   :data:`~pathzoo.harness.wire.MAX_OUTCOME_BYTES`, is killed and its run is a ``crash``.
 
-Each worker runs one planner configuration (planner id and parameter
-hash, :func:`configuration`) for as many runs as the experiment has of it;
+Each worker runs one planner configuration (planner id, parameter hash
+and scenario kind, :func:`configuration`) for as many runs as the experiment has of it;
 a queued run goes to an idle worker of its configuration, else to a new
 worker (an idle worker that no queued run can use is retired to make room),
 so no interpreter state (a recursion limit, a replaced cached scenario)
@@ -85,6 +96,7 @@ import math
 import os
 import shutil
 import signal
+import struct
 import threading
 import time
 import tempfile
@@ -98,7 +110,7 @@ from typing import TYPE_CHECKING, Any, Callable
 from pathzoo.core.errors import PathzooError
 from pathzoo.core.budget import StopReason
 from pathzoo.harness.clock_stop import SharedClockStop
-from pathzoo.harness.cpu_clock import ProcessTreeCpu, process_cpu_time
+from pathzoo.harness.cpu_clock import ChargedCpu, process_cpu_time
 from pathzoo.harness.executors.base import RunExecutor
 from pathzoo.harness.cgroup import ProcessGroup
 from pathzoo.harness.poller import Poller
@@ -108,8 +120,9 @@ from pathzoo.harness.sandbox import SandboxLimits, SandboxUnavailableError, sand
     worker_numba_cache
 from pathzoo.harness.specs import HeldScenarios
 from pathzoo.harness.tamper import ModuleFingerprint
-from pathzoo.harness.wire import MAX_OUTCOME_BYTES, decode_outcome, encode_outcome
-from pathzoo.harness.worker import SETUP_TIMEOUT_S, RunOutcome, execute_task, keep_payload, utc_now
+from pathzoo.harness.wire import MAX_OUTCOME_BYTES, decode_outcome
+from pathzoo.harness.worker import SETUP_TIMEOUT_S, RunOutcome, keep_payload, utc_now
+from pathzoo.harness.zygote import WarmUp, Zygote, drop_resource_tracker, refuse_audit_hooks, undumpable
 
 if TYPE_CHECKING:
     from multiprocessing.process import BaseProcess
@@ -141,17 +154,24 @@ when the CPU seconds left, spread over every core, could be spent."""
 
 _CORES = os.cpu_count() or 1
 
-_EVENTS = {"started": b"S", "planning": b"P", "planned": b"E"}
+_EVENTS = {"warming": b"U", "started": b"S", "planning": b"P"}
+
+_CPU = struct.Struct("<d")
+"""The child's CPU seconds at the head of a ``D`` message, as the zygote's ``wait4`` read them from the kernel."""
 
 
 def _worker_main(conn: Connection, alive: Connection, stop_flag: Any, sandboxed: bool = False) -> None:
-    """Loop of one worker process: receive a task, run it, send the outcome and whether the process is clean."""
+    """Loop of one worker process (a :class:`~pathzoo.harness.zygote.Zygote`): receive a task, run it in a fresh
+    child, send the outcome and whether the process is clean."""
     die_with_harness(alive)
-    stop = SharedClockStop(stop_flag)
+    drop_resource_tracker()
+    refuse_audit_hooks()
+    undumpable()
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     if sandboxed:  # spawned, not forked from the server that has done this already
         import pathzoo.harness.executors.warmup  # noqa: F401
     fingerprint = ModuleFingerprint().update()
+    zygote = Zygote(SharedClockStop(stop_flag))
     conn.send_bytes(b"R")
     while True:
         try:
@@ -160,10 +180,19 @@ def _worker_main(conn: Connection, alive: Connection, stop_flag: Any, sandboxed:
             return
         if task is None:
             return
+        if isinstance(task, WarmUp):
+            zygote.warm_up(task, _reporter(conn))
+            conn.send_bytes(b"W")
+            continue
         keep_payload(task.scenario)  # the executor counts it as held from now on
-        outcome = execute_task(task, _reporter(conn), stop=stop)
-        changed = fingerprint.changed()  # before the outcome: it and the verdict on the process go out together
-        if not _send_outcome(conn, task, outcome):
+        try:
+            data, child_cpu = zygote.run(task, _reporter(conn))
+        except (EOFError, OSError):
+            return
+        changed = fingerprint.changed() + zygote.residue  # the outcome and the verdict on the process go out together
+        try:
+            conn.send_bytes(b"D" + _CPU.pack(child_cpu) + data)
+        except (EOFError, OSError):
             return
         if changed:
             conn.send_bytes(b"T" + ", ".join(changed).encode("utf-8", "replace")[:1000])
@@ -173,27 +202,12 @@ def _worker_main(conn: Connection, alive: Connection, stop_flag: Any, sandboxed:
 
 
 def _reporter(conn: Connection) -> "Callable[[str], None]":
-    """The ``report`` callback of :func:`~pathzoo.harness.worker.execute_task`: send the event, wait for ``G``."""
+    """The ``report`` callback of :meth:`~pathzoo.harness.zygote.Zygote.run`: send the event."""
 
     def report(event: str) -> None:
         conn.send_bytes(_EVENTS[event])
-        if event != "started":  # wait until the harness has read its clocks: no CPU of ours falls outside them
-            conn.recv_bytes(1)
 
     return report
-
-
-def _send_outcome(conn: Connection, task: "RunTask", outcome: RunOutcome) -> bool:
-    """Send a run's outcome; False when the harness is gone."""
-    try:
-        conn.send_bytes(b"D" + encode_outcome(outcome))
-    except (EOFError, OSError):
-        return False
-    except Exception as exc:  # noqa: BLE001 - the outcome could not be encoded
-        conn.send_bytes(b"D" + encode_outcome(RunOutcome(
-            task.run_key, crash=True, message=f"outcome could not be sent back: {exc!r}",
-            started_at=outcome.started_at)))
-    return True
 
 
 def describe_exit(exitcode: int | None, *, sandboxed: bool = False) -> str:
@@ -214,12 +228,20 @@ def describe_exit(exitcode: int | None, *, sandboxed: bool = False) -> str:
     return f"exit code {exitcode}"
 
 
+def _written(sentinel: int) -> bool:
+    """Whether a readable exit pipe holds data (written by planner code in the worker) rather than its end of file."""
+    try:
+        return bool(os.read(sentinel, 64))
+    except OSError:
+        return False
+
+
 @dataclass
 class _Worker:
     process: "BaseProcess"
     conn: Connection
     stop: SharedClockStop
-    cpu: ProcessTreeCpu
+    cpu: ChargedCpu
     idle: bool = False
     was_ready: bool = False
     started_once: bool = False
@@ -230,13 +252,13 @@ class _Worker:
     deadline: float = math.inf
     in_setup: bool = False
     plan_t0: float = math.nan
-    plan_c0: float = math.nan
     plan_t1: float = math.nan
-    plan_c1: float = math.nan
     stopped_by: StopReason | None = None
     """The clock stop the harness set for the current run."""
     held: HeldScenarios = field(default_factory=HeldScenarios)
-    config: "tuple[str, str] | None" = None
+    config: "tuple[str, str, str] | None" = None
+    warm: bool = False
+    """The worker has reported its warm-up done (``W``): its CPU is charged to its runs from then on."""
     group: ProcessGroup | None = None
     scratch: str = ""
     baseline: frozenset[int] = frozenset()
@@ -253,15 +275,16 @@ class _Worker:
         self.task, self.future, self.deadline = None, None, math.inf
 
 
-def configuration(task: "RunTask") -> tuple[str, str]:
-    """The planner configuration of a task, ``(planner id, parameter hash)``: a worker process runs one only."""
-    return task.planner.id, task.params_hash
+def configuration(task: "RunTask") -> tuple[str, str, str]:
+    """The planner configuration of a task, ``(planner id, parameter hash, scenario kind)``: a worker process runs one
+    only, warmed up on synthetic scenarios of that kind (:class:`~pathzoo.harness.zygote.WarmUp`)."""
+    return task.planner.id, task.params_hash, task.scenario.kind
 
 
-def _any_configuration(planner_id: str) -> tuple[str, str]:
+def _any_configuration(planner_id: str) -> tuple[str, str, str]:
     """The configuration of a worker started early for a planner (:meth:`ProcessExecutor.start_worker`): its first
     run, whatever its parameters, fixes the configuration."""
-    return planner_id, ""
+    return planner_id, "", ""
 
 
 class ProcessExecutor(RunExecutor):
@@ -382,7 +405,7 @@ class ProcessExecutor(RunExecutor):
             shutil.rmtree(self._scratch_root, ignore_errors=True)
 
     # ------------------------------------------------------------- internals
-    def _spawn(self, config: "tuple[str, str] | None") -> _Worker:
+    def _spawn(self, config: "tuple[str, str, str] | None") -> _Worker:
         """A new worker, for ``config`` (sandboxed: in its own cgroup and bubblewrap sandbox)."""
         parent, child = self._ctx.Pipe(duplex=True)
         group, scratch, visible = None, "", frozenset(self._visible_dirs())
@@ -408,7 +431,8 @@ class ProcessExecutor(RunExecutor):
                 group.remove()
             raise
         child.close()
-        worker = _Worker(process, parent, SharedClockStop(flag), ProcessTreeCpu(process.pid or 0), config=config,
+        cpu = ChargedCpu(process.pid or 0, None if group is None else group.cpu_seconds)
+        worker = _Worker(process, parent, SharedClockStop(flag), cpu, config=config,
                          group=group, scratch=scratch, visible=visible)
         self._workers.append(worker)
         return worker
@@ -525,23 +549,30 @@ class ProcessExecutor(RunExecutor):
                 continue
             worker.task, worker.future, worker.idle, worker.started_once = task, future, False, False
             worker.sent_at, worker.started_at = _clock(), utc_now()
-            worker.plan_t0 = worker.plan_c0 = worker.plan_t1 = worker.plan_c1 = math.nan
+            worker.plan_t0 = worker.plan_t1 = math.nan
             worker.stopped_by = None
             worker.stop.clear()  # the worker is idle: it reads the byte only once it plans this task
             worker.deadline = worker.sent_at + max(task.timeout_s, SETUP_TIMEOUT_S)
             worker.in_setup = True
-            try:
+            self._send(worker, task, future)
+
+    def _send(self, worker: _Worker, task: "RunTask", future: "Future[RunOutcome]") -> None:
+        """Send the task to its worker, or first the order to warm up (a new worker; the task follows its ``W``)."""
+        try:
+            if worker.warm:
                 worker.conn.send(worker.held.outgoing(task))
                 worker.held.sent(task)
-            except (OSError, EOFError):  # the idle worker had died: retry the task on a fresh one
-                worker.task, worker.future = None, None
-                self._retire(worker)
-                with self._lock:
-                    self._pending.appendleft((task, future))
-            except Exception as exc:  # the task did not pickle
-                self._finish(worker, RunOutcome(task.run_key, crash=True, message=f"task could not be sent: {exc!r}",
-                                                started_at=worker.started_at))
-                worker.idle = True
+            else:
+                worker.conn.send(WarmUp.of(task))
+        except (OSError, EOFError):  # the idle worker had died: retry the task on a fresh one
+            worker.task, worker.future = None, None
+            self._retire(worker)
+            with self._lock:
+                self._pending.appendleft((task, future))
+        except Exception as exc:  # the task did not pickle
+            self._finish(worker, RunOutcome(task.run_key, crash=True, message=f"task could not be sent: {exc!r}",
+                                            started_at=worker.started_at))
+            worker.idle = True
 
     def _finish(self, worker: _Worker, outcome: RunOutcome) -> None:
         self._first_alone = False
@@ -552,29 +583,29 @@ class ProcessExecutor(RunExecutor):
 
     @staticmethod
     def _cpu_since(worker: _Worker) -> float:
-        """CPU seconds of the worker's process tree since ``P`` (NaN when planning never started)."""
-        return worker.cpu.read() - worker.plan_c0
+        """CPU seconds charged to the current run (NaN before the worker's warm-up ended)."""
+        return worker.cpu.spent() if worker.warm else math.nan
 
-    def _timed(self, worker: _Worker, outcome: RunOutcome) -> RunOutcome:
-        """The outcome with the harness's own times (``P`` to ``E``; NaN when planning never started) and stop."""
-        if math.isnan(worker.plan_t1):
-            self._planned(worker)
+    def _timed(self, worker: _Worker, outcome: RunOutcome, child_cpu: float) -> RunOutcome:
+        """The outcome with the harness's own times (``P`` to ``D``) and stop; a ``D`` before ``P`` is a failed setup,
+        whatever it says.
+
+        The CPU charged is the larger of the worker's tree and cgroup (read here)
+        and of the child's own figure, which the zygote read from the kernel
+        when it reaped it (microseconds, where the tree has the reaped child's
+        time in clock ticks only): a figure from the worker can raise the
+        charge, never lower it."""
         assert worker.task is not None
+        if math.isnan(worker.plan_t0):
+            return RunOutcome(worker.task.run_key, crash=True, message=outcome.message, started_at=worker.started_at)
+        worker.plan_t1 = _clock()
+        cpu = worker.cpu.spent()
+        worker.cpu.start()  # what the worker spends until its next run's end is charged to that run
+        if math.isfinite(child_cpu) and not child_cpu <= cpu:
+            cpu = child_cpu
         stopped_by = worker.stopped_by or worker.task.budget.count_reached(outcome.iterations, outcome.evaluations)
-        return replace(outcome, wall_time_s=worker.plan_t1 - worker.plan_t0, cpu_time_s=worker.plan_c1 - worker.plan_c0,
+        return replace(outcome, wall_time_s=worker.plan_t1 - worker.plan_t0, cpu_time_s=cpu,
                        stopped_by=stopped_by or "none", started_at=worker.started_at)
-
-    @staticmethod
-    def _go_on(worker: _Worker) -> None:
-        """Let the worker go on after ``P`` or ``E`` (its clocks are read); a dead one is reported by its sentinel."""
-        try:
-            worker.conn.send_bytes(b"G")
-        except (OSError, EOFError):
-            pass
-
-    def _planned(self, worker: _Worker) -> None:
-        """Read the clocks at the end of planning (``E``)."""
-        worker.plan_t1, worker.plan_c1 = _clock(), worker.cpu.read()
 
     def _planning(self, worker: _Worker) -> bool:
         """True while the worker's run plans under a clock limit that the harness has not stopped yet."""
@@ -589,7 +620,7 @@ class ProcessExecutor(RunExecutor):
                 continue
             assert worker.task is not None
             budget = worker.task.budget
-            cpu_left = math.inf if budget.cpu_s is None else budget.cpu_s - (worker.cpu.read() - worker.plan_c0)
+            cpu_left = math.inf if budget.cpu_s is None else budget.cpu_s - worker.cpu.spent()
             if cpu_left <= 0.0:
                 worker.stopped_by = "cpu_time"
             elif budget.time_s is not None and now - worker.plan_t0 >= budget.time_s:
@@ -639,18 +670,24 @@ class ProcessExecutor(RunExecutor):
                 worker.started_once, worker.in_setup = True, False
                 worker.sent_at = _clock()
                 worker.deadline = worker.sent_at + worker.task.timeout_s
+            elif tag == b"U" and worker.task is not None and not worker.warm and worker.in_setup:
+                worker.in_setup, worker.sent_at = False, _clock()  # the warm-up has the run's hard limit
+                worker.deadline = worker.sent_at + worker.task.timeout_s
+            elif tag == b"W" and worker.task is not None and not worker.warm and worker.future is not None:
+                worker.warm, worker.in_setup, worker.sent_at = True, True, _clock()
+                worker.deadline = worker.sent_at + max(worker.task.timeout_s, SETUP_TIMEOUT_S)
+                worker.cpu.start()
+                self._send(worker, worker.task, worker.future)
             elif tag == b"P" and worker.task is not None and worker.started_once and math.isnan(worker.plan_t0):
-                worker.plan_t0, worker.plan_c0 = _clock(), worker.cpu.read()
-                self._go_on(worker)
+                worker.plan_t0 = _clock()
                 self._first_alone = False
-            elif tag == b"E" and worker.task is not None and not math.isnan(worker.plan_t0) \
-                    and math.isnan(worker.plan_t1):
-                self._planned(worker)
-                self._go_on(worker)
-            elif tag == b"D" and worker.task is not None:
-                self._finish(worker, self._timed(worker, decode_outcome(body, worker.task.run_key)))
-            elif tag in (b"S", b"P", b"E") and worker.task is not None:
-                continue  # repeated announcements change nothing
+            elif tag == b"D" and worker.task is not None and worker.warm and len(body) >= _CPU.size:
+                (child_cpu,) = _CPU.unpack(body[:_CPU.size])
+                self._finish(worker, self._timed(worker, decode_outcome(body[_CPU.size:], worker.task.run_key),
+                                                 child_cpu))
+            elif worker.task is not None:
+                continue  # a repeated announcement, or one out of turn (planner code can write frames during its
+                # warm-up): it changes nothing, the clocks run from the warm-up's end to the outcome whatever it says
             else:
                 self._violation(worker, f"unexpected message {bytes(message[:8])!r}")
                 return
@@ -711,7 +748,9 @@ class ProcessExecutor(RunExecutor):
                 for worker in list(self._workers):
                     if worker.process.sentinel in ready and worker in self._workers:
                         self._receive(worker)  # a result sent just before exiting still counts
-                        if worker in self._workers:
+                        if worker in self._workers and _written(worker.process.sentinel):
+                            self._violation(worker, "it wrote to its exit pipe")  # planner code wrote there
+                        elif worker in self._workers:
                             self._died(worker)
                 now = _clock()
                 for worker in list(self._workers):
