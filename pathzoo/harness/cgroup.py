@@ -142,10 +142,11 @@ class ProcessGroup:
         except OSError:
             pass
 
-    def kill(self) -> None:
-        """``SIGKILL`` every process of the group, none able to fork meanwhile; returns once it is empty."""
+    def kill(self, spare: frozenset[int] = frozenset()) -> None:
+        """``SIGKILL`` every process of the group but those in ``spare``, none able to fork meanwhile; returns once
+        only those are left."""
         for _ in range(_KILL_ROUNDS):
-            pids = self.pids()
+            pids = [pid for pid in self.pids() if pid not in spare]
             if not pids:
                 return
             self._freeze("FROZEN")

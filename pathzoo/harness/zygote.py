@@ -227,6 +227,7 @@ class Zygote:
         from pathzoo.harness.wire import encode_outcome
 
         started_at = utc_now()
+        _reap()
         try:
             ready = self._prepare(task, report)
         except Exception as exc:  # noqa: BLE001 - the plugin, planner or scenario could not be set up
@@ -259,7 +260,13 @@ class Zygote:
         from pathzoo.harness.wire import MAX_OUTCOME_BYTES, encode_outcome
 
         read, write = os.pipe()
-        pid = os.fork()
+        try:
+            pid = os.fork()
+        except OSError as exc:  # out of tasks or memory: the planner's own processes are counted against its limits
+            os.close(read)
+            os.close(write)
+            return encode_outcome(RunOutcome(task.run_key, crash=True, started_at=started_at, versions=versions,
+                                             message=f"the run's process could not be started ({exc})")), math.nan
         if pid == 0:  # the child: never returns
             os.close(read)
             _child(task, scenario, sealed, versions, started_at, self.stop, write)
@@ -272,6 +279,18 @@ class Zygote:
             return encode_outcome(RunOutcome(task.run_key, crash=True, started_at=started_at, versions=versions,
                                              message=f"worker process died ({_describe(exit_status)})")), cpu
         return data, cpu
+
+
+def _reap() -> None:
+    """Reap the children that have ended (the processes a warm-up left, which the harness killed): a zombie still
+    counts against the sandbox's task limit."""
+    while True:
+        try:
+            pid, _ = os.waitpid(-1, os.WNOHANG)
+        except ChildProcessError:
+            return
+        if pid == 0:
+            return
 
 
 def _describe(status: int) -> str:

@@ -172,8 +172,8 @@ def test_killing_the_harness_and_its_parent_reaches_nothing(tmp_path):
     assert done.returncode == 0, done.stderr[-2000:]
     runs = read_runs(db, "attacked")
     assert len(runs) == 4
-    assert set(_hostile_rows(runs).status) == {"invalid"}
-    assert set(_rival(runs).status) == {"solved"}
+    assert set(_hostile_rows(runs).status) <= {"invalid", "crash"}  # a run's parent is its own worker: killing it
+    assert set(_rival(runs).status) == {"solved"}  # crashes that run only
 
 
 def test_require_sandbox_refuses_an_unsandboxed_executor(hostile, tmp_path):  # noqa: F811

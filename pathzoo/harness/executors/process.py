@@ -674,6 +674,8 @@ class ProcessExecutor(RunExecutor):
                 worker.in_setup, worker.sent_at = False, _clock()  # the warm-up has the run's hard limit
                 worker.deadline = worker.sent_at + worker.task.timeout_s
             elif tag == b"W" and worker.task is not None and not worker.warm and worker.future is not None:
+                if worker.group is not None:  # processes the warm-up left behind: none outlives it
+                    worker.group.kill(spare=worker.baseline)
                 worker.warm, worker.in_setup, worker.sent_at = True, True, _clock()
                 worker.deadline = worker.sent_at + max(worker.task.timeout_s, SETUP_TIMEOUT_S)
                 worker.cpu.start()
