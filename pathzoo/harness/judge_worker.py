@@ -48,13 +48,14 @@ from pathzoo.harness.worker import (SETUP_TIMEOUT_S, describe_exception, ensure_
 from pathzoo.plugins.manager import PluginKind, get_registry, limit_kinds
 
 if TYPE_CHECKING:
+    from concurrent.futures import Future
     from multiprocessing.process import BaseProcess
 
     from pathzoo.core.results import RunRecord
     from pathzoo.harness.specs import RunTask
     from pathzoo.harness.worker import RunOutcome
 
-__all__ = ["JudgeWorker", "JUDGE_TIMEOUT_S"]
+__all__ = ["JudgeWorker", "JudgePool", "JUDGE_TIMEOUT_S"]
 
 JUDGE_TIMEOUT_S = 60.0
 """Default limit on judging one run (validation and every metric), scenario loading excluded."""
@@ -306,8 +307,9 @@ class JudgeWorker:
         for attempt in range(2):
             conn = self._start()
             try:
-                conn.send((self._for_judge(task), outcome, isolated))
-                self._held.sent(task)
+                with self._lock:  # a warm-up (prepare) may be sent from another thread
+                    conn.send((self._for_judge(task), outcome, isolated))
+                    self._held.sent(task)
                 break
             except Exception as exc:  # noqa: BLE001 - e.g. a scenario object that does not pickle
                 died = isinstance(exc, (OSError, EOFError))
@@ -338,3 +340,62 @@ class JudgeWorker:
             reason = f"the judge sent {reply!r}"
         self._stop()  # overran, died or confused: a fresh judge for the next run
         return unjudged(task, outcome, reason, isolated=isolated)
+
+
+class JudgePool:
+    """Several :class:`JudgeWorker` processes judging runs side by side, so judging scales with the workers.
+
+    :meth:`submit` returns at once with a future of the run's record; a
+    thread per judge sends the run to a free judge process and waits for its
+    verdict, so the harness's thread goes on collecting and storing other
+    runs meanwhile. Each judge process is as :class:`JudgeWorker` describes
+    (no planner code ever ran in it); every record is the same whichever
+    judge made it.
+
+    Parameters
+    ----------
+    size : int
+        Judge processes (at least 1).
+    judge_timeout_s : float
+        Limit on judging one run once its scenario is loaded.
+    """
+
+    def __init__(self, size: int, judge_timeout_s: float = JUDGE_TIMEOUT_S) -> None:
+        import queue
+        from concurrent.futures import ThreadPoolExecutor
+
+        self.judges = [JudgeWorker(judge_timeout_s) for _ in range(max(1, int(size)))]
+        self._free: queue.SimpleQueue[JudgeWorker] = queue.SimpleQueue()
+        for judge in self.judges:
+            self._free.put(judge)
+        self._threads = ThreadPoolExecutor(len(self.judges), thread_name_prefix="pathzoo-judge")
+
+    def __enter__(self) -> "JudgePool":
+        for judge in self.judges:
+            judge.__enter__()
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+    def prepare(self, task: "RunTask") -> None:
+        """Let every judge process load the task's scenario and warm up on it now (:meth:`JudgeWorker.prepare`)."""
+        for judge in self.judges:
+            judge.prepare(task)
+
+    def submit(self, task: "RunTask", outcome: "RunOutcome", *, isolated: bool = True) -> "Future[RunRecord]":
+        """The future record of one run (:meth:`JudgeWorker.judge` in the first judge process free)."""
+        return self._threads.submit(self._judge, task, outcome, isolated)
+
+    def _judge(self, task: "RunTask", outcome: "RunOutcome", isolated: bool) -> "RunRecord":
+        judge = self._free.get()
+        try:
+            return judge.judge(task, outcome, isolated=isolated)
+        finally:
+            self._free.put(judge)
+
+    def close(self) -> None:
+        """Stop the judge processes (a verdict being awaited ends as the process dies) and their threads."""
+        for judge in self.judges:
+            judge.close()
+        self._threads.shutdown(wait=True, cancel_futures=True)

@@ -15,6 +15,7 @@ judged is stored as ``invalid`` with the reason while the experiment goes on.
 from __future__ import annotations
 
 import logging
+import os
 import sqlite3
 import warnings
 from collections import Counter
@@ -28,7 +29,7 @@ from pathzoo.harness.executors import RunExecutor, make_executor, worker_count
 from pathzoo.harness.bounds import bound_outcome
 from pathzoo.harness.eta import RunTimes, pilot_first
 from pathzoo.harness.run_record import unjudged
-from pathzoo.harness.judge_worker import JUDGE_TIMEOUT_S, JudgeWorker
+from pathzoo.harness.judge_worker import JUDGE_TIMEOUT_S, JudgePool
 from pathzoo.harness.planner_info import extra_plugin_modules
 from pathzoo.harness.store import ResultStore, read_runs
 
@@ -92,13 +93,14 @@ def _execute(
     executor: RunExecutor,
     tasks: list["RunTask"],
     store: ResultStore,
-    judge: JudgeWorker,
+    judges: JudgePool,
     registry: "Registry",
     bar: Any,
     retry: tuple[str, ...],
 ) -> None:
     queue: Iterator[RunTask] = iter(tasks)
     in_flight: dict[Future[RunOutcome], RunTask] = {}
+    judging: dict[Future[RunRecord], tuple[RunTask, RunOutcome]] = {}
     isolated = bool(getattr(executor, "isolated", False))
     failures = 0
     remaining = Counter((t.planner.name, t.scenario.id) for t in tasks)
@@ -107,39 +109,42 @@ def _execute(
     scenarios_seen: set[tuple[str, str, str, str]] = set()
 
     def submit_more() -> None:
-        while len(in_flight) < executor.capacity + executor.lookahead:
+        while len(in_flight) + len(judging) < executor.capacity + executor.lookahead:  # a run is done once stored
             task = next(queue, None)
             if task is None:
                 return
-            if task.scenario.cache_key not in scenarios_seen:  # the judge loads it while the run executes
+            if task.scenario.cache_key not in scenarios_seen:  # the judges load it while the run executes
                 scenarios_seen.add(task.scenario.cache_key)
-                judge.prepare(task)
+                judges.prepare(task)
             _call_hook(registry, "pathzoo_run_started", run_key=task.run_key, planner_id=task.planner.id,
                        scenario_id=task.scenario.id, seed=task.seed)
             in_flight[executor.submit(task)] = task
 
     executor.prepare(tasks)
     submit_more()
-    while in_flight:
+    while in_flight or judging:
         grown = executor.capacity_changed()  # a pool that follows a cluster: more runs once workers join
-        waited: list[Future[Any]] = [*in_flight, *([grown] if grown is not None else [])]
+        waited: list[Future[Any]] = [*in_flight, *judging, *([grown] if grown is not None else [])]
         done, _ = wait(waited, return_when=FIRST_COMPLETED)
         for future in done:
             if future is grown:
                 times.parallel = executor.capacity  # the time left, costed with the workers present now
-                continue
-            task = in_flight.pop(future)
-            outcome = bound_outcome(future.result())
-            record = _store(store, judge.judge(task, outcome, isolated=isolated), task, outcome, retry)
-            _call_hook(registry, "pathzoo_run_finished", record=record)
-            if record.status is not RunStatus.SOLVED:
-                failures += 1
-            remaining[(task.planner.name, task.scenario.id)] -= 1
-            times.add(task.planner.name, task.scenario.id, record.wall_time_s)
-            if bar is not None:
-                eta = times.eta(remaining.elements())
-                bar.set_postfix(failures=failures, left=_format_eta(eta), refresh=False)
-                bar.update(1)
+            elif future in in_flight:  # judged in a judge process while this thread collects other runs
+                task = in_flight.pop(future)
+                outcome = bound_outcome(future.result())
+                judging[judges.submit(task, outcome, isolated=isolated)] = (task, outcome)
+            else:
+                task, outcome = judging.pop(future)
+                record = _store(store, future.result(), task, outcome, retry)
+                _call_hook(registry, "pathzoo_run_finished", record=record)
+                if record.status is not RunStatus.SOLVED:
+                    failures += 1
+                remaining[(task.planner.name, task.scenario.id)] -= 1
+                times.add(task.planner.name, task.scenario.id, record.wall_time_s)
+                if bar is not None:
+                    eta = times.eta(remaining.elements())
+                    bar.set_postfix(failures=failures, left=_format_eta(eta), refresh=False)
+                    bar.update(1)
         submit_more()
 
 
@@ -252,13 +257,13 @@ def run_experiment(
         if tasks:
             bar = _progress_bar(len(tasks), experiment.name, progress)
             try:
-                # the judge first: it starts while the executor starts its workers
-                with JudgeWorker(judge_timeout_s) as judge, \
+                # the judges first: they start while the executor starts its workers; one per local worker
+                with JudgePool(min(n_jobs, os.cpu_count() or 1), judge_timeout_s) as judges, \
                         make_executor(executor, n_jobs, require_sandbox=require_sandbox) as pool:
                     if pool.sandbox_problem:
                         log.warning("pathzoo: planners run without an OS sandbox (%s); see docs/sandbox.md",
                                     pool.sandbox_problem)
-                    _execute(pool, tasks, store, judge, registry, bar, retry_statuses)
+                    _execute(pool, tasks, store, judges, registry, bar, retry_statuses)
             finally:
                 if bar is not None:
                     bar.close()

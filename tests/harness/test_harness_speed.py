@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import sys
 import types
 
@@ -185,3 +186,21 @@ def test_a_scenario_object_is_sent_to_each_process_once(monkeypatch: pytest.Monk
     full = [n for n in sent if n]
     # worker: 1 full + 3 by reference; judge: the warm-up in full, then 4 runs by reference
     assert len(full) == 2 and len(sent) == 9 and full[0] == len(exp.tasks()[0].scenario.payload)
+
+
+def test_a_judge_pool_judges_runs_side_by_side_in_its_own_processes():
+    from pathzoo.harness.judge_worker import JudgePool
+
+    task, outcome = _solved_run()
+    with JudgeWorker() as judge:
+        alone = judge.judge(task, outcome)
+    with JudgePool(2) as pool:
+        pool.prepare(task)
+        futures = [pool.submit(task, outcome) for _ in range(4)]
+        records = [f.result(timeout=120) for f in futures]
+        pids = {j._process.pid for j in pool.judges if j._process is not None}
+    assert len(pids) == 2 and os.getpid() not in pids  # two judge processes, neither the harness
+    def shown(metrics):  # NaN (a metric without a value here) equals itself
+        return {k: repr(v) for k, v in metrics.items()}
+
+    assert all(r.status.value == "solved" and r.valid and shown(r.metrics) == shown(alone.metrics) for r in records)
