@@ -137,9 +137,9 @@ class ChargedCpu:
         self.cgroup = cgroup
         self._tree0 = self._group0 = math.nan
 
-    def start(self) -> None:
-        """Mark the hand-over of a run (the descendants are listed afresh)."""
-        self._tree0 = self.tree.read(relist=True)
+    def start(self, *, relist: bool = True) -> None:
+        """Start counting from now (with ``relist``, the descendants are listed afresh: a scan of every process)."""
+        self._tree0 = self.tree.read(relist=relist)
         self._group0 = self.cgroup() if self.cgroup is not None else math.nan
 
     def spent(self) -> float:

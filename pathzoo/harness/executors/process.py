@@ -600,7 +600,8 @@ class ProcessExecutor(RunExecutor):
             return RunOutcome(worker.task.run_key, crash=True, message=outcome.message, started_at=worker.started_at)
         worker.plan_t1 = _clock()
         cpu = worker.cpu.spent()
-        worker.cpu.start()  # what the worker spends until its next run's end is charged to that run
+        worker.cpu.start(relist=False)  # what the worker spends until its next run's end is charged to that run;
+        # its child is reaped by now, and a new one is listed within DESCENDANTS_REFRESH_S (the cgroup counts it)
         if math.isfinite(child_cpu) and not child_cpu <= cpu:
             cpu = child_cpu
         stopped_by = worker.stopped_by or worker.task.budget.count_reached(outcome.iterations, outcome.evaluations)
