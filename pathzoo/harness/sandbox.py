@@ -165,7 +165,7 @@ def import_roots() -> list[str]:
     ``sys.path``); and the folders of the top-level packages already imported
     (whatever finder found them).
     """
-    roots = [p or os.getcwd() for p in sys.path]
+    roots = [p for p in sys.path if p]  # '' is the current directory: inside, the child's own (its scratch)
     for finder in sys.meta_path:
         module = sys.modules.get(getattr(finder, "__module__", None) or type(finder).__module__)
         for table in (getattr(module, "MAPPING", None), getattr(module, "NAMESPACES", None)):
