@@ -5,7 +5,8 @@ Run from the repository root::
     python benchmarks/sweep.py               # 200 problems, --jobs 2, sandboxed where the system can
     python benchmarks/sweep.py --problems 50 # a shorter sweep
 
-Both experiments run ``exact.astar`` and ``aco.as`` (3 iterations) with the
+Both experiments run ``exact.astar`` and ``aco.as`` (a budget of 3 iterations: a
+clock-only budget would make the colony search until its clock) with the
 same number of runs, through :func:`pathzoo.harness.run_experiment` and the
 process executor (``--jobs``): the *sweep* on ``--problems`` distinct
 MovingAI problems of one map with one seed each, the *reference* on two of
@@ -24,7 +25,7 @@ from pathlib import Path
 
 MAP = "movingai.random-32-32-20.*"
 """The MovingAI problems the sweep draws from (409 problems of one 32x32 map)."""
-PLANNERS = ["exact.astar", ("aco.as", {"iterations": 3})]
+PLANNERS = ["exact.astar", "aco.as"]
 TARGET = 0.8
 
 
@@ -47,7 +48,7 @@ def _rate(scenarios: list[str], seeds: int, jobs: int, db: Path) -> float:
     registry.add_plugin(marks, f"sweep-marks-{db.stem}")
     try:
         exp = Experiment.build(name=db.stem, planners=PLANNERS, scenarios=scenarios, seeds=seeds,
-                               budget=Budget(time_s=30.0))
+                               budget=Budget(iterations=3, time_s=30.0))
         runs = run_experiment(exp, db=db, jobs=jobs, progress=False)
     finally:
         registry.pm.unregister(marks)

@@ -20,7 +20,6 @@ from pathlib import Path
 
 import pytest
 
-import pathzoo
 from pathzoo.harness.experiment import Experiment
 from pathzoo.harness.sandbox import import_problem, import_roots, sandbox_problem, sandboxed_command
 from pathzoo.harness.store import read_runs
@@ -89,14 +88,19 @@ def test_a_module_the_sandbox_cannot_see_is_named_with_its_folder(tmp_path, monk
 def test_an_editable_install_under_tmp_runs_the_default_experiment_sandboxed(tmp_path):
     """A venv and an editable finder under /tmp whose sources are a copy under /tmp: the default experiment's
     planners run sandboxed (on its first scenario, one seed, to keep the test short)."""
-    repo = Path(pathzoo.__file__).resolve().parents[1]
+    repo = Path(__file__).resolve().parents[2]  # the checkout (pathzoo itself may be installed, not editable)
     src, venv = tmp_path / "src", tmp_path / "venv"
     for name, rel in PACKAGES.items():
         shutil.copytree(repo / rel, src / rel, ignore=shutil.ignore_patterns("__pycache__"))
     subprocess.run([sys.executable, "-m", "venv", "--without-pip", str(venv)], check=True)
     site = Path(subprocess.run([str(venv / "bin" / "python"), "-c", "import sysconfig; print(sysconfig.get_paths()"
                                 "['purelib'])"], capture_output=True, text=True, check=True).stdout.strip())
-    (site / "deps.pth").write_text(sysconfig.get_paths()["purelib"] + "\n")  # numpy & co. and the entry points
+    deps = tmp_path / "deps"  # numpy & co. and the entry points, without an installed copy of the packages
+    deps.mkdir()
+    for item in Path(sysconfig.get_paths()["purelib"]).iterdir():
+        if item.name not in PACKAGES and item.name != "plugins":
+            (deps / item.name).symlink_to(item)
+    (site / "deps.pth").write_text(f"{deps}\n")
     mapping = {name: str(src / rel) for name, rel in PACKAGES.items()}
     (site / "__editable___pathzoo_copy_finder.py").write_text(FINDER.format(mapping=mapping))
     (site / "__editable__.pathzoo_copy.pth").write_text(

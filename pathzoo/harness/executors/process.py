@@ -49,9 +49,14 @@ code, so nothing they send is unpickled: they send short tagged byte strings
 Each worker runs one planner configuration (planner id, parameter hash
 and scenario kind, :func:`configuration`) for as many runs as the experiment has of it;
 a queued run goes to an idle worker of its configuration, else to a new
-worker (an idle worker that no queued run can use is retired to make room),
-so no interpreter state (a recursion limit, a replaced cached scenario)
-passes from one planner to another.
+worker, so no interpreter state (a recursion limit, a replaced cached
+scenario) passes from one planner to another. At most ``jobs`` workers have
+a run at once, but up to :attr:`~ProcessExecutor.kept_workers` (twice as
+many) stay alive, idle ones waiting for their configuration's next run, and
+no configuration gets more workers than ``jobs``: a sweep that alternates
+configurations keeps its workers instead of starting one per switch. Only
+when that many are alive is an idle worker that no queued run can use
+retired to make room.
 
 Where the system allows (:func:`~pathzoo.harness.sandbox.sandbox_problem`),
 workers are sandboxed: each is spawned through bubblewrap in a cgroup of its
@@ -338,6 +343,9 @@ class ProcessExecutor(RunExecutor):
         self._wake_r, self._wake_w = self._ctx.Pipe(duplex=False)
         self._poller = Poller()  # the monitor's: one poll object for all its waits
         self.lookahead = self.capacity
+        self.kept_workers = 2 * self.capacity
+        """Worker processes kept, idle ones included: at most :attr:`capacity` run at once, and an idle worker of
+        another configuration waits for its next run instead of being replaced at every switch of configuration."""
         self._thread = threading.Thread(target=self._monitor, name="pathzoo-process-executor", daemon=True)
         self._thread.start()
 
@@ -495,6 +503,8 @@ class ProcessExecutor(RunExecutor):
         if self._first_alone and any(w.task is not None for w in self._workers):
             return
         starting = Counter(w.config for w in self._workers if not w.was_ready)
+        wanted = {configuration(task) for task in queued}
+        wanted |= {_any_configuration(config[0]) for config in wanted}
         for task in queued[:1] if self._first_alone else queued:
             config = configuration(task)
             if starting[config] > 0:
@@ -506,8 +516,11 @@ class ProcessExecutor(RunExecutor):
             if starting[None] > 0 and not self.sandboxed:
                 starting[None] -= 1
                 continue
-            if len(self._workers) >= self.capacity:  # retire an idle worker that no queued run can use
-                spare = next((w for w in self._workers if w.idle and w.task is None), None)
+            if sum(w.config in (config, _any_configuration(config[0])) and self._sees(w, task)
+                   for w in self._workers) >= self.capacity:
+                continue  # as many of its configuration as can run at once: one of them takes it
+            if len(self._workers) >= self.kept_workers:  # retire an idle worker that no queued run can use
+                spare = next((w for w in self._workers if w.idle and w.task is None and w.config not in wanted), None)
                 if spare is None:
                     return
                 self._retire(spare)
@@ -522,8 +535,11 @@ class ProcessExecutor(RunExecutor):
                 or os.path.dirname(os.path.abspath(spec.location)) in worker.visible)
 
     def _take(self) -> "tuple[_Worker, RunTask, Future[RunOutcome]] | None":
-        """The first queued run with an idle worker of its configuration (or, unsandboxed, one not yet used)."""
+        """The first queued run with an idle worker of its configuration (or, unsandboxed, one not yet used), while
+        fewer than :attr:`capacity` workers have a run."""
         with self._lock:
+            if sum(w.task is not None for w in self._workers) >= self.capacity:
+                return None
             for i, (task, future) in enumerate(self._pending):
                 config = configuration(task)
                 worker = next((w for w in self._workers if w.idle and w.task is None
@@ -542,7 +558,8 @@ class ProcessExecutor(RunExecutor):
         while True:
             taken = self._take()
             if taken is None:
-                self._start_workers()
+                if sum(w.task is not None for w in self._workers) < self.capacity:
+                    self._start_workers()
                 return
             worker, task, future = taken
             if not future.set_running_or_notify_cancel():
