@@ -26,8 +26,8 @@ from typing import TYPE_CHECKING
 
 import pandas as pd
 
-from pathzoo.analysis.reproduction import (
-    PaperData,
+from pathzoo.analysis.reproduction.paper_data import PaperData
+from pathzoo.analysis.reproduction.runs import (
     add_derived,
     experiment_name,
     label_runs,
@@ -101,7 +101,7 @@ def run_paper_equal_evaluations(
     Returns
     -------
     runs : DataFrame
-        The labelled runs of every experiment, as :func:`~pathzoo.analysis.reproduction.run_paper` returns them.
+        The labelled runs of every experiment, as :func:`~pathzoo.analysis.reproduction.runs.run_paper` returns them.
     names : list of str
         The experiments' names, the proposed method's first.
     evaluations : dict

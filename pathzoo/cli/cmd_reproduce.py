@@ -23,7 +23,7 @@ DEFAULT_DB = "pathzoo-reproduce.sqlite"
 
 def reductions(paper: Any, seeds: int, iterations: int | None, scenarios: str | None) -> list[str]:
     """What a rerun reduced from the paper's setting (fewer runs, capped iterations, fewer scenarios), in words."""
-    from pathzoo.analysis.reproduction import selected_scenarios
+    from pathzoo.analysis.reproduction.runs import selected_scenarios
 
     out: list[str] = []
     if seeds < paper.runs:
@@ -52,7 +52,7 @@ def scope_sentence(paper: Any, seeds: int, iterations: int | None, scenarios: st
 
 def markdown_section(rep: Any, command: str, iterations: int | None = None, scenarios: str | None = None) -> str:
     """The Markdown section of ``docs/reproduction.md`` for one paper, saying which command produced it, when, and what it reduced."""
-    from pathzoo.analysis.reproduction import format_reproduction
+    from pathzoo.analysis.reproduction.rendering import format_reproduction
 
     when = _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
     paper = rep.paper
@@ -64,7 +64,11 @@ def markdown_section(rep: Any, command: str, iterations: int | None = None, scen
 
 
 def _run(args: argparse.Namespace) -> int:
-    from pathzoo.analysis.reproduction import compare_paper, format_reproduction, load_paper, replace_section, run_paper
+    from pathzoo.analysis.reproduction.paper_data import load_paper
+    from pathzoo.analysis.reproduction.rendering import format_reproduction
+    from pathzoo.analysis.reproduction.runs import run_paper
+    from pathzoo.analysis.reproduction.sections import replace_section
+    from pathzoo.analysis.reproduction.verdicts import compare_paper
 
     paper = load_paper(args.paper)
     db = args.db or DEFAULT_DB
