@@ -28,11 +28,11 @@ import pandas as pd
 
 from pathzoo.analysis.reproduction.paper_data import PaperData
 from pathzoo.analysis.reproduction.runs import (
-    add_derived,
+    RerunOptions,
     experiment_name,
-    label_runs,
     paper_budget,
     planner_groups,
+    run_labelled,
     selected_scenarios,
 )
 
@@ -85,17 +85,8 @@ def _rival_experiments(paper: PaperData, seeds: int, iterations: int | None, eva
     ]
 
 
-def run_paper_equal_evaluations(
-    paper: PaperData,
-    *,
-    db: str | Path,
-    seeds: int | None = None,
-    iterations: int | None = None,
-    scenarios: str | None = None,
-    jobs: int | None = None,
-    executor: str = "process",
-    progress: bool = True,
-) -> tuple[pd.DataFrame, list[str], dict[str, int]]:
+def run_paper_equal_evaluations(paper: PaperData,
+                                options: RerunOptions) -> tuple[pd.DataFrame, list[str], dict[str, int]]:
     """Run (or resume) the paper's comparison at equal evaluations (see the module docstring).
 
     Returns
@@ -107,22 +98,16 @@ def run_paper_equal_evaluations(
     evaluations : dict
         Scenario id -> the evaluation budget every rival got there.
     """
-    from pathzoo.harness.runner import run_experiment
-
-    n = seeds if seeds is not None else paper.runs
-    chosen = selected_scenarios(paper, scenarios)
+    n = options.seeds if options.seeds is not None else paper.runs
+    chosen = selected_scenarios(paper, options.scenarios)
     ids = list(chosen.values())
     keys = {sid: key for key, sid in chosen.items()}
-    reference = _reference_experiment(paper, n, iterations, ids, db)
-    runs = run_experiment(reference, db=db, jobs=jobs, executor=executor, progress=progress)
-    frames = [label_runs(paper, add_derived(paper, runs, db, reference.name), reference)]
-    evaluations = reference_evaluations(label_runs(paper, runs, reference), ids)
-    names = [reference.name]
-    for exp in _rival_experiments(paper, n, iterations, evaluations, keys, db):
-        rival = run_experiment(exp, db=db, jobs=jobs, executor=executor, progress=progress)
-        frames.append(label_runs(paper, add_derived(paper, rival, db, exp.name), exp))
-        names.append(exp.name)
-    return pd.concat(frames, ignore_index=True), names, evaluations
+    reference = _reference_experiment(paper, n, options.iterations, ids, options.db)
+    frames = [run_labelled(paper, reference, options)]
+    evaluations = reference_evaluations(frames[0], ids)
+    rivals = _rival_experiments(paper, n, options.iterations, evaluations, keys, options.db)
+    frames.extend(run_labelled(paper, exp, options) for exp in rivals)
+    return pd.concat(frames, ignore_index=True), [reference.name, *(exp.name for exp in rivals)], evaluations
 
 
 def equal_sentence(paper: PaperData, evaluations: dict[str, int]) -> str:

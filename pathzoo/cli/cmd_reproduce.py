@@ -66,23 +66,23 @@ def markdown_section(rep: Any, command: str, iterations: int | None = None, scen
 def _run(args: argparse.Namespace) -> int:
     from pathzoo.analysis.reproduction.paper_data import load_paper
     from pathzoo.analysis.reproduction.rendering import format_reproduction
-    from pathzoo.analysis.reproduction.runs import run_paper
+    from pathzoo.analysis.reproduction.runs import RerunOptions, run_paper
     from pathzoo.analysis.reproduction.sections import replace_section
     from pathzoo.analysis.reproduction.verdicts import compare_paper
 
     paper = load_paper(args.paper)
     db = args.db or DEFAULT_DB
-    options = dict(db=db, seeds=args.seeds, iterations=args.iterations, scenarios=args.scenarios, jobs=args.jobs,
-                   executor=args.executor, progress=not args.no_progress)
+    options = RerunOptions(db=db, seeds=args.seeds, iterations=args.iterations, scenarios=args.scenarios,
+                           jobs=args.jobs, executor=args.executor, progress=not args.no_progress)
     equal = ""
     try:
         if args.equal == "evaluations":
             from pathzoo.analysis.equal_budget import equal_sentence, run_paper_equal_evaluations
 
-            runs, experiments, evaluations = run_paper_equal_evaluations(paper, **options)
+            runs, experiments, evaluations = run_paper_equal_evaluations(paper, options)
             equal = " " + equal_sentence(paper, evaluations)
         else:
-            runs, experiments = run_paper(paper, **options)
+            runs, experiments = run_paper(paper, options)
     except KeyboardInterrupt:
         raise CommandError(
             f"interrupted; finished runs are stored in {db}, run the same command again to resume") from None

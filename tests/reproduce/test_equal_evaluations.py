@@ -6,7 +6,7 @@ import pandas as pd
 import pytest
 
 from pathzoo.analysis.equal_budget import reference_evaluations, run_paper_equal_evaluations
-from pathzoo.analysis.reproduction import compare_paper, load_paper
+from pathzoo.analysis.reproduction import RerunOptions, compare_paper, load_paper
 from pathzoo.cli.main import main
 
 
@@ -19,8 +19,8 @@ def test_the_reference_count_is_the_median_rounded_down():
 def test_no_rival_stores_more_evaluations_than_fgdaco(tmp_path):
     paper = load_paper("fgdaco")
     runs, names, evaluations = run_paper_equal_evaluations(
-        paper, db=tmp_path / "r.sqlite", seeds=2, iterations=3, scenarios="fgdaco.scenario1", executor="inline",
-        progress=False)
+        paper, RerunOptions(db=tmp_path / "r.sqlite", seeds=2, iterations=3, scenarios="fgdaco.scenario1",
+                            executor="inline", progress=False))
     assert names[0] == "reproduce.fgdaco.s2.i3.equal-evaluations"
     assert evaluations == {"fgdaco.scenario1": 60}  # 3 iterations of 20 ants
     per = runs.groupby("planner")["evaluations"].max()

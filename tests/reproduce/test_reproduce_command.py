@@ -9,6 +9,7 @@ import pytest
 from pathzoo.analysis.reproduction import (
     NOT_AVAILABLE,
     RIVAL_FAILED,
+    RerunOptions,
     compare_paper,
     format_reproduction,
     load_paper,
@@ -78,7 +79,8 @@ def test_unregistered_planner_is_listed_not_available(tmp_path):
     path = tmp_path / "iaca.toml"
     path.write_text(text, encoding="utf-8")
     paper = load_paper("iaca", path)
-    runs, _ = run_paper(paper, db=tmp_path / "r.sqlite", seeds=1, iterations=2, executor="inline", progress=False)
+    runs, _ = run_paper(paper, RerunOptions(db=tmp_path / "r.sqlite", seeds=1, iterations=2, executor="inline",
+                                          progress=False))
     assert set(runs["planner"]) == {"dijkstra", "iaca"}
     rep = compare_paper(paper, runs)
     ghost = rep.table[rep.table["planner"] == "ghost"]

@@ -30,7 +30,7 @@ from pathzoo.analysis.reproduction.paper_data import (
     paper_tables,
 )
 from pathzoo.analysis.reproduction.rendering import format_reproduction
-from pathzoo.analysis.reproduction.runs import NOT_AVAILABLE, planner_status, run_paper
+from pathzoo.analysis.reproduction.runs import NOT_AVAILABLE, RerunOptions, planner_status, run_paper
 from pathzoo.analysis.reproduction.sections import replace_section
 from pathzoo.analysis.reproduction.verdicts import RIVAL_FAILED, Reproduction, compare_paper
 
@@ -41,6 +41,7 @@ __all__ = [
     "PaperDataError",
     "PaperData",
     "Reproduction",
+    "RerunOptions",
     "paper_file",
     "paper_tables",
     "load_paper",

@@ -10,6 +10,7 @@ from __future__ import annotations
 import fnmatch
 import importlib
 import math
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Callable
 
@@ -21,6 +22,7 @@ from pathzoo.core.errors import InvalidExperimentError, InvalidParameterError, P
 
 __all__ = [
     "NOT_AVAILABLE",
+    "RerunOptions",
     "planner_status",
     "selected_scenarios",
     "build_experiments",
@@ -29,6 +31,7 @@ __all__ = [
     "experiment_name",
     "label_runs",
     "add_derived",
+    "run_labelled",
     "run_paper",
 ]
 
@@ -172,27 +175,43 @@ def add_derived(paper: PaperData, runs: pd.DataFrame, db: str | Path, experiment
     return out
 
 
-def run_paper(
-    paper: PaperData,
-    *,
-    db: str | Path,
-    seeds: int | None = None,
-    iterations: int | None = None,
-    scenarios: str | None = None,
-    jobs: int | None = None,
-    executor: str = "process",
-    progress: bool = True,
-) -> tuple[pd.DataFrame, list[str]]:
-    """Run (or resume) the paper's comparison; return the labelled runs and the experiments' names.
+@dataclass(frozen=True)
+class RerunOptions:
+    """How a paper's comparison is rerun, by :func:`run_paper` and the equal-evaluation rerun.
 
-    See :func:`build_experiments` for ``seeds``, ``iterations`` and ``scenarios``.
+    Attributes
+    ----------
+    db : path
+        The results database; a rerun resumes the runs it holds.
+    seeds, iterations, scenarios
+        Runs per planner and scenario (default: the paper's run count), a cap
+        on the iterations, a glob on the paper's scenario ids: see
+        :func:`build_experiments`.
+    jobs, executor, progress
+        Passed to :func:`~pathzoo.harness.runner.run_experiment`.
     """
+
+    db: str | Path
+    seeds: int | None = None
+    iterations: int | None = None
+    scenarios: str | None = None
+    jobs: int | None = None
+    executor: str = "process"
+    progress: bool = True
+
+
+def run_labelled(paper: PaperData, experiment: Any, options: RerunOptions) -> pd.DataFrame:
+    """Run (or resume) one experiment of a rerun; its runs with the derived metrics, labelled (:func:`label_runs`)."""
     from pathzoo.harness.runner import run_experiment
 
-    frames, names = [], []
-    for exp in build_experiments(paper, seeds=seeds, iterations=iterations, scenarios=scenarios, db=db):
-        runs = run_experiment(exp, db=db, jobs=jobs, executor=executor, progress=progress)
-        frames.append(label_runs(paper, add_derived(paper, runs, db, exp.name), exp))
-        names.append(exp.name)
-    return pd.concat(frames, ignore_index=True), names
+    runs = run_experiment(experiment, db=options.db, jobs=options.jobs, executor=options.executor,
+                          progress=options.progress)
+    return label_runs(paper, add_derived(paper, runs, options.db, experiment.name), experiment)
 
+
+def run_paper(paper: PaperData, options: RerunOptions) -> tuple[pd.DataFrame, list[str]]:
+    """Run (or resume) the paper's comparison; return the labelled runs and the experiments' names."""
+    experiments = build_experiments(paper, seeds=options.seeds, iterations=options.iterations,
+                                    scenarios=options.scenarios, db=options.db)
+    return pd.concat([run_labelled(paper, exp, options) for exp in experiments], ignore_index=True), \
+        [exp.name for exp in experiments]
