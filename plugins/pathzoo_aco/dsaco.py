@@ -52,7 +52,8 @@ from pathzoo.core.planner import Param, ProgressCallback
 from pathzoo.core.results import PlanResult
 from pathzoo.core.scenario import Scenario
 from pathzoo.core.status import Status
-from pathzoo_aco.dsaco_colony import ColonyRun, MoveTable, run_colony
+from pathzoo_aco.dsaco_colony import run_colony
+from pathzoo_aco.dsaco_tables import ColonyRun, MoveTable
 from pathzoo_aco.dsaco_fitness import infeasible_walks, walk_fitness
 from pathzoo_aco.engine import (
     AntColonyPlanner,

@@ -10,22 +10,23 @@ the same colony with three changes that leave every result bit-identical:
   (target, adjacency position, weight, move) per edge the turn limit lets
   through, in the original order, built the first time an ant stands on that
   node with that heading, appended one list after another and kept per
-  scenario and configuration (:class:`MoveTable`). A step reads one run of
+  scenario and configuration (:class:`~pathzoo_aco.dsaco_tables.MoveTable`). A step reads one run of
   records, so no edge is refused by the turn table inside the walk. Without
   a turn limit every list is the node's adjacency, read in place, and the
   lists of the nodes an ant may step to are asked of the cache before it
   draws (:func:`~pathzoo_aco.engine.prefetch.prefetch`);
 - **one trail for a whole list** when every trail leaving the node reads the
   same (no deposit on them yet, or all at ``τmin``): the trail and its power
-  are computed once for the node, not per edge (:attr:`ColonyRun.node_even`);
+  are computed once for the node, not per edge
+  (:attr:`ColonyRun.node_even <pathzoo_aco.dsaco_tables.ColonyRun.node_even>`);
 - **records linked to the next list**: a record whose move sets the
   heading leads to one list only (its target's, for that heading), so it
   learns where that list lies the first time an ant takes it, and later ants
-  skip the random read of the list heads (:attr:`MoveTable.to_next`);
+  skip the random read of the list heads (:attr:`MoveTable.to_next <pathzoo_aco.dsaco_tables.MoveTable.to_next>`);
 - **candidates kept per depth**: after a dead end the ant steps back and
   chooses again on the node before; the candidates it had there, less the
   nodes stamped since, are what reading the list again would give, so they
-  are taken from the walk's levels instead (:class:`ColonyRun`). Under the
+  are taken from the walk's levels instead (:class:`~pathzoo_aco.dsaco_tables.ColonyRun`). Under the
   paper's step rule about half of all steps are such steps back. The first
   of the heaviest candidates (eq. 14's deterministic choice) is noted while
   they are listed, so that choice reads nothing more;
@@ -38,244 +39,31 @@ the same colony with three changes that leave every result bit-identical:
   iteration) are computed beforehand by the same Python functions as the
   generic loop uses.
 
-The walk follows :func:`pathzoo_aco.engine.walk._colony` operation for
+The walk follows :func:`pathzoo_aco.engine.walk_generic.generic_colony` operation for
 operation for the rules DSACO builds (product rule, ``q0``, turn table of
 zeros and ones, edge trails in ``[τmin, τmax]``, no local update, ants one
 after another): the same candidates in the same order, the same random draws,
-the same sums. ``tests/aco/test_dsaco_colony.py`` and
+the same sums, with the step rules of :mod:`pathzoo_aco.engine.steps`.
+``tests/aco/test_dsaco_colony.py`` and
 ``benchmarks/identity.py`` check that paths, costs, step and evaluation
 counts equal the generic loop's.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numba
 import numpy as np
 
 from pathzoo_aco.dsaco_fitness import infeasible_walks, walk_fitness
+from pathzoo_aco.dsaco_tables import ColonyRun, MoveTable, build_list
 from pathzoo_aco.engine import EXHAUSTED, REACHED, STEP_CAP, STUCK
 from pathzoo_aco.engine.prefetch import prefetch
+from pathzoo_aco.engine.steps import heaviest, heuristic_candidates, read_trail, roulette, trail_power
 
-__all__ = ["MoveTable", "ColonyRun", "run_colony"]
-
-_LEVEL_ROOM = 1 << 22
-"""At most this many candidates kept for the nodes along a walk (:class:`ColonyRun`); deeper levels that do not
-fit are read again. Room for every level of the longest walk (nodes times the largest degree) when that is less."""
+__all__ = ["run_colony"]
 
 _RENORMALISE_BELOW = 1e-150
 """As :data:`pathzoo_aco.engine.pheromone._RENORMALISE_BELOW`: fold the trail's scale back below this."""
-
-
-@dataclass(frozen=True, eq=False)
-class MoveTable:
-    """A node's moves, and per (node, heading class) a record of each move the turn limit allows.
-
-    Heading classes are the distinct rows of the turn table (row ``K``, no
-    previous move, included). The list of node ``c`` and class ``k`` holds one
-    record per edge of ``c`` whose move the turn table allows, in the
-    adjacency's order (the order in which the generic walk considers them):
-    its target node, adjacency position, weight and move. It is built the
-    first time an ant stands on ``c`` with a heading of class ``k`` and
-    appended to the record arrays, so the lists a walk reads lie one after
-    another in memory, each in one run of cache lines, and no edge the turn
-    limit refuses is ever read. Without a turn table (every move allowed) a
-    list would copy the node's adjacency, so there are no records: the walk
-    reads the adjacency in place.
-
-    Attributes
-    ----------
-    adj_ptr, node, weight, move : ndarray
-        The adjacency (the walk engine's, of the rules): CSR pointer (as
-        uint32 when the positions fit: half the cache lines, and no read
-        checks for a negative index), and per position the target node,
-        weight ``weight_mul`` and move id.
-    edge : ndarray of int
-        Per adjacency position its graph edge id; empty when they are equal.
-    move_class : ndarray of int64, shape (K + 1,)
-        Class of every previous move.
-    class_row : ndarray of int64
-        A previous move (row of the turn table) standing for each class.
-    head : ndarray of int32 or int64, shape (nodes * classes, 2)
-        Per list (row ``c * classes + k``): its first record and its length
-        plus 1; ``(0, 0)`` until built (allocated zeroed: pages cost memory
-        only once a list on them is built) No rows without a turn table.
-    to_rec : structured ndarray with fields ``node``, ``place``, ``weight``
-        The records: target node, adjacency position and weight, side by side
-        (the fields a step reads for every candidate: one run of memory).
-        Allocated for every list there could be and written only as lists are
-        built, so untouched pages cost no memory. Empty without a turn table.
-    to_move : ndarray
-        Per record its move (read for the chosen one only).
-    to_next : ndarray of int64
-        Per record of a move that sets the heading, where the list the ant
-        reads after taking it starts (shifted left 16 bits) and its length
-        plus 1, once an ant has looked it up; 0 until then. That list depends
-        only on the record (target node, heading of its move), so later ants
-        skip the random read of ``head``. Empty (not used) when a list's place
-        or length would not fit.
-    filled : ndarray of int64, shape (1,)
-        Records in use.
-    """
-
-    adj_ptr: np.ndarray
-    node: np.ndarray
-    weight: np.ndarray
-    move: np.ndarray
-    edge: np.ndarray
-    move_class: np.ndarray
-    class_row: np.ndarray
-    head: np.ndarray
-    to_rec: np.ndarray
-    to_move: np.ndarray
-    to_next: np.ndarray
-    filled: np.ndarray
-
-    @classmethod
-    def of(cls, adjacency: tuple, turn: np.ndarray) -> "MoveTable":
-        """The table of an adjacency ``(adj_ptr, adj_node, adj_edge or None, adj_offset, weight_mul, _)``
-        (:meth:`~pathzoo_aco.engine.walk.WalkEngine.adjacency`) and a turn table ``(K + 1, K)`` of zeros and
-        ones (or ``(0, 0)``: one class, every move allowed)."""
-        adj_ptr, adj_node, adj_edge, adj_offset, w_mul = adjacency[:5]
-        n_nodes = len(adj_ptr) - 1
-        if turn.size == 0:  # every list is the node's adjacency, read in place: no records
-            move_class = np.zeros(1, dtype=np.int64)
-            class_row = np.zeros(1, dtype=np.int64)
-            records = 0
-        else:
-            _, first, inverse = np.unique(turn, axis=0, return_index=True, return_inverse=True)
-            move_class = inverse.reshape(-1).astype(np.int64)
-            class_row = first.astype(np.int64)
-            per_move = np.bincount(adj_offset, minlength=turn.shape[1])  # every list there could be, at most
-            records = int(((turn[class_row] > 0.0) @ per_move).sum())
-        degree = int(np.diff(adj_ptr).max(initial=0))
-        index = np.int32 if max(records, len(adj_node)) < 2**31 - 1 else np.int64
-        edge = np.zeros(0, dtype=np.int64) if adj_edge is None else adj_edge
-        if len(adj_node) < 2**32 - 1:  # unsigned 32-bit list pointers: half the cache lines, no negative-index fix-up
-            adj_ptr = adj_ptr.astype(np.uint32)
-        return cls(adj_ptr, adj_node, w_mul, adj_offset, edge, move_class, class_row,
-                   np.zeros((n_nodes * len(class_row) if turn.size else 0, 2), dtype=index),
-                   np.empty(records, dtype=np.dtype([("node", adj_node.dtype), ("place", index),
-                                                     ("weight", w_mul.dtype)])),
-                   np.empty(records, dtype=adj_offset.dtype),
-                   np.empty(records if records < 2**47 and degree < 2**16 - 1 else 0, dtype=np.int64),
-                   np.zeros(1, dtype=np.int64))
-
-
-@dataclass
-class ColonyRun:
-    """The state a run carries from one :func:`run_colony` call to the next (arrays changed in place).
-
-    Attributes
-    ----------
-    scale : ndarray, shape (1,)
-        The trail's global scale (:class:`~pathzoo_aco.engine.pheromone.Pheromone`).
-    best_cost : ndarray, shape (1,)
-        Fitness of the best walk so far.
-    best_edges : ndarray of int64
-        Its edges, ``best_edges[:counters[3]]``.
-    counters : ndarray of int64, shape (5,)
-        Next iteration, walks started, ant steps, length of the best walk, and
-        1 once an ant has searched the start's whole component (no turn rule).
-    stamps : ndarray of uint8
-        Tabu stamps; walk ``w`` (counted from 0 over the run) stamps its nodes
-        with ``1 + w mod 255``, and the stamps are cleared before every walk
-        ``w`` with ``w mod 255 = 0``.
-    stack, stack_prev : ndarray
-        Work space of the walks: the adjacency positions and headings along the walk.
-    cand, cand_w, level_first, level_count, level_more : ndarray
-        The candidates (records) and their weights of every node on the walk,
-        one level per depth: level ``d`` starts at ``level_first[d]`` and
-        holds ``level_count[d]`` of them (-1: not kept, no room);
-        ``level_more[d]`` says whether an open move of that node weighed 0.
-        When the walk steps back to a node after a dead end, the same
-        candidates less the nodes stamped since are exactly what reading its
-        list again would give (the trail does not change during a walk, and
-        the sums run in the same order), unless none is left and an open move
-        weighed 0: then the list is read again. The upper half of ``cand`` is
-        room for a step whose level does not fit below.
-    node_max : ndarray
-        Per node, at least the largest stored trail ``x`` of its edges. When
-        ``scale * node_max[c] <= τmin`` every trail leaving ``c`` reads as
-        exactly ``τmin`` (the clamp), so a step from ``c`` skips the trail.
-        Most nodes are there a few dozen iterations into a run: only the
-        iteration-best walk deposits.
-    node_even : ndarray of bool
-        Per node, whether every stored trail of its edges equals
-        ``node_max`` (true until a deposit on one of them: the trail starts
-        even and evaporation and renormalisation treat every entry alike), so
-        a step from it computes the trail and its power once for the list.
-    """
-
-    scale: np.ndarray
-    best_cost: np.ndarray
-    best_edges: np.ndarray
-    counters: np.ndarray
-    stamps: np.ndarray
-    stack: np.ndarray
-    stack_prev: np.ndarray
-    cand: np.ndarray
-    cand_w: np.ndarray
-    level_first: np.ndarray
-    level_count: np.ndarray
-    level_more: np.ndarray
-    node_max: np.ndarray
-    node_even: np.ndarray
-
-    @classmethod
-    def start(cls, n_nodes: int, max_degree: int, trail: np.ndarray, scale: float) -> "ColonyRun":
-        """A run before its first iteration, on ``n_nodes`` nodes with at most ``max_degree`` moves each,
-        with the stored ``trail`` and its scale."""
-        room = 2 * max(max_degree, min(n_nodes * max_degree, _LEVEL_ROOM))
-        even = trail.size > 0 and trail.min() == trail.max()  # every entry the same
-        return cls(np.array([scale]), np.array([np.inf]), np.zeros(max(n_nodes, 1), dtype=np.int64),
-                   np.zeros(5, dtype=np.int64), np.zeros(n_nodes, dtype=np.uint8),
-                   np.zeros(n_nodes + 1, dtype=np.int64), np.zeros(n_nodes + 1, dtype=np.int64),
-                   np.zeros(room, dtype=np.int64), np.zeros(room), np.zeros(n_nodes + 1, dtype=np.int64),
-                   np.zeros(n_nodes + 1, dtype=np.int64), np.zeros(n_nodes + 1, dtype=np.bool_),
-                   np.full(n_nodes, trail.max(initial=0.0)),
-                   np.full(n_nodes, even))
-
-
-@numba.njit(cache=True)
-def _build_list(c, k, h, adj_ptr, node, weight, move, turn, class_row, head, to_rec, to_move,
-                to_next, filled):
-    """Append the records of node ``c``'s list for heading class ``k`` (list ``h``): its edges whose move the
-    turn table allows, in their adjacency order."""
-    row = class_row[k]
-    use_turn = turn.shape[0] > 0
-    r = filled[0]
-    head[h, 0] = r
-    for q in range(adj_ptr[c], adj_ptr[c + 1]):
-        if use_turn and turn[row, move[q]] <= 0.0:
-            continue
-        to_rec[r].node = node[q]
-        to_rec[r].place = q
-        to_rec[r].weight = weight[q]
-        to_move[r] = move[q]
-        if to_next.size:
-            to_next[r] = 0
-        r += 1
-    head[h, 1] = r - head[h, 0] + 1
-    filled[0] = r
-
-
-@numba.njit(cache=True, inline="always")
-def _trail(scale, stored, lo, hi, bounded):
-    """The trail a stored value stands for (:class:`~pathzoo_aco.engine.pheromone.Pheromone`'s read)."""
-    t = scale * stored
-    return min(max(t, lo), hi) if bounded else t
-
-
-@numba.njit(cache=True, inline="always")
-def _trail_power(t, tau_exp, lo, lo_pow):
-    """``t ** tau_exp`` as the generic walk computes it (``lo_pow`` is ``lo ** tau_exp``, for trails at ``lo``)."""
-    if tau_exp == 1.0:
-        return t
-    if t <= lo:
-        return lo_pow
-    return t**tau_exp
 
 
 @numba.njit(cache=True)
@@ -286,7 +74,7 @@ def _walk_ant(wid, adj_ptr, node, weight, move, horizontal, turn, move_class, cl
     """One ant from ``start``; returns ``(outcome, depth, steps)``, the adjacency positions it took in
     ``stack[:depth]``.
 
-    Step for step :func:`pathzoo_aco.engine.walk._colony` for one ant walking
+    Step for step :func:`pathzoo_aco.engine.walk_generic.generic_colony` for one ant walking
     alone, reading the records of (node, heading) instead of the node's whole
     adjacency: ``rec_node``, ``rec_place`` and ``rec_weight`` are the fields
     of ``to_rec``, or without a turn table the adjacency's targets and weights
@@ -347,7 +135,7 @@ def _walk_ant(wid, adj_ptr, node, weight, move, horizontal, turn, move_class, cl
             else:
                 h = c * n_classes + move_class[pv]
                 if head[h, 1] == 0:
-                    _build_list(c, move_class[pv], h, adj_ptr, node, weight, move, turn, class_row, head, to_rec,
+                    build_list(c, move_class[pv], h, adj_ptr, node, weight, move, turn, class_row, head, to_rec,
                                 to_move, to_next, filled)
                 r0 = head[h, 0]
                 r1 = r0 + head[h, 1] - 1
@@ -360,15 +148,15 @@ def _walk_ant(wid, adj_ptr, node, weight, move, horizontal, turn, move_class, cl
                 p0 = room
             # one trail power for the whole list when every trail from c reads the same
             per_edge = not node_even[c] and scale * node_max[c] > lo
-            tp = _trail_power(lo if scale * node_max[c] <= lo else _trail(scale, node_max[c], lo, hi, bounded),
-                              tau_exp, lo, lo_pow)
+            tp = trail_power(lo if scale * node_max[c] <= lo else read_trail(scale, node_max[c], lo, hi, bounded),
+                             tau_exp, lo, lo_pow)
             n_open = 0
             for r in range(r0, r1):
                 if stamp[rec_node[r]] == wid:
                     continue
                 if per_edge:
-                    tp = _trail_power(_trail(scale, x[r if not use_turn else rec_place[r]], lo, hi, bounded),
-                                      tau_exp, lo, lo_pow)
+                    tp = trail_power(read_trail(scale, x[r if not use_turn else rec_place[r]], lo, hi, bounded),
+                                     tau_exp, lo, lo_pow)
                 n_open += 1
                 w = tp * rec_weight[r]
                 if w > 0.0:
@@ -381,19 +169,11 @@ def _walk_ant(wid, adj_ptr, node, weight, move, horizontal, turn, move_class, cl
                     nc += 1
             level_more[d] = n_open > nc
             if nc == 0 and n_open > 0:  # every trail weight underflowed: the heuristic alone
-                level_more[d] = False
-                for r in range(r0, r1):
-                    if stamp[rec_node[r]] == wid:
-                        continue
-                    w = rec_weight[r]
-                    if w > 0.0:
-                        cand[p0 + nc] = r
-                        cand_w[p0 + nc] = w
-                        total_w += w
-                        if w > top_w:
-                            top_w = w
-                            top = r
-                        nc += 1
+                level_more[d] = False  # a record's turn factor is 1: the weight alone
+                nc, total_w = heuristic_candidates(r0, r1, rec_node, rec_weight, rec_weight[:0], to_move, turn, pv,
+                                                   stamp, wid, cand, cand_w, p0)
+                if nc > 0:
+                    top = cand[heaviest(cand_w, p0, nc)]
             level_count[d] = nc if cached else -1
         else:
             level_count[d] = nc
@@ -418,14 +198,7 @@ def _walk_ant(wid, adj_ptr, node, weight, move, horizontal, turn, move_class, cl
             if q0 > 0.0 and np.random.random() < q0:
                 sel = top
             else:
-                sel = cand[p0 + nc - 1]
-                u = np.random.random() * total_w
-                acc = 0.0
-                for i in range(p0, p0 + nc):
-                    acc += cand_w[i]
-                    if u < acc:
-                        sel = cand[i]
-                        break
+                sel = cand[roulette(cand_w, p0, nc, total_w)]
             c = rec_node[sel]
             stamp[c] = wid
             stack[d] = sel if not use_turn else rec_place[sel]

@@ -57,6 +57,7 @@ import numpy as np
 
 from pathzoo_aco.engine import ABORTED, EXHAUSTED, REACHED, STEP_CAP, STUCK, ColonyProblem, Pheromone, WalkEngine
 from pathzoo_aco.engine import WalkRules, Walks
+from pathzoo_aco.engine.steps import heaviest, local_update, read_trail, roulette, trail_power
 from pathzoo_aco.engine.walk import _seed
 from pathzoo_aco.fgdaco_fuzzy import clipped_centroid, compiled_priority, fired_strengths, rule_ceilings
 from pathzoo_aco.fgdaco_moving import obstacle_min_distance, obstacle_position, pack_obstacles, route_clearance
@@ -211,13 +212,7 @@ def _timed_walk(indptr, indices, offset_id, horizontal, turn, length,
                         h = fuzzy_memo[e, 3, 3]
                     else:
                         h = w_mul[e]
-                    t = min(max(scale * x[e], lo), hi)
-                    if tau_exp == 1.0:
-                        w = t * h * f
-                    elif t <= lo:  # trails resting on the floor share one power
-                        w = lo_pow * h * f
-                    else:
-                        w = t**tau_exp * h * f
+                    w = trail_power(read_trail(scale, x[e], lo, hi, True), tau_exp, lo, lo_pow) * h * f
                     if w > 0.0:
                         cand_e[base + nc] = e
                         cand_w[base + nc] = w
@@ -243,24 +238,12 @@ def _timed_walk(indptr, indices, offset_id, horizontal, turn, length,
                 steps += 1
                 total += 1
                 continue
-            sel = cand_e[base + nc - 1]
-            if q0 > 0.0 and np.random.random() < q0:  # ACS: the first of the heaviest (walk_sequential.choose)
-                best = -1.0
-                for c in range(base, base + nc):
-                    if cand_w[c] > best:
-                        best = cand_w[c]
-                        sel = cand_e[c]
+            if q0 > 0.0 and np.random.random() < q0:  # ACS: the first of the heaviest
+                sel = cand_e[heaviest(cand_w, base, nc)]
             else:
-                r = np.random.random() * total_w
-                acc = 0.0
-                for c in range(base, base + nc):
-                    acc += cand_w[c]
-                    if r < acc:
-                        sel = cand_e[c]
-                        break
+                sel = cand_e[roulette(cand_w, base, nc, total_w)]
             if do_local:  # ACS's local update on the edge just taken, as the static kernel does it
-                t = local_keep * min(max(scale * x[sel], lo), hi) + local_add
-                x[sel] = min(max(t, lo), hi) / scale
+                local_update(x, sel, scale, lo, hi, local_keep, local_add)
             t_cur += length[sel] / speed
             for k in range(n_obs):  # the gap shrinks by at most the distance both have moved
                 gap[k] -= length[sel] * shrink[k]

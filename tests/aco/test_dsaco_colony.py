@@ -7,7 +7,7 @@ import pytest
 
 import pathzoo
 from pathzoo import Budget, Scenario, VehicleModel
-from pathzoo_aco.dsaco_colony import MoveTable, _build_list
+from pathzoo_aco.dsaco_tables import MoveTable, build_list
 from pathzoo_aco.engine import AntColonyPlanner, ColonyProblem, WalkEngine
 
 
@@ -152,7 +152,7 @@ def test_move_table_lists_the_allowed_moves_in_their_original_order():
             wanted = [q for q in range(e0, e1) if rules.turn[prev, adj_offset[q]] > 0]
             k = table.move_class[prev]
             h = c * n_classes + k
-            _build_list(c, k, h, table.adj_ptr, table.node, table.weight, table.move, rules.turn, table.class_row,
+            build_list(c, k, h, table.adj_ptr, table.node, table.weight, table.move, rules.turn, table.class_row,
                         table.head, table.to_rec, table.to_move, table.to_next, table.filled)
             first, length = table.head[h, 0], table.head[h, 1] - 1
             records = slice(first, first + length)
@@ -166,9 +166,9 @@ def test_move_table_lists_the_allowed_moves_in_their_original_order():
 
 
 def test_levels_that_do_not_fit_are_read_again_with_the_same_answer(monkeypatch):
-    import pathzoo_aco.dsaco_colony as colony
+    import pathzoo_aco.dsaco_tables as tables
 
-    monkeypatch.setattr(colony, "_LEVEL_ROOM", 1)  # room for about one node's candidates: most levels are not kept
+    monkeypatch.setattr(tables, "_LEVEL_ROOM", 1)  # room for about one node's candidates: most levels are not kept
     for scenario, params in ((pathzoo.load_scenario("dsaco.simple"), {"step_rule": "longitude", "n_ants": 4}),
                              (_grid(turn_deg=45.0), {"n_ants": 4}), (_grid(wall=True), {"n_ants": 2})):
         planner = pathzoo.make_planner("aco.dsaco", **params)
@@ -185,7 +185,7 @@ def test_every_list_fits_in_the_records_allocated():
     n_classes = len(table.class_row)
     for c in range(len(table.adj_ptr) - 1):
         for k in range(n_classes):
-            _build_list(c, k, c * n_classes + k, table.adj_ptr, table.node, table.weight, table.move, rules.turn,
+            build_list(c, k, c * n_classes + k, table.adj_ptr, table.node, table.weight, table.move, rules.turn,
                         table.class_row, table.head, table.to_rec, table.to_move, table.to_next, table.filled)
     assert table.filled[0] == len(table.to_rec)  # the bound is exact: every record written, none beyond
 

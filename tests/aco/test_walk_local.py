@@ -19,7 +19,8 @@ from pathzoo import VehicleModel
 from pathzoo_aco.engine import ABORTED, EXHAUSTED, REACHED, STEP_CAP, STUCK, ColonyProblem, Pheromone, WalkEngine
 from pathzoo_aco.engine import WalkRules
 from pathzoo_aco.engine.outcomes import DONE, FRESH
-from pathzoo_aco.engine.walk import _colony, _seed
+from pathzoo_aco.engine.walk import _seed
+from pathzoo_aco.engine.walk_generic import generic_colony
 from pathzoo_aco.engine.walk_sequential import local_colony, unsigned_lists
 
 from aco_maps import hill, open_grid, walled_grid
@@ -62,12 +63,13 @@ def _run(specialised: bool, problem: ColonyProblem, rules: WalkRules, trail: Phe
                                       rules.max_steps, allowance, base, stamps[0], stacks[0], prevs[0],
                                       engine.cand_w, depth, steps, flags, counters, flat, offsets)
             else:
-                status = _colony(engine.indices, engine.offset_id, *adjacency, None, problem.horizontal_offsets,
-                                 rules.turn, x, scale, trail.lo, trail.hi, trail.on_nodes, rules.tau_exp,
-                                 rules.q0, rules.local_keep, rules.local_add, rules.pre_add, problem.start,
-                                 problem.goal, rules.backtrack, rules.max_steps, allowance, False, base, stamps,
-                                 stacks, prevs, engine.cand_e, engine.cand_w, cur, depth, prev, steps, flags,
-                                 counters, flat, offsets)
+                status = generic_colony(engine.indices, engine.offset_id, *adjacency, None,
+                                        problem.horizontal_offsets,
+                                        rules.turn, x, scale, trail.lo, trail.hi, trail.on_nodes, rules.tau_exp,
+                                        rules.q0, rules.local_keep, rules.local_add, rules.pre_add, problem.start,
+                                        problem.goal, rules.backtrack, rules.max_steps, allowance, False, base, stamps,
+                                        stacks, prevs, engine.cand_q, engine.cand_w, cur, depth, prev, steps, flags,
+                                        counters, flat, offsets)
             if status == DONE:
                 break
             assert counters[3] == 1  # only ``flat`` ever runs out of room

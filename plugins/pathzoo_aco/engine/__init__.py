@@ -4,7 +4,8 @@ from pathzoo_aco.engine.colony import AntColonyPlanner, ColonyState, colony_para
 from pathzoo_aco.engine.pheromone import Pheromone, deposit_walks
 from pathzoo_aco.engine.problem import ColonyProblem
 from pathzoo_aco.engine.rules import EMPTY, WalkRules
-from pathzoo_aco.engine.walk import ABORTED, EXHAUSTED, OUTRUN, REACHED, STEP_CAP, STUCK, WalkEngine, Walks
+from pathzoo_aco.engine.walk import ABORTED, EXHAUSTED, OUTRUN, REACHED, STEP_CAP, STUCK, WalkEngine
+from pathzoo_aco.engine.walk_result import Walks
 
 __all__ = [
     "ABORTED",

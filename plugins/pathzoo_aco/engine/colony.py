@@ -45,7 +45,8 @@ from pathzoo.grid.graph_cache import release_pages
 from pathzoo_aco.engine.pheromone import Pheromone
 from pathzoo_aco.engine.problem import ColonyProblem
 from pathzoo_aco.engine.rules import WalkRules
-from pathzoo_aco.engine.walk import WalkEngine, Walks
+from pathzoo_aco.engine.walk import WalkEngine
+from pathzoo_aco.engine.walk_result import Walks
 
 __all__ = ["AntColonyPlanner", "ColonyState", "colony_params"]
 

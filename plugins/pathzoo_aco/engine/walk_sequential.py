@@ -2,7 +2,7 @@
 
 Most colonies send their ants one after another, and this module walks them
 with exactly the semantics of the generic kernel
-(:func:`pathzoo_aco.engine.walk._colony`) on that path: the same candidates
+(:func:`pathzoo_aco.engine.walk_generic.generic_colony`) on that path: the same candidates
 in the same order, the same weights, sums and random draws, the same dead
 ends, budgets and counters. It leaves out what that path never needs (racing
 ants, pre-choice additions). The body is written once
@@ -44,8 +44,10 @@ from pathzoo_aco.engine.outcomes import (ABORTED, DONE, EXHAUSTED, NEED_SPACE, R
                                          stop_before_step)
 from pathzoo_aco.engine.prefetch import prefetch
 from pathzoo_aco.engine.problem import ColonyProblem
+from pathzoo_aco.engine.steps import (choose, heaviest, heuristic_candidates, local_update, read_trail, roulette,
+                                      trail_power)
 
-__all__ = ["sequential_colony", "weighted_colony", "local_colony", "unsigned_lists", "choose", "Adjacency",
+__all__ = ["sequential_colony", "weighted_colony", "local_colony", "unsigned_lists", "Adjacency",
            "FETCH_AHEAD_FROM"]
 
 Adjacency = tuple[np.ndarray, np.ndarray, "np.ndarray | None", np.ndarray, np.ndarray, np.ndarray]
@@ -56,32 +58,6 @@ lists are the whole graph."""
 FETCH_AHEAD_FROM = 1 << 17
 """Listed edges above which :func:`local_colony` fetches ahead; smaller lists stay in the core's caches, where it
 only costs."""
-
-
-@numba.njit(cache=True, inline="always")
-def choose(cand_w, nc, total_w, q0):
-    """Index of the candidate an ant takes among ``cand_w[:nc]`` (weights summing to ``total_w``), eq. 14's rule.
-
-    With probability ``q0`` the first of the heaviest; otherwise a roulette
-    draw, falling back to the last candidate should rounding leave the draw
-    past every running sum. One or two draws from numba's generator, in the
-    same order in every kernel that calls this.
-    """
-    if q0 > 0.0 and np.random.random() < q0:
-        best = -1.0
-        pick = nc - 1
-        for i in range(nc):
-            if cand_w[i] > best:
-                best = cand_w[i]
-                pick = i
-        return pick
-    r = np.random.random() * total_w
-    acc = 0.0
-    for i in range(nc):
-        acc += cand_w[i]
-        if r < acc:
-            return i
-    return nc - 1
 
 
 def unsigned_lists(problem: ColonyProblem, indices: np.ndarray, adjacency: Adjacency) -> tuple[np.ndarray | None, ...]:
@@ -181,19 +157,13 @@ def sequential_colony(local: bool) -> Callable[..., int]:
                             k = np.int64(q)
                         else:
                             k = np.int64(adj_edge[q])
-                        if keep_powers:  # the generic kernel's ``_trail_weight``, its power kept per entry
+                        if keep_powers:  # the trail's power, kept per entry
                             if power_stamp[k] != colony:
-                                t = scale * x[k]
-                                if bounded:
-                                    t = min(max(t, lo), hi)
-                                powers[k] = lo_pow if t <= lo else t**tau_exp
+                                powers[k] = trail_power(read_trail(scale, x[k], lo, hi, bounded), tau_exp, lo, lo_pow)
                                 power_stamp[k] = colony
                             w = powers[k] * w_mul[q]
                         else:
-                            t = scale * x[k]
-                            if bounded:
-                                t = min(max(t, lo), hi)
-                            w = t * w_mul[q]
+                            w = read_trail(scale, x[k], lo, hi, bounded) * w_mul[q]
                         if has_add:
                             w += w_add[q]
                         if use_turn:
@@ -208,21 +178,10 @@ def sequential_colony(local: bool) -> Callable[..., int]:
                         total_w += w
                         nc += 1
                 if nc == 0 and n_open > 0:  # maybe every trail is 0: weigh the allowed edges by the heuristic alone
-                    for q in range(e0, e1):
-                        if stamp[adj_node[q]] == wid:
-                            continue
-                        f = turn[pv, adj_offset[q]] if use_turn else 1.0
-                        w = f * (w_mul[q] + (w_add[q] if has_add else 0.0))  # the generic kernel's expression
-                        if w > 0.0:
-                            cand_q[nc] = q
-                            cand_w[nc] = w
-                            total_w += w
-                            nc += 1
+                    nc, total_w = heuristic_candidates(e0, e1, adj_node, w_mul, w_add, adj_offset, turn, pv, stamp,
+                                                       wid, cand_q, cand_w, 0)
                     if local:
-                        for i in range(nc):
-                            if cand_w[i] > best_w:
-                                best_w = cand_w[i]
-                                best_i = i
+                        best_i = heaviest(cand_w, 0, nc)
                 if nc == 0:  # dead end
                     if not backtrack:
                         flag = STUCK
@@ -250,10 +209,10 @@ def sequential_colony(local: bool) -> Callable[..., int]:
                             if not on_nodes and adj_edge is None:  # the edge trail in list order
                                 prefetch(x, ahead)
                                 prefetch(x, ahead + 7)  # its first eight entries span one or two lines
-                        if q0 > 0.0 and np.random.random() < q0:  # :func:`choose`'s draws, its heaviest found above
+                        if q0 > 0.0 and np.random.random() < q0:  # ``choose``'s draws, its heaviest found above
                             pick = cand_q[best_i]
                         else:
-                            pick = cand_q[choose(cand_w, nc, total_w, 0.0)]
+                            pick = cand_q[roulette(cand_w, 0, nc, total_w)]
                     c = adj_node[pick]
                     stamp[c] = wid
                     sel = pick if adj_edge is None else adj_edge[pick]
@@ -266,8 +225,7 @@ def sequential_colony(local: bool) -> Callable[..., int]:
                     d += 1
                     if local and do_local:
                         k = np.int64(c) if on_nodes else np.int64(sel)
-                        t = local_keep * min(max(scale * x[k], lo), hi) + local_add
-                        x[k] = min(max(t, lo), hi) / scale
+                        local_update(x, k, scale, lo, hi, local_keep, local_add)
                         if keep_powers:
                             power_stamp[k] = 0  # its power is computed again when next read
                 n += 1
