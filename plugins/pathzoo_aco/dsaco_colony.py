@@ -58,7 +58,8 @@ from pathzoo_aco.dsaco_fitness import infeasible_walks, walk_fitness
 from pathzoo_aco.dsaco_tables import ColonyRun, MoveTable, build_list
 from pathzoo_aco.engine import EXHAUSTED, REACHED, STEP_CAP, STUCK
 from pathzoo_aco.engine.prefetch import prefetch
-from pathzoo_aco.engine.steps import heaviest, heuristic_candidates, read_trail, roulette, trail_power
+from pathzoo_aco.engine.steps import (heaviest, heuristic_candidates, kept_candidates, read_trail, roulette,
+                                      trail_power)
 
 __all__ = ["run_colony"]
 
@@ -112,17 +113,8 @@ def _walk_ant(wid, adj_ptr, node, weight, move, horizontal, turn, move_class, cl
         top = -1
         scan = True
         if back and level_count[d] >= 0:  # the same candidates as before, less the nodes stamped since
-            for i in range(p0, p0 + level_count[d]):
-                if stamp[rec_node[cand[i]]] == wid:
-                    continue
-                w = cand_w[i]
-                cand[p0 + nc] = cand[i]
-                cand_w[p0 + nc] = w
-                total_w += w
-                if w > top_w:
-                    top_w = w
-                    top = cand[i]
-                nc += 1
+            nc, total_w, kept_top = kept_candidates(cand, cand_w, p0, level_count[d], rec_node, stamp, wid)
+            top = cand[kept_top]
             # none left: a dead end, unless some open move weighed 0 (then the heuristic alone may still choose)
             scan = nc == 0 and level_more[d]
         if scan:

@@ -57,7 +57,7 @@ import numpy as np
 
 from pathzoo_aco.engine import ABORTED, EXHAUSTED, REACHED, STEP_CAP, STUCK, ColonyProblem, Pheromone, WalkEngine
 from pathzoo_aco.engine import WalkRules, Walks
-from pathzoo_aco.engine.steps import heaviest, local_update, read_trail, roulette, trail_power
+from pathzoo_aco.engine.steps import heaviest, kept_candidates, local_update, read_trail, roulette, trail_power
 from pathzoo_aco.engine.walk import _seed
 from pathzoo_aco.fgdaco_fuzzy import clipped_centroid, compiled_priority, fired_strengths, rule_ceilings
 from pathzoo_aco.fgdaco_moving import obstacle_min_distance, obstacle_position, pack_obstacles, route_clearance
@@ -120,14 +120,7 @@ def _timed_walk(indptr, indices, offset_id, horizontal, turn, length,
             nc = 0
             total_w = 0.0
             if returned:  # the candidates of the first visit, less the nodes stamped since, in the same order
-                for c in range(cand_n[depth]):
-                    e = cand_e[base + c]
-                    if stamp[indices[e]] == wid:
-                        continue
-                    cand_e[base + nc] = e
-                    cand_w[base + nc] = cand_w[base + c]
-                    total_w += cand_w[base + c]
-                    nc += 1
+                nc, total_w, _ = kept_candidates(cand_e, cand_w, base, cand_n[depth], indices, stamp, wid)
             else:
                 cx = node_xy[cur, 0]
                 cy = node_xy[cur, 1]

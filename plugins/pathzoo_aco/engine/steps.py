@@ -1,9 +1,12 @@
-"""The step rules every ant walk shares: the trail's weight, the heuristic fallback, the draw, the local update.
+"""The step rules every ant walk shares: weights, candidates, the draw, the local update.
 
 Every compiled walk of the family (the generic kernel, the sequential
 kernels, DSACO's colony and FGDACO's timed walks) lists an ant's candidate
 edges, weighs them, falls back on the heuristic when every trail weight is 0,
-and draws one by eq. 14's rule. Each of those rules is written here once.
+draws one by eq. 14's rule and, after a dead end, some take again the
+candidates kept from their first visit of the node. Each of those rules is
+written here once.
+
 They are compiled with ``inline="always"``: numba pastes their code into the
 walk that calls them before it compiles it, so a step calls nothing (a call
 through numba's dispatch costs a call and reference counts per step), and
@@ -11,6 +14,13 @@ the constants and array types of each walk specialise the pasted code like
 its own. They take numbers and arrays the walk already holds, so every walk
 computes the same doubles in the same order and draws the same random
 numbers as before.
+
+Pushing the chosen edge on the walk and stepping back after a dead end stay
+written in each walk: an array handed to an inlined helper whose body
+branches keeps a reference count there (numba's pruning of counts does not
+remove it across the helper's branches), and on moves made at every step,
+or at every step back, that count costs more than the rest of the move.
+``benchmarks/aco.py`` (the floor table) is where such a cost shows.
 """
 
 from __future__ import annotations
@@ -18,7 +28,8 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-__all__ = ["read_trail", "trail_power", "roulette", "heaviest", "choose", "heuristic_candidates", "local_update"]
+__all__ = ["read_trail", "trail_power", "roulette", "heaviest", "choose", "heuristic_candidates", "kept_candidates",
+           "local_update"]
 
 
 @numba.njit(cache=True, inline="always")
@@ -120,3 +131,32 @@ def local_update(x, k, scale, lo, hi, keep, add):
     ``[lo, hi]`` (``x`` holds the trail over ``scale``)."""
     t = keep * min(max(scale * x[k], lo), hi) + add
     x[k] = min(max(t, lo), hi) / scale
+
+
+@numba.njit(cache=True, inline="always")
+def kept_candidates(cand, cand_w, first, count, node, stamp, wid):
+    """The candidates an ant listed on its first visit of a node it has stepped back to, less the moves into
+    nodes it has stamped (``wid``) since.
+
+    ``cand[first:first + count]`` (moves whose target is ``node[move]``) and
+    their weights are compacted in place, in their order, which is what
+    listing the node's moves again would give while the trail stays as it
+    was. Returns their count, the sum of their weights (in list order) and
+    the index of the first of the heaviest (``first`` when none is left).
+    """
+    nc = 0
+    total_w = 0.0
+    best_w = -1.0
+    best = first
+    for i in range(first, first + count):
+        if stamp[node[cand[i]]] == wid:
+            continue
+        w = cand_w[i]
+        cand[first + nc] = cand[i]
+        cand_w[first + nc] = w
+        total_w += w
+        if w > best_w:
+            best_w = w
+            best = first + nc
+        nc += 1
+    return nc, total_w, best
