@@ -160,7 +160,9 @@ def _run(args: argparse.Namespace) -> int:
                 raise CommandError(f"{path} is a directory; give an experiment TOML file")
             if not path.is_file():
                 raise FileNotFoundError(errno.ENOENT, "no such experiment file", str(path))
-        from pathzoo.harness.experiment import Experiment, read_toml, resolve_seeds
+        from pathzoo.harness.experiment import Experiment
+        from pathzoo.harness.experiment_checks import resolve_seeds
+        from pathzoo.harness.experiment_file import read_toml
         from pathzoo.plugins.metric_lookup import metric_info
 
         data = read_toml(path)

@@ -31,7 +31,8 @@ from pathlib import Path
 from typing import Any, Mapping
 
 from pathzoo.core.errors import InvalidExperimentError
-from pathzoo.harness.experiment import Experiment, read_toml
+from pathzoo.harness.experiment import Experiment
+from pathzoo.harness.experiment_file import read_toml
 from pathzoo.harness.specs import PlannerSpec, ScenarioSpec
 from pathzoo.tuning.space import SearchRange, default_space, parse_space
 
