@@ -20,7 +20,10 @@ written in each walk: an array handed to an inlined helper whose body
 branches keeps a reference count there (numba's pruning of counts does not
 remove it across the helper's branches), and on moves made at every step,
 or at every step back, that count costs more than the rest of the move.
-``benchmarks/aco.py`` (the floor table) is where such a cost shows.
+The draws keep one such count on ``cand_w`` per step (their loop is such a
+branch): written out by hand in a walk they would save it, at the price of a
+second copy of eq. 14's rule. ``benchmarks/aco.py`` (the floor table) is
+where such a cost shows.
 """
 
 from __future__ import annotations
