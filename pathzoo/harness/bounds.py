@@ -35,7 +35,7 @@ from pathzoo.core.results import HistoryPoint
 from pathzoo.core.status import Status
 
 if TYPE_CHECKING:
-    from pathzoo.harness.worker import RunOutcome
+    from pathzoo.harness.outcome import RunOutcome
 
 __all__ = [
     "MAX_COUNT",

@@ -41,7 +41,7 @@ if TYPE_CHECKING:
     from pathzoo.core.metric import Metric
     from pathzoo.core.scenario import Scenario
     from pathzoo.harness.specs import RunTask
-    from pathzoo.harness.worker import RunOutcome
+    from pathzoo.harness.outcome import RunOutcome
 
 __all__ = ["judge", "verdict"]
 

@@ -43,8 +43,10 @@ from typing import TYPE_CHECKING, Any
 from pathzoo.harness.launch import NoMainContext, default_start_method, die_with_harness, harness_alive, start_server
 from pathzoo.harness.poller import Poller
 from pathzoo.harness.specs import HeldScenarios
-from pathzoo.harness.worker import (SETUP_TIMEOUT_S, describe_exception, ensure_plugins, keep_payload, load_cached,
-                                    quiet_registry)
+from pathzoo.harness.outcome import describe_exception
+from pathzoo.harness.plugin_loading import ensure_plugins, quiet_registry
+from pathzoo.harness.scenario_cache import keep_payload, load_cached
+from pathzoo.harness.worker import SETUP_TIMEOUT_S
 from pathzoo.plugins.manager import PluginKind, get_registry, limit_kinds
 
 if TYPE_CHECKING:
@@ -53,7 +55,7 @@ if TYPE_CHECKING:
 
     from pathzoo.core.results import RunRecord
     from pathzoo.harness.specs import RunTask
-    from pathzoo.harness.worker import RunOutcome
+    from pathzoo.harness.outcome import RunOutcome
 
 __all__ = ["JudgeWorker", "JudgePool", "JUDGE_TIMEOUT_S"]
 
@@ -129,7 +131,7 @@ def _warm(task: "RunTask") -> None:
     from pathzoo.core.status import Status
     from pathzoo.grid.reference import reference_path
     from pathzoo.harness.judge import judge
-    from pathzoo.harness.worker import RunOutcome
+    from pathzoo.harness.outcome import RunOutcome
 
     keep_payload(task.scenario)
     try:

@@ -286,7 +286,7 @@ def _main() -> None:
     sys.path[:] = [p for p in request["sys_path"] if isinstance(p, str)]
     out = sys.stdout
     sys.stdout = sys.stderr  # whatever a planner module prints stays out of the answer
-    from pathzoo.harness.worker import ensure_plugins, quiet_registry
+    from pathzoo.harness.plugin_loading import ensure_plugins, quiet_registry
 
     answers: list[dict[str, Any]] = []
     try:

@@ -1,4 +1,4 @@
-"""What a run ran on: versions of the libraries loaded in its worker, the CPU, and the run's peak memory.
+"""What a run ran on: versions of pathzoo, the planner and the libraries loaded in its worker, the CPU, the peak memory.
 
 These values go into a run's ``versions`` mapping (keys :data:`CPU_KEY`,
 :data:`CORES_KEY`, :data:`PEAK_RSS_KEY` beside the distribution names) and
@@ -13,6 +13,12 @@ import platform
 import sys
 from importlib import metadata
 from pathlib import Path
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+if TYPE_CHECKING:
+    from pathzoo.harness.specs import RunTask
 
 __all__ = [
     "TRACKED",
@@ -23,6 +29,8 @@ __all__ = [
     "host",
     "reset_peak_rss",
     "peak_rss_mb",
+    "versions_of",
+    "provenance",
 ]
 
 TRACKED: dict[str, str] = {
@@ -109,3 +117,20 @@ def peak_rss_mb() -> float:
         return peak / (1024.0 * 1024.0) if sys.platform == "darwin" else peak / 1024.0
     except (ImportError, OSError):
         return float("nan")
+
+
+def versions_of(task: "RunTask") -> dict[str, str]:
+    """The versions of pathzoo, Python, numpy and the task's planner distribution, read before the run."""
+    from pathzoo.plugins.manager import get_registry
+    from pathzoo.version import installed_version
+
+    out = {"pathzoo": installed_version(), "python": platform.python_version(), "numpy": np.__version__}
+    entry = get_registry().planners.get(task.planner.id)
+    if entry is not None and entry.distribution:
+        out[entry.distribution] = entry.version
+    return out
+
+
+def provenance(versions: dict[str, str]) -> dict[str, str]:
+    """``versions`` with the host, the run's peak RSS and the libraries loaded by now (after ``plan()``)."""
+    return {**versions, **host(), PEAK_RSS_KEY: f"{peak_rss_mb():.1f}", **loaded_distributions()}

@@ -14,7 +14,7 @@ from pathzoo.metrics.outcome import RETURNED
 
 if TYPE_CHECKING:
     from pathzoo.harness.specs import RunTask
-    from pathzoo.harness.worker import RunOutcome
+    from pathzoo.harness.outcome import RunOutcome
 
 __all__ = ["run_record", "unjudged"]
 

@@ -40,7 +40,7 @@ if TYPE_CHECKING:
     from pathzoo.harness.shard import Shard
     from pathzoo.core.results import RunRecord
     from pathzoo.harness.specs import RunTask
-    from pathzoo.harness.worker import RunOutcome
+    from pathzoo.harness.outcome import RunOutcome
     from pathzoo.plugins.manager import Registry
 
 __all__ = ["run_experiment", "skipped_summary", "never_run", "DEFAULT_DB"]

@@ -242,7 +242,7 @@ class ScenarioSpec:
         """The spec without its payload, for a process that holds it already.
 
         That process loads the object from the bytes it kept
-        (:func:`pathzoo.harness.worker.keep_payload`). Specs without a
+        (:func:`pathzoo.harness.scenario_cache.keep_payload`). Specs without a
         payload are returned as they are.
         """
         return replace(self, payload=b"") if self.payload else self
@@ -360,7 +360,7 @@ class HeldScenarios:
     """The scenario objects one process (a worker, the judge) holds already, as the harness tracks them.
 
     A process keeps the payload of every scenario object it receives
-    (:func:`pathzoo.harness.worker.keep_payload`); later tasks on that
+    (:func:`pathzoo.harness.scenario_cache.keep_payload`); later tasks on that
     object go to it by reference. A sender asks :meth:`outgoing` for the
     task to send and, once it is sent, tells :meth:`sent`. A process that
     is replaced starts with a new, empty ledger.

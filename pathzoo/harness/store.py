@@ -49,7 +49,7 @@ import numpy as np
 from pathzoo.core.errors import PathzooError
 from pathzoo.core.results import HistoryPoint, RunRecord
 from pathzoo.core.status import RunStatus
-from pathzoo.harness.worker import utc_now
+from pathzoo.harness.outcome import utc_now
 from pathzoo.metrics.outcome import RETURNED
 
 if TYPE_CHECKING:

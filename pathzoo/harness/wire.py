@@ -25,7 +25,7 @@ import numpy as np
 from pathzoo.core.results import HistoryPoint
 from pathzoo.core.status import Status
 from pathzoo.harness.bounds import MAX_HISTORY_POINTS, MAX_PATH_POINTS, bound_outcome
-from pathzoo.harness.worker import RunOutcome
+from pathzoo.harness.outcome import RunOutcome
 
 __all__ = ["encode_outcome", "decode_outcome", "MAX_OUTCOME_BYTES", "WireError"]
 

@@ -57,10 +57,12 @@ from pathzoo.core.budget import ClockStop
 from pathzoo.core.results import PlanResult
 from pathzoo.core.status import Status
 from pathzoo.harness.bounds import bound_outcome
-from pathzoo.harness.provenance import reset_peak_rss
-from pathzoo.harness.worker import (RunOutcome, HistoryRecorder, as_array, describe_exception,
-                                    ensure_plugins, load_cached, message_text, provenance, stopped_by_of, utc_now,
-                                    versions_of)
+from pathzoo.harness.history import HistoryRecorder
+from pathzoo.harness.outcome import RunOutcome, as_array, describe_exception, message_text, utc_now
+from pathzoo.harness.plugin_loading import ensure_plugins
+from pathzoo.harness.provenance import provenance, reset_peak_rss, versions_of
+from pathzoo.harness.scenario_cache import load_cached
+from pathzoo.harness.worker import stopped_by_of
 
 if TYPE_CHECKING:
     from pathzoo.harness.specs import RunTask

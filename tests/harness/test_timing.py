@@ -105,7 +105,7 @@ from numba.core.registry import CPUDispatcher
 import pathzoo
 from pathzoo.harness import Experiment
 from pathzoo.harness.clock_stop import SharedClockStop
-from pathzoo.harness.worker import load_cached
+from pathzoo.harness.scenario_cache import load_cached
 from pathzoo.harness.zygote import WarmUp, Zygote
 
 def signatures():

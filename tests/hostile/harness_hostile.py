@@ -142,7 +142,8 @@ class PatchClock(_Hostile):
         return PlanResult(Status.SOLVED, path=ref.path.copy(), iterations=1, evaluations=1)
 
 
-CLOCK_HOLDERS = ("pathzoo.harness.worker", "pathzoo.harness.executors.process", "pathzoo.harness.executors.cluster")
+CLOCK_HOLDERS = ("pathzoo.harness.worker", "pathzoo.harness.history", "pathzoo.harness.executors.process",
+                 "pathzoo.harness.executors.cluster")
 """Modules whose import-bound clocks (``_clock``, ``_cpu``, ``process_cpu_time``) :class:`PatchAllClocks` freezes."""
 
 

@@ -123,11 +123,11 @@ class ReplaceCachedScenario(_Hostile):
     def attack(self, scenario: Scenario) -> str:
         import dataclasses
 
-        from pathzoo.harness import worker
+        from pathzoo.harness import scenario_cache
 
-        for key, (cached, digest) in list(worker._scenarios.items()):
+        for key, (cached, digest) in list(scenario_cache._scenarios.items()):
             open_map = dataclasses.replace(cached, occupancy=np.zeros_like(cached.occupancy))
-            worker._scenarios[key] = (open_map, digest)
+            scenario_cache._scenarios[key] = (open_map, digest)
         return "replaced"
 
 

@@ -61,11 +61,12 @@ class _NoSeal:
 
 @pytest.mark.parametrize("how", ATTACKS)
 def test_each_attack_reaches_later_runs_of_a_weakened_harness(hostile, tmp_path, monkeypatch, how):
-    from pathzoo.harness import worker
+    from pathzoo.harness import scenario_cache, worker_warmup
 
-    monkeypatch.setattr(worker, "seal", _NoSeal)
-    monkeypatch.setattr(worker, "_scenarios", OrderedDict())  # this process's cache, restored afterwards
-    monkeypatch.setattr(worker, "_twins", OrderedDict())
+    monkeypatch.setattr(scenario_cache, "seal", _NoSeal)
+    monkeypatch.setattr(worker_warmup, "seal", _NoSeal)
+    monkeypatch.setattr(scenario_cache, "_scenarios", OrderedDict())  # this process's cache, restored afterwards
+    monkeypatch.setattr(worker_warmup, "_twins", OrderedDict())
     hostile.ATTACKED.discard(how)
     runs = attack(tmp_path, how, "inline")
     pristine = hostile.observe(hostile.wall_scenario())

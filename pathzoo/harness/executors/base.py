@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
     from pathzoo.harness.specs import RunTask
-    from pathzoo.harness.worker import RunOutcome
+    from pathzoo.harness.outcome import RunOutcome
 
 __all__ = ["RunExecutor"]
 
@@ -17,7 +17,7 @@ class RunExecutor(abc.ABC):
     """Where runs execute.
 
     :meth:`submit` returns a :class:`concurrent.futures.Future` that always
-    resolves to a :class:`~pathzoo.harness.worker.RunOutcome`: planner
+    resolves to a :class:`~pathzoo.harness.outcome.RunOutcome`: planner
     exceptions, hard-limit kills and dead workers are outcomes (``crash``,
     ``timed_out``), not future exceptions. The runner keeps at most
     :attr:`capacity` + :attr:`lookahead` runs in flight, so a run starts soon after it is submitted.

@@ -74,7 +74,8 @@ from pathzoo.harness.executors.base import RunExecutor
 from pathzoo.harness.executors.process import ProcessExecutor
 from pathzoo.harness.sandbox import sandbox_problem
 from pathzoo.harness.wire import decode_outcome, encode_outcome
-from pathzoo.harness.worker import SETUP_TIMEOUT_S, RunOutcome, utc_now
+from pathzoo.harness.outcome import RunOutcome, utc_now
+from pathzoo.harness.worker import SETUP_TIMEOUT_S
 
 if TYPE_CHECKING:
     from pathzoo.harness.specs import RunTask

@@ -22,7 +22,7 @@ from pathzoo.harness.worker import execute_task
 
 if TYPE_CHECKING:
     from pathzoo.harness.specs import RunTask
-    from pathzoo.harness.worker import RunOutcome
+    from pathzoo.harness.outcome import RunOutcome
 
 __all__ = ["InlineExecutor"]
 

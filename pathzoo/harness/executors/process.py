@@ -81,7 +81,7 @@ and they die with the harness however it ends (:func:`~pathzoo.harness.launch.di
 
 A scenario object (:meth:`~pathzoo.harness.specs.ScenarioSpec.of_object`)
 is sent to each worker once; later tasks on it refer to it by digest
-(:func:`~pathzoo.harness.worker.keep_payload`).
+(:func:`~pathzoo.harness.scenario_cache.keep_payload`).
 
 Unsandboxed workers all start when the executor is built (sandboxed ones when
 a run of their configuration is queued, or earlier for a planner named to
@@ -126,7 +126,9 @@ from pathzoo.harness.sandbox import SandboxLimits, SandboxUnavailableError, sand
 from pathzoo.harness.specs import HeldScenarios
 from pathzoo.harness.tamper import ModuleFingerprint
 from pathzoo.harness.wire import MAX_OUTCOME_BYTES, decode_outcome
-from pathzoo.harness.worker import SETUP_TIMEOUT_S, RunOutcome, keep_payload, utc_now
+from pathzoo.harness.outcome import RunOutcome, utc_now
+from pathzoo.harness.scenario_cache import keep_payload
+from pathzoo.harness.worker import SETUP_TIMEOUT_S
 from pathzoo.harness.zygote import WarmUp, Zygote, drop_resource_tracker, refuse_audit_hooks, undumpable
 
 if TYPE_CHECKING:

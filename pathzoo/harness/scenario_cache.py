@@ -1,0 +1,93 @@
+"""The scenarios a worker process keeps loaded: geometry warmed, arrays sealed, objects sent by reference.
+
+Scenarios are cached per process (a small LRU, keyed by
+:attr:`ScenarioSpec.cache_key`) and their shared geometry (blocked cells,
+neighbourhood graph, clearance, every cached property) is built when they
+are loaded, before any clock starts, so no planner pays for it. Its arrays
+are then moved into sealed read-only memory (:mod:`pathzoo.harness.sealed`),
+so no write can change them (numpy refuses, a raw write faults), and after
+each run the worker checks what a planner could still change: a planner
+that rebound or replaced any part of the scenario, or changed a small
+field, is flagged (``scenario_modified``, judged ``invalid``) and the
+scenario is evicted (:func:`evict`), so the next run loads a fresh one.
+"""
+
+from __future__ import annotations
+
+import threading
+from collections import OrderedDict
+from dataclasses import replace
+from typing import TYPE_CHECKING, Any, Callable, TypeVar
+
+from pathzoo.harness.digest import warm
+from pathzoo.harness.sealed import ScenarioSeal, seal
+
+if TYPE_CHECKING:
+    from pathzoo.core.scenario import Scenario
+    from pathzoo.harness.specs import ScenarioSpec
+
+__all__ = ["SCENARIO_CACHE_SIZE", "keep_payload", "load_cached", "load_warm", "lru", "evict", "cache_lock"]
+
+SCENARIO_CACHE_SIZE = 4
+"""Scenarios kept loaded per process (runs are ordered scenario by scenario)."""
+
+_scenarios: "OrderedDict[tuple[str, str, str, str], tuple[Scenario, ScenarioSeal]]" = OrderedDict()
+cache_lock = threading.Lock()
+_payloads: dict[str, bytes] = {}
+
+
+def keep_payload(spec: "ScenarioSpec") -> None:
+    """Keep the pickled bytes of a scenario object sent in full, for the specs sent later by reference.
+
+    The processes the harness sends objects to by reference (its workers
+    and the judge, :meth:`~pathzoo.harness.specs.ScenarioSpec.by_reference`)
+    call it on receipt of each task, before any planner code runs, whatever
+    fails after. The bytes are kept for the life of the process (bytes
+    cannot be changed in place, so a planner cannot alter what later runs
+    load).
+    """
+    if spec.payload:
+        _payloads.setdefault(spec.digest, spec.payload)
+
+
+def load_cached(spec: "ScenarioSpec", size: int = SCENARIO_CACHE_SIZE) -> "tuple[Scenario, ScenarioSeal]":
+    """Load a scenario once per process (LRU of ``size``), geometry warmed and arrays sealed; returns it with its seal.
+
+    A scenario object sent by reference is loaded from the bytes
+    :func:`keep_payload` kept.
+    """
+    def make() -> "tuple[Scenario, ScenarioSeal]":
+        scenario = load_warm(spec)
+        return scenario, seal(scenario)
+
+    return lru(_scenarios, spec.cache_key, size, make)
+
+
+_T = TypeVar("_T")
+
+
+def lru(cache: "OrderedDict[Any, _T]", key: Any, size: int, make: Callable[[], _T]) -> _T:
+    """``cache[key]``, made by ``make`` (outside the lock) when missing; entries beyond the ``size`` most recent go."""
+    with cache_lock:
+        if key in cache:
+            cache.move_to_end(key)
+            return cache[key]
+    value = make()
+    with cache_lock:
+        cache[key] = value
+        while len(cache) > size:
+            cache.popitem(last=False)
+    return value
+
+
+def load_warm(spec: "ScenarioSpec") -> "Scenario":
+    """Load a scenario with its shared geometry built (an object sent by reference from the kept bytes)."""
+    if spec.source == "object" and not spec.payload and spec.digest in _payloads:
+        spec = replace(spec, payload=_payloads[spec.digest])
+    return warm(spec.load())
+
+
+def evict(spec: "ScenarioSpec") -> None:
+    """Forget a cached scenario."""
+    with cache_lock:
+        _scenarios.pop(spec.cache_key, None)
