@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import sqlite3
+
 import numpy as np
 import pandas as pd
 import pytest
@@ -26,7 +28,8 @@ TINY = ["--seeds", "1", "--iterations", "3", "--executor", "inline", "--no-progr
 def test_reproduce_iaca_prints_the_table_beside_the_paper(tmp_path, capsys):
     db = tmp_path / "r.sqlite"
     md = tmp_path / "reproduction.md"
-    md.write_text("# page\n\nintro\n", encoding="utf-8")
+    md.write_text("# page\n\nintro\n<!-- reproduce:summary:begin -->\n<!-- reproduce:summary:end -->\n",
+                  encoding="utf-8")
     args = ["reproduce", "iaca", *TINY, "--db", str(db), "--markdown", str(md)]
     assert main(args) == 0
     out = capsys.readouterr().out
@@ -47,6 +50,14 @@ def test_reproduce_iaca_prints_the_table_beside_the_paper(tmp_path, capsys):
     assert ("**Reduced rerun:** 1 run(s) per planner and scenario instead of the paper's 10; "
             "every planner's iterations capped at 3 (the paper's budget: 100).") in page
     assert "| offroad |" in page
+    # the header gives the stored runs' CPU time, and the summary reads it back with the verdict counts
+    stored = sqlite3.connect(db).execute("SELECT count(*), sum(cpu_time_s) FROM runs").fetchone()
+    assert f"Its {stored[0]} stored runs took " in page
+    summary = page[page.index("<!-- reproduce:summary:begin -->"):page.index("<!-- reproduce:summary:end -->")]
+    row = next(line for line in summary.splitlines() if line.startswith("| Wang et al., IACA"))
+    cells = [c.strip() for c in row.strip("|").split("|")]
+    assert cells[1].startswith("reduced: 1 run(s) per planner and scenario") and cells[2] == "2"
+    assert float(cells[-1]) == pytest.approx(stored[1] / 3600.0, rel=2e-3)
 
 
 @pytest.mark.slow

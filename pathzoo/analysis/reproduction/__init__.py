@@ -12,7 +12,11 @@ One module per step:
 - :mod:`~pathzoo.analysis.reproduction.rendering`: that table as text or
   Markdown;
 - :mod:`~pathzoo.analysis.reproduction.sections`: a generated section of a
-  page (``docs/reproduction.md``) rewritten in place.
+  page (``docs/reproduction.md``) rewritten in place;
+- :mod:`~pathzoo.analysis.reproduction.page_summary`: the page's summary
+  table, read back from its paper sections (verdicts, CPU-hours);
+- :mod:`~pathzoo.analysis.reproduction.estimate`: the expected CPU time of a
+  full rerun, from a short pilot (``--estimate``).
 
 The package names the steps' main entry points (reading a paper, running
 it, comparing, rendering, rewriting a page); the pieces they are built

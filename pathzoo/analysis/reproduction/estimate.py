@@ -1,0 +1,192 @@
+"""The expected CPU time of a paper's full rerun, from a short pilot (``pathzoo reproduce PAPER --estimate``).
+
+The pilot runs every available planner once (seed index 0) on every chosen
+scenario with the iteration count capped at :data:`PILOT_ITERATIONS` ``[0]``,
+then runs the planners whose pilot runs were ended by that cap again at
+``[1]``. From the CPU seconds the harness measured for the two runs it fits
+``cpu = fixed + per_iteration x iterations`` per planner and scenario (the
+fixed part: loading the scenario, building graphs and tables; both parts
+clipped at zero), and evaluates it at the iterations the full run would make:
+the smallest of the planner's ``iterations`` parameter (its default filled
+in), the paper's iteration budget and ``--iterations``. A planner whose pilot
+run ended by itself (an exact search, a converged colony), or that made no
+more iterations at the higher cap, is not iterative at this budget: its
+pilot run is its full run. Each scenario's figure is then
+multiplied by the rerun's seed count.
+
+The figure is an estimate of this machine under its present load: a run
+that converges early, or whose iterations grow dearer as its search narrows,
+costs less or more. The pilot's runs go to a temporary database, never to
+the rerun's.
+"""
+
+from __future__ import annotations
+
+import math
+import tempfile
+from dataclasses import dataclass, replace
+from pathlib import Path
+
+import pandas as pd
+
+from pathzoo.analysis.formatting import format_number, render_table
+from pathzoo.analysis.reproduction.paper_data import PaperData, PaperPlanner
+from pathzoo.analysis.reproduction.runs import (
+    RerunOptions,
+    experiment_name,
+    paper_budget,
+    planner_groups,
+    planner_status,
+    run_labelled,
+    selected_scenarios,
+)
+
+__all__ = ["PILOT_ITERATIONS", "PlannerEstimate", "full_iterations", "fit_run", "estimate_paper", "format_estimate"]
+
+PILOT_ITERATIONS = (1, 3)
+"""The pilot's two iteration caps: a planner's cost is fitted through its runs at these two counts."""
+
+
+@dataclass(frozen=True)
+class PlannerEstimate:
+    """One planner's share of a full rerun.
+
+    Attributes
+    ----------
+    planner : str
+        The paper's key of the planner.
+    label : str
+        The paper's label of the planner.
+    runs : int
+        Runs of the full rerun (seeds x scenarios).
+    iterations : int or None
+        Iterations per run of the full rerun; None when the pilot's runs
+        ended by themselves (not iterative at this budget).
+    pilot_cpu_s : float
+        CPU seconds of its pilot runs.
+    cpu_s : float
+        Expected CPU seconds of its runs in the full rerun.
+    """
+
+    planner: str
+    label: str
+    runs: int
+    iterations: int | None
+    pilot_cpu_s: float
+    cpu_s: float
+
+
+def full_iterations(paper: PaperData, planner: PaperPlanner, cap: int | None) -> int | None:
+    """Iterations of one run of ``planner`` in the full rerun, or None when nothing limits them.
+
+    The smallest of the planner's ``iterations`` parameter (its default filled
+    in, when it declares one), the paper's iteration budget and ``cap``.
+    """
+    from pathzoo.harness.planner_info import info_of
+
+    limits = [int(v) for v in (paper.budget.get("iterations"), cap) if v is not None]
+    own = info_of(planner.id, dict(planner.params)).params.get("iterations")
+    if isinstance(own, int) and not isinstance(own, bool):
+        limits.append(own)
+    return min(limits) if limits else None
+
+
+def fit_run(low: tuple[float, float], high: tuple[float, float] | None, iterations: int | None) -> float:
+    """Expected CPU seconds of one full run from the pilot's ``(iterations done, CPU s)`` at its two caps.
+
+    The low run is the full run when the planner is not iterative at this
+    budget: ``high`` or ``iterations`` is None, or the high run made no more
+    iterations than the low one (an exact search counts one). Otherwise the
+    line through the two points, its slope and intercept clipped at zero, is
+    read at ``iterations``.
+    """
+    it_low, cpu_low = low
+    if high is None or iterations is None or high[0] <= it_low:
+        return cpu_low
+    it_high, cpu_high = high
+    slope = max(0.0, (cpu_high - cpu_low) / (it_high - it_low))
+    fixed = max(0.0, cpu_low - slope * it_low)
+    return fixed + slope * iterations
+
+
+def _points(runs: pd.DataFrame, capped_only: bool = False) -> dict[tuple[str, str], tuple[float, float]]:
+    """Per (planner key, scenario): (iterations done, CPU s) of the pilot run there (only runs its cap ended)."""
+    out = {}
+    for planner, scenario, its, cpu, stop in zip(runs["planner"], runs["scenario"], runs["iterations"],
+                                                 runs["cpu_time_s"], runs["stopped_by"]):
+        if capped_only and stop != "iterations":
+            continue
+        its = float(its) if pd.notna(its) else 0.0
+        out[(str(planner), str(scenario))] = (its, float(cpu) if pd.notna(cpu) else math.nan)
+    return out
+
+
+def estimate_paper(paper: PaperData, options: RerunOptions) -> tuple[list[PlannerEstimate], float]:
+    """Run the pilot and estimate the CPU seconds of the full rerun ``options`` describes, per planner.
+
+    ``options.seeds`` (default: the paper's run count), ``iterations`` and
+    ``scenarios`` describe the full rerun; ``jobs``, ``executor`` and
+    ``progress`` are the pilot's. Returns the estimates (planners in the
+    paper's order) and the CPU seconds the pilot itself took.
+    """
+    from pathzoo.core.budget import Budget
+    from pathzoo.harness.experiment import Experiment
+
+    seeds = options.seeds if options.seeds is not None else paper.runs
+    ids = list(selected_scenarios(paper, options.scenarios).values())
+    low_cap, high_cap = PILOT_ITERATIONS
+    with tempfile.TemporaryDirectory(prefix="pathzoo-estimate-") as tmp:
+        pilot = replace(options, db=Path(tmp) / "pilot.sqlite", seeds=1)
+
+        def run_level(cap: int, keys: set[str] | None) -> pd.DataFrame:
+            groups = planner_groups(paper, cap, keys=lambda p: keys is None or p.key in keys)
+            frames = [run_labelled(paper, Experiment.build(
+                planners=specs, scenarios=[sid + variant for sid in ids], seeds=1,
+                budget=Budget(**paper_budget(paper, cap)),
+                name=experiment_name(paper, 1, cap) + variant.replace("_", ".") + ".pilot", db=pilot.db), pilot)
+                for variant, specs in sorted(groups.items())]
+            return pd.concat(frames, ignore_index=True)
+
+        low_runs = run_level(low_cap, None)
+        capped = low_runs["stopped_by"].astype(str).eq("iterations")
+        iterative = set(low_runs.loc[capped, "planner"].astype(str))
+        high_runs = run_level(high_cap, iterative) if iterative else low_runs.iloc[0:0]
+    low, capped_low = _points(low_runs), _points(low_runs, capped_only=True)
+    high = {k: v for k, v in _points(high_runs).items() if k in capped_low}
+    pilot_cpu = float(pd.to_numeric(pd.concat([low_runs["cpu_time_s"], high_runs["cpu_time_s"]]),
+                                    errors="coerce").sum())
+    estimates = []
+    for p in paper.planners:
+        if planner_status(p):
+            continue
+        cells = [(low[k], high.get(k)) for k in low if k[0] == p.key]
+        grows = any(hi is not None and hi[0] > lo[0] for lo, hi in cells)
+        iters = full_iterations(paper, p, options.iterations) if grows else None
+        cpu = sum(fit_run(lo, hi, iters) for lo, hi in cells) * seeds
+        mine = pd.concat([low_runs.loc[low_runs["planner"] == p.key, "cpu_time_s"],
+                          high_runs.loc[high_runs["planner"] == p.key, "cpu_time_s"]])
+        estimates.append(PlannerEstimate(p.key, p.label, seeds * len(cells), iters,
+                                         float(pd.to_numeric(mine, errors="coerce").sum()), cpu))
+    return estimates, pilot_cpu
+
+
+def format_estimate(paper: PaperData, estimates: list[PlannerEstimate], pilot_cpu_s: float, seeds: int) -> str:
+    """The estimate as a text table: per planner its runs, iterations per run, pilot and expected CPU, and the total."""
+    total = sum(e.cpu_s for e in estimates)
+    display = pd.DataFrame({
+        "planner": [f"{e.label} ({paper.planner(e.planner).id})" for e in estimates] + ["total"],
+        "runs": [str(e.runs) for e in estimates] + [str(sum(e.runs for e in estimates))],
+        "iterations per run": [("ends by itself" if e.iterations is None else str(e.iterations)) for e in estimates]
+        + [""],
+        "pilot CPU s": [format_number(e.pilot_cpu_s, 3) for e in estimates] + [format_number(pilot_cpu_s, 3)],
+        "expected CPU-hours": [format_number(e.cpu_s / 3600.0, 3) for e in estimates]
+        + [format_number(total / 3600.0, 3)],
+    })
+    notes = [
+        f"Pilot: 1 run per planner and scenario at {PILOT_ITERATIONS[0]} iteration(s), and again at "
+        f"{PILOT_ITERATIONS[1]} for the planners that iterate; CPU = fixed + per iteration x iterations, "
+        f"times {seeds} run(s) per planner and scenario (the paper: {paper.runs}).",
+        "An estimate on this machine under its present load: runs that converge early cost less.",
+    ]
+    return render_table(display, "text", title=f"Expected CPU time of the full rerun: {paper.title}, {paper.table}",
+                        notes=notes, left=("planner",))

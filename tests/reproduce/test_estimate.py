@@ -1,0 +1,44 @@
+"""``pathzoo reproduce PAPER --estimate``: the fit of a run's CPU time and the pilot end to end."""
+
+from __future__ import annotations
+
+import pytest
+
+from pathzoo.analysis.reproduction.estimate import fit_run
+from pathzoo.cli.main import main
+
+
+def test_fit_run_reads_the_line_through_the_pilots_two_runs_at_the_full_count():
+    # 2 s fixed + 0.5 s per iteration: 2.5 s at 1 iteration, 3.5 s at 3
+    assert fit_run((1.0, 2.5), (3.0, 3.5), 1000) == pytest.approx(502.0)
+    # a dearer low run (noise) gives no negative slope: the higher run's cost is the floor
+    assert fit_run((1.0, 4.0), (3.0, 3.0), 1000) == pytest.approx(4.0)
+    # a slope larger than the low run's cost gives no negative fixed part
+    assert fit_run((1.0, 1.0), (3.0, 5.0), 10) == pytest.approx(20.0)
+
+
+def test_fit_run_takes_the_pilot_run_as_the_full_run_when_the_planner_does_not_iterate():
+    assert fit_run((1.0, 7.0), None, 1000) == 7.0          # ended by itself at the low cap
+    assert fit_run((1.0, 7.0), (1.0, 7.2), 1000) == 7.0    # no more iterations at the high cap
+    assert fit_run((1.0, 7.0), (3.0, 9.0), None) == 7.0    # nothing limits its iterations
+
+
+@pytest.mark.slow
+def test_estimate_prints_each_planners_cpu_hours_and_stores_nothing(tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    assert main(["reproduce", "iaca", "--estimate", "--seeds", "4", "--executor", "inline", "--no-progress"]) == 0
+    out = capsys.readouterr().out
+    assert "Expected CPU time of the full rerun" in out
+    lines = {line.split("  ")[0]: line.split() for line in out.splitlines()}
+    dijkstra, iaca, total = lines["Dijkstra (exact.dijkstra)"], lines["IACA (aco.iaca)"], lines["total"]
+    assert dijkstra[2:6] == ["4", "ends", "by", "itself"]  # an exact search: its pilot run is its full run
+    assert iaca[2:4] == ["4", "100"]  # the paper's 100 iterations, 4 runs
+    assert float(total[-1]) == pytest.approx(float(dijkstra[-1]) + float(iaca[-1]), rel=0.01)
+    assert "4 run(s) per planner and scenario (the paper: 10)" in out
+    assert list(tmp_path.iterdir()) == []  # the pilot's runs went to a temporary database
+
+
+def test_estimate_refuses_options_that_store_results(capsys):
+    assert main(["reproduce", "iaca", "--estimate", "--markdown", "page.md"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "--estimate" in err[0] and "--markdown" in err[0]
