@@ -20,7 +20,6 @@ expansion is exact):
 
 from __future__ import annotations
 
-from functools import partial
 from typing import ClassVar
 
 import numpy as np
@@ -28,8 +27,8 @@ import numpy as np
 from pathzoo.core import Param, Scenario
 from pathzoo.core.object_memo import ObjectMemo
 from pathzoo.grid.graph import GridGraph
-from pathzoo_exact.base import BatchFn, GraphSearchPlanner
-from pathzoo_exact.kernel import H_EUCLID, H_OCTILE, astar_batch, astar_moves_batch, goal_cell, grid_dims, run_batch
+from pathzoo_exact.base import GraphSearchPlanner
+from pathzoo_exact.kernel import H_EUCLID, H_OCTILE, Batch, astar_batch, astar_moves_batch, grid_dims, search_problem
 from pathzoo_exact.moves import move_table
 
 __all__ = ["AStarPlanner", "least_energy_per_metre"]
@@ -74,17 +73,15 @@ class AStarPlanner(GraphSearchPlanner):
             return mode, 1.0
         return mode, least_energy_per_metre(scenario.graph)
 
-    def _make_batch(self, scenario: Scenario, target: int) -> BatchFn:
+    def _make_batch(self, scenario: Scenario, target: int) -> Batch:
         """The move-table kernel when every move has one cost (flat grids), else the CSR kernel; both give the same result."""
         graph = scenario.graph
         dims = grid_dims(graph.shape)
         sizes = scenario.cell_sizes
         steps = np.array([sizes[0], sizes[1], sizes[2] if len(sizes) == 3 else 0.0])
         mode, scale = self._heuristic(scenario)
-        problem = (target, goal_cell(target, dims), mode, dims, steps, scale)
+        problem = search_problem(target, dims, steps, mode, scale)
         table = move_table(graph, self.cost)
         if table is not None:
-            args = (table.mask, table.shift, table.weight, table.cell, *problem)
-            return partial(run_batch, astar_moves_batch, args, table.n_moves)
-        csr_args = (graph.indptr, graph.indices, graph.weights(self.cost), *problem)
-        return partial(run_batch, astar_batch, csr_args, len(graph.offsets))
+            return Batch(astar_moves_batch, (table.mask, table.shift, table.weight, table.cell, *problem), table.n_moves)
+        return Batch(astar_batch, (graph.indptr, graph.indices, graph.weights(self.cost), *problem), len(graph.offsets))

@@ -73,7 +73,7 @@ import abc
 import math
 import threading
 from functools import cached_property
-from typing import Any, Callable, ClassVar, Hashable, NamedTuple
+from typing import Any, ClassVar, NamedTuple
 
 import numpy as np
 
@@ -82,14 +82,10 @@ from pathzoo.core.object_memo import ObjectMemo
 from pathzoo.grid.paths import centre_path, on_centre
 from pathzoo.grid.terrain import segment_profile
 from pathzoo.rules import segment_problem
-from pathzoo_exact.kernel import EXHAUSTED, FOUND, HEAP_FULL, RUNNING, SearchState, grid_dims
+from pathzoo_exact.kernel import EXHAUSTED, FOUND, HEAP_FULL, RUNNING, Batch, SearchState, grid_dims
 from pathzoo_exact.waypoints import path_ends, path_layout, waypoints
 
-__all__ = ["GraphSearchPlanner", "BatchFn", "SPARE_MAX_NODES", "Endpoints", "endpoints", "connector_cost",
-           "PreparedSearch"]
-
-BatchFn = Callable[[SearchState, int], int]
-"""``batch(state, max_expansions) -> RUNNING | FOUND | EXHAUSTED | HEAP_FULL``."""
+__all__ = ["GraphSearchPlanner", "SPARE_MAX_NODES", "Endpoints", "endpoints", "connector_cost", "PreparedSearch"]
 
 SPARE_MAX_NODES = 1 << 21
 """Largest graph (nodes) whose search state a thread keeps for its next search (about 36 MB)."""
@@ -165,8 +161,9 @@ class PreparedSearch(NamedTuple):
 
     Attributes
     ----------
-    batch : BatchFn
-        Advances a search by one batch (:meth:`GraphSearchPlanner._make_batch`).
+    batch : Batch
+        The kernel that advances a search by one batch, with its arguments
+        (:meth:`GraphSearchPlanner._make_batch`).
     source, target : int
         The start and goal cells' node ids.
     n_nodes : int
@@ -185,7 +182,7 @@ class PreparedSearch(NamedTuple):
         The connectors' costs, start first, when both are allowed.
     """
 
-    batch: BatchFn
+    batch: Batch
     source: int
     target: int
     n_nodes: int
@@ -196,7 +193,7 @@ class PreparedSearch(NamedTuple):
     connector_costs: tuple[float, ...]
 
 
-_PREPARED: "ObjectMemo[Scenario, dict[Hashable, PreparedSearch]]" = ObjectMemo()
+_PREPARED: "ObjectMemo[Scenario, dict[str, PreparedSearch]]" = ObjectMemo()
 
 
 class GraphSearchPlanner(Planner, abc.ABC):
@@ -213,18 +210,21 @@ class GraphSearchPlanner(Planner, abc.ABC):
     """Heap slots allocated up front; the heap doubles when full."""
 
     @abc.abstractmethod
-    def _make_batch(self, scenario: Scenario, target: int) -> BatchFn:
-        """Return the function that advances the search on ``scenario`` by one batch."""
+    def _make_batch(self, scenario: Scenario, target: int) -> Batch:
+        """Return the kernel that advances the search on ``scenario`` by one batch, with its arguments."""
 
     def _cost_kind(self) -> str:
         """The edge cost minimised, ``"length"`` or ``"energy"``."""
         return "length"
 
     @cached_property
-    def _search_key(self) -> Hashable:
-        """What tells this configuration's prepared searches from another's on the same scenario."""
+    def _search_key(self) -> str:
+        """What tells this configuration's prepared searches from another's on the same scenario.
+
+        A string, whose hash Python keeps: a tuple's is worked out again on every look-up.
+        """
         values: dict[str, Any] = self._values
-        return type(self), tuple(values.items())
+        return f"{type(self).__module__}.{type(self).__qualname__}{tuple(values.items())!r}"
 
     def _prepared(self, scenario: Scenario) -> PreparedSearch:
         """This configuration's :class:`PreparedSearch` on ``scenario``, built on the first call and then kept."""
@@ -276,12 +276,12 @@ class GraphSearchPlanner(Planner, abc.ABC):
         clock = budget.start() if budget.timed or budget.stop is not None else None  # else no clock can end it
         search = self._prepared(scenario)
         state = _search_state(search.n_nodes, search.source, self.initial_heap_capacity)
-        batch, cap, step = search.batch, budget.evaluations, self.batch_expansions
+        (kernel, args, degree), cap, step = search.batch, budget.evaluations, self.batch_expansions
         try:  # batches until the search ends or the budget does; nothing returned refers to the state's arrays
             while True:
                 if cap is not None:
                     step = min(self.batch_expansions, cap - state.expanded)
-                status = batch(state, step)
+                status = kernel(*args, *state.arrays, step, degree)  # run_batch, written out: one call less
                 if status == FOUND:
                     return self._solved(scenario, search, state, progress)
                 if status == HEAP_FULL:

@@ -8,6 +8,12 @@ which is faster where every move has one cost. The search state lives in
 plain NumPy arrays (:class:`SearchState`), so the Python driver can run the
 search in batches of expansions and look at the clock between batches.
 
+A kernel's arguments are few arrays: the problem's scalars and small vectors
+packed in two (:func:`search_problem`), the heap's three columns in one. A
+call from Python costs about 60 ns per argument to type-check and unbox, as
+much as a search of a few nodes, and short searches are called one per
+``plan()``.
+
 The heap is *lazy*: a node whose cost improves is pushed again instead of
 having its key decreased, and stale entries are skipped when popped (the
 node is already closed). On ``8room_000`` this was about 1.5 times faster
@@ -33,7 +39,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Callable
+from typing import Callable, NamedTuple
 
 import numba
 import numpy as np
@@ -57,6 +63,7 @@ __all__ = [
     "heuristic",
     "grid_dims",
     "goal_cell",
+    "search_problem",
     "heap_push",
     "heap_pop",
     "next_open",
@@ -71,6 +78,7 @@ __all__ = [
     "thetastar_batch",
     "trace_path",
     "run_batch",
+    "Batch",
 ]
 
 H_ZERO = 0
@@ -181,9 +189,9 @@ class SearchState:
         writing (and page-faulting) 8 bytes per node in every search.
     closed : ndarray of bool, shape (N,)
         Whether each node has been expanded.
-    heap_node, heap_f, heap_g : ndarray
-        The binary heap: node, key ``f`` and tie-breaker ``g`` per slot;
-        ``heap_f`` and ``heap_g`` hold int64 :func:`order_key` values.
+    heap : ndarray of int64, shape (3, capacity)
+        The binary heap, one row each for the node, the key ``f`` and the
+        tie-breaker ``g`` of a slot; the keys are :func:`order_key` values.
     counters : ndarray of int64, shape (3,)
         ``[heap size, expanded nodes, source of a start the next batch does first (-1: none)]``.
     """
@@ -191,27 +199,22 @@ class SearchState:
     g: np.ndarray
     parent: np.ndarray
     closed: np.ndarray
-    heap_node: np.ndarray
-    heap_f: np.ndarray
-    heap_g: np.ndarray
+    heap: np.ndarray
     counters: np.ndarray
 
     @property
     def arrays(self) -> tuple[np.ndarray, ...]:
-        """The seven arrays in the order above: the batch kernels' trailing arguments."""
-        return self.g, self.parent, self.closed, self.heap_node, self.heap_f, self.heap_g, self.counters
+        """The five arrays in the order above: the batch kernels' trailing arguments."""
+        return self.g, self.parent, self.closed, self.heap, self.counters
 
     @classmethod
     def start(cls, n_nodes: int, source: int, heap_capacity: int = 4096) -> "SearchState":
         """A fresh state whose first batch starts the search from ``source`` (see :meth:`restart`)."""
-        empty = np.empty(0, dtype=np.int64)
         state = cls(
             g=np.empty(n_nodes),
             parent=np.empty(n_nodes, dtype=np.int64),
             closed=np.empty(n_nodes, dtype=np.bool_),
-            heap_node=empty,
-            heap_f=empty,
-            heap_g=empty,
+            heap=np.empty((3, 0), dtype=np.int64),
             counters=np.zeros(3, dtype=np.int64),
         )
         state.restart(source, heap_capacity)
@@ -228,18 +231,16 @@ class SearchState:
         self.counters[2] = source
 
     def _heap_of(self, capacity: int) -> None:
-        """Heap arrays of ``capacity`` slots (new ones only when the capacity differs)."""
-        if len(self.heap_node) != capacity:
-            self.heap_node, self.heap_f, self.heap_g = (np.empty(capacity, dtype=np.int64) for _ in range(3))
+        """A heap of ``capacity`` slots (a new one only when the capacity differs)."""
+        if self.heap.shape[1] != capacity:
+            self.heap = np.empty((3, capacity), dtype=np.int64)
 
     def grow_heap(self) -> None:
         """Double the heap's capacity, keeping its entries."""
         size = int(self.counters[0])
-        for name in ("heap_node", "heap_f", "heap_g"):
-            old = getattr(self, name)
-            new = np.empty(2 * len(old), dtype=old.dtype)
-            new[:size] = old[:size]
-            setattr(self, name, new)
+        new = np.empty((3, 2 * self.heap.shape[1]), dtype=np.int64)
+        new[:, :size] = self.heap[:, :size]
+        self.heap = new
 
     @property
     def expanded(self) -> int:
@@ -292,6 +293,33 @@ def goal_cell(target: int, dims: np.ndarray) -> np.ndarray:
     layer, rest = divmod(int(target), h * w)
     row, col = divmod(rest, w)
     return np.array([col, row, layer], dtype=np.int64)
+
+
+def search_problem(target: int, dims: np.ndarray, steps: np.ndarray, mode: int, scale: float) -> tuple[np.ndarray, np.ndarray]:
+    """The ``ints, reals`` arguments of the batch kernels: where the search ends and its heuristic.
+
+    Parameters
+    ----------
+    target : int
+        The goal's node id.
+    dims : ndarray of int64, shape (3,)
+        The grid's shape ``(L, H, W)`` (:func:`grid_dims`).
+    steps : ndarray of float64, shape (3,)
+        Metres per cell along ``x, y, z``.
+    mode : int
+        :data:`H_ZERO`, :data:`H_OCTILE` or :data:`H_EUCLID`.
+    scale : float
+        Factor of the heuristic's distance.
+
+    Returns
+    -------
+    ints : ndarray of int64, shape (8,)
+        ``target``, ``mode``, the goal's cell ``(x, y, z)`` (:func:`goal_cell`), ``dims``.
+    reals : ndarray of float64, shape (4,)
+        ``steps``, ``scale``.
+    """
+    ints = np.array([target, mode, *goal_cell(target, dims), *dims], dtype=np.int64)
+    return ints, np.array([*steps, scale], dtype=np.float64)
 
 
 @numba.njit(cache=True)
@@ -400,11 +428,12 @@ SIGHT_STEP = 2
 """Step rule of :func:`search_loop`: Theta*'s, a successor seeing its parent's parent links to it (:func:`thetastar_batch`)."""
 
 
-def search_loop(rule: int, doc: str) -> Callable[..., int]:
-    """The batch kernel of one step rule: the A* loop of expansions, compiled with only that rule's step.
+def search_loop(rule: int) -> Callable[..., int]:
+    """The A* loop of expansions of one step rule, compiled with only that rule's step.
 
-    The kernel takes the rule's problem arguments (see ``doc``), then the
-    seven :attr:`SearchState.arrays`, ``max_expansions`` and ``max_degree``.
+    The loop takes the rule's graph arrays (see ``doc``), the problem's
+    ``ints`` and ``reals`` (:func:`search_problem`), the five
+    :attr:`SearchState.arrays`, ``max_expansions`` and ``max_degree``.
     It pops the best open node (:func:`next_open`), stops at the target and
     otherwise relaxes the node's edges by the rule. ``rule`` is a constant
     of the closure, so numba drops the other rules' steps before it
@@ -412,18 +441,31 @@ def search_loop(rule: int, doc: str) -> Callable[..., int]:
     per expansion (a shared step called through numba, even one inlined by
     numba, costs a call or reference counts on every expansion). Returns
     :data:`RUNNING`, :data:`FOUND`, :data:`EXHAUSTED` or :data:`HEAP_FULL`.
+
+    The loop takes its arguments as ``*args``, which numba packs into a
+    tuple on every call from Python; the batch kernels (:func:`astar_batch`,
+    ...) name their arguments and call it, compiled into them.
     """
 
     def batch(*args):
-        g, parent, closed, heap_node, heap_f, heap_g, counters, max_expansions, max_degree = args[-9:]
+        ints, reals, g, parent, closed, heap, counters, max_expansions, max_degree = args[-9:]
+        target = ints[0]
+        mode = ints[1]
+        goal = ints[2:5]
+        dims = ints[5:8]
+        steps = reals[0:3]
+        scale = reals[3]
+        heap_node = heap[0]
+        heap_f = heap[1]
+        heap_g = heap[2]
         if rule == CSR_STEP:
-            indptr, indices, weights, target, goal, mode, dims, steps, scale = args[:-9]
+            indptr, indices, weights = args[:-9]
         elif rule == MOVES_STEP:
-            mask, move_shift, move_weight, move_cell, target, goal, mode, dims, steps, scale = args[:-9]
+            mask, move_shift, move_weight, move_cell = args[:-9]
             w = np.uint64(dims[2])
             plane = np.uint64(dims[1]) * w
         else:
-            indptr, indices, weights, blocked, target, goal, dims, steps = args[:-9]
+            indptr, indices, weights, blocked = args[:-9]
             width = dims[2]
             cs = steps[0]
         size = begin_batch(g, parent, closed, heap_node, heap_f, heap_g, counters)
@@ -495,26 +537,40 @@ def search_loop(rule: int, doc: str) -> Callable[..., int]:
                         size = heap_push(heap_node, heap_f, heap_g, size, v, order_key(f), order_key(cand))
         return end_batch(counters, size, done, status)
 
-    batch.__doc__ = doc
-    batch.__qualname__ = batch.__name__ = ("astar_batch", "astar_moves_batch", "thetastar_batch")[rule]
+    batch.__qualname__ = batch.__name__ = ("csr_loop", "moves_loop", "sight_loop")[rule]
     return numba.njit(cache=True)(batch)
 
 
-astar_batch = search_loop(CSR_STEP, """A* on a CSR graph, up to ``max_expansions`` expansions (see :func:`search_loop`).
+_CSR_LOOP = search_loop(CSR_STEP)
+_MOVES_LOOP = search_loop(MOVES_STEP)
+_SIGHT_LOOP = search_loop(SIGHT_STEP)
 
-    Arguments: ``indptr, indices, weights, target, goal, mode, dims, steps,
-    scale``, the seven :attr:`SearchState.arrays`, ``max_expansions``,
-    ``max_degree``. ``target`` is the goal's node id and ``goal`` its cell
-    (:func:`goal_cell`); ``mode``, ``dims``, ``steps`` and ``scale`` are
-    :func:`heuristic`'s. Nodes are closed when expanded and never reopened,
-    which is exact for a consistent heuristic (and for Dijkstra).
-    ``max_degree`` bounds the pushes of one expansion.
-    """)
 
-astar_moves_batch = search_loop(MOVES_STEP, """:func:`astar_batch` on a grid whose edge costs depend on the move only (see :mod:`pathzoo_exact.moves`).
+@numba.njit(cache=True)
+def astar_batch(indptr: np.ndarray, indices: np.ndarray, weights: np.ndarray, ints: np.ndarray, reals: np.ndarray,
+                g: np.ndarray, parent: np.ndarray, closed: np.ndarray, heap: np.ndarray, counters: np.ndarray,
+                max_expansions: int, max_degree: int) -> int:
+    """A* on a CSR graph, up to ``max_expansions`` expansions (see :func:`search_loop`).
+
+    Arguments: ``indptr, indices, weights``, the problem's ``ints, reals``
+    (:func:`search_problem`: target, heuristic), the five
+    :attr:`SearchState.arrays`, ``max_expansions``, ``max_degree``. Nodes
+    are closed when expanded and never reopened, which is exact for a
+    consistent heuristic (and for Dijkstra). ``max_degree`` bounds the
+    pushes of one expansion.
+    """
+    return _CSR_LOOP(indptr, indices, weights, ints, reals, g, parent, closed, heap, counters, max_expansions,
+                     max_degree)
+
+
+@numba.njit(cache=True)
+def astar_moves_batch(mask: np.ndarray, move_shift: np.ndarray, move_weight: np.ndarray, move_cell: np.ndarray,
+                      ints: np.ndarray, reals: np.ndarray, g: np.ndarray, parent: np.ndarray, closed: np.ndarray,
+                      heap: np.ndarray, counters: np.ndarray, max_expansions: int, max_degree: int) -> int:
+    """:func:`astar_batch` on a grid whose edge costs depend on the move only (see :mod:`pathzoo_exact.moves`).
 
     Arguments: ``mask, move_shift, move_weight, move_cell``, then those of
-    :func:`astar_batch` from ``target`` on. Bit ``k`` of ``mask[u]`` says
+    :func:`astar_batch` from ``ints`` on. Bit ``k`` of ``mask[u]`` says
     that node ``u`` has the edge of move ``k``, to node ``u +
     move_shift[k]`` at cost ``move_weight[k]``; ``move_cell[k]`` is the move
     as ``(dx, dy, dz)`` cells. Moves are tried in ascending ``k``, the order
@@ -522,16 +578,26 @@ astar_moves_batch = search_loop(MOVES_STEP, """:func:`astar_batch` on a grid who
     :func:`astar_batch` on the same graph and the result is bit-identical.
     It reads one mask per expansion instead of the CSR row, and derives the
     neighbours' cells from the expanded cell (no division per push).
-    """)
+    """
+    return _MOVES_LOOP(mask, move_shift, move_weight, move_cell, ints, reals, g, parent, closed, heap, counters,
+                       max_expansions, max_degree)
 
-thetastar_batch = search_loop(SIGHT_STEP, """Theta* (:mod:`pathzoo_exact.thetastar`) on a 2-D CSR graph (see :func:`search_loop`).
 
-    Arguments: ``indptr, indices, weights, blocked, target, goal, dims,
-    steps``, then those of :func:`astar_batch` from ``g`` on. ``dims`` is
-    ``(1, H, W)``, ``steps`` ``(cell_size, cell_size, 0)`` and ``blocked``
-    the occupancy grid that :func:`pathzoo.grid.segments.segment_blocked_2d`
-    reads for line of sight; the heuristic is the Euclidean distance.
-    """)
+@numba.njit(cache=True)
+def thetastar_batch(indptr: np.ndarray, indices: np.ndarray, weights: np.ndarray, blocked: np.ndarray,
+                    ints: np.ndarray, reals: np.ndarray, g: np.ndarray, parent: np.ndarray, closed: np.ndarray,
+                    heap: np.ndarray, counters: np.ndarray, max_expansions: int, max_degree: int) -> int:
+    """Theta* (:mod:`pathzoo_exact.thetastar`) on a 2-D CSR graph (see :func:`search_loop`).
+
+    Arguments: ``indptr, indices, weights, blocked``, then those of
+    :func:`astar_batch` from ``ints`` on. The grid is ``(1, H, W)``, the
+    steps ``(cell_size, cell_size, 0)``, and ``blocked`` the occupancy grid
+    that :func:`pathzoo.grid.segments.segment_blocked_2d` reads for line of
+    sight; the heuristic is the Euclidean distance (the problem's mode and
+    scale are not read).
+    """
+    return _SIGHT_LOOP(indptr, indices, weights, blocked, ints, reals, g, parent, closed, heap, counters,
+                       max_expansions, max_degree)
 
 
 @numba.njit(cache=True)
@@ -567,3 +633,14 @@ def run_batch(kernel: Callable[..., int], args: tuple, max_degree: int, state: S
         Expansions allowed in this batch.
     """
     return kernel(*args, *state.arrays, max_expansions, max_degree)
+
+
+class Batch(NamedTuple):
+    """A batch kernel and its leading arguments: what advances one search (:func:`run_batch`)."""
+
+    kernel: Callable[..., int]
+    """:func:`astar_batch`, :func:`astar_moves_batch` or :func:`thetastar_batch`."""
+    args: tuple
+    """The kernel's graph arrays and the problem's ``ints, reals`` (:func:`search_problem`)."""
+    max_degree: int
+    """Upper bound on a node's out-degree."""

@@ -23,14 +23,13 @@ Interpretations:
 
 from __future__ import annotations
 
-from functools import partial
 from typing import ClassVar
 
 import numpy as np
 
 from pathzoo.core import Scenario
-from pathzoo_exact.base import BatchFn, GraphSearchPlanner
-from pathzoo_exact.kernel import goal_cell, run_batch, thetastar_batch
+from pathzoo_exact.base import GraphSearchPlanner
+from pathzoo_exact.kernel import H_EUCLID, Batch, search_problem, thetastar_batch
 
 __all__ = ["ThetaStarPlanner"]
 
@@ -47,9 +46,10 @@ class ThetaStarPlanner(GraphSearchPlanner):
     summary: ClassVar[str] = "Theta* any-angle search (Nash et al. 2007); never longer than the grid optimum"
     kinds: ClassVar[frozenset[str]] = frozenset({"grid2d"})
 
-    def _make_batch(self, scenario: Scenario, target: int) -> BatchFn:
+    def _make_batch(self, scenario: Scenario, target: int) -> Batch:
         graph = scenario.graph
         dims = np.array((1, *graph.shape), dtype=np.int64)
         steps = np.array([scenario.cell_size, scenario.cell_size, 0.0])
-        args = (graph.indptr, graph.indices, graph.length, scenario.blocked, target, goal_cell(target, dims), dims, steps)
-        return partial(run_batch, thetastar_batch, args, len(graph.offsets))
+        problem = search_problem(target, dims, steps, H_EUCLID, 1.0)
+        args = (graph.indptr, graph.indices, graph.length, scenario.blocked, *problem)
+        return Batch(thetastar_batch, args, len(graph.offsets))

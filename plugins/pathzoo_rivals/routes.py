@@ -49,8 +49,8 @@ from pathzoo_exact.kernel import (
     RUNNING,
     SearchState,
     astar_batch,
-    goal_cell,
     run_batch,
+    search_problem,
     trace_path,
 )
 
@@ -131,8 +131,8 @@ class RouteProblem:
         graph = self.scenario.graph
         dims = np.array((1, *self.shape), dtype=np.int64)
         cs = self.scenario.cell_size
-        args = (graph.indptr, graph.indices, weights, self.goal, goal_cell(self.goal, dims), H_OCTILE, dims,
-                np.array([cs, cs, 0.0]), 1.0)
+        problem = search_problem(self.goal, dims, np.array([cs, cs, 0.0]), H_OCTILE, 1.0)
+        args = (graph.indptr, graph.indices, weights, *problem)
         state = SearchState.start(graph.n_nodes, self.start)
         status = RUNNING
         while status in (RUNNING, HEAP_FULL):

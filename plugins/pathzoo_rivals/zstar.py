@@ -43,14 +43,13 @@ differently, which never changes the optimal energy).
 from __future__ import annotations
 
 import math
-from functools import partial
 from typing import ClassVar
 
 import numpy as np
 
 from pathzoo.core import Param, PlanResult, ProgressCallback, Scenario
-from pathzoo_exact.base import BatchFn, GraphSearchPlanner, PreparedSearch
-from pathzoo_exact.kernel import H_ZERO, SearchState, astar_batch, goal_cell, grid_dims, run_batch
+from pathzoo_exact.base import GraphSearchPlanner, PreparedSearch
+from pathzoo_exact.kernel import H_ZERO, Batch, SearchState, astar_batch, grid_dims, search_problem
 
 __all__ = ["ZStarPlanner", "zstar_heuristic", "zstar_edge_cost", "reduced_costs"]
 
@@ -139,14 +138,13 @@ class ZStarPlanner(GraphSearchPlanner):
         """``θ_M``: the smaller of the parameter and the vehicle's climb limit, in radians."""
         return math.radians(min(float(self.max_climb_deg), scenario.vehicle.max_climb_deg))
 
-    def _make_batch(self, scenario: Scenario, target: int) -> BatchFn:
+    def _make_batch(self, scenario: Scenario, target: int) -> Batch:
         graph = scenario.graph
         theta_m = self.max_climb_rad(scenario)
         weights = reduced_costs(scenario, zstar_edge_cost(scenario, theta_m), zstar_heuristic(scenario, theta_m))
         dims = grid_dims(graph.shape)
-        args = (graph.indptr, graph.indices, weights, target, goal_cell(target, dims), H_ZERO, dims,
-                np.zeros(3), 0.0)
-        return partial(run_batch, astar_batch, args, len(graph.offsets))
+        args = (graph.indptr, graph.indices, weights, *search_problem(target, dims, np.zeros(3), H_ZERO, 0.0))
+        return Batch(astar_batch, args, len(graph.offsets))
 
     def _solved(
         self, scenario: Scenario, search: PreparedSearch, state: SearchState, progress: ProgressCallback | None

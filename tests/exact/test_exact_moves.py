@@ -21,8 +21,8 @@ from pathzoo_exact.kernel import (
     SearchState,
     astar_batch,
     astar_moves_batch,
-    goal_cell,
     run_batch,
+    search_problem,
 )
 from pathzoo_exact.moves import move_table
 
@@ -54,7 +54,7 @@ def both_kernels(scenario: Scenario, cost: str, mode: int, scale: float, batch: 
     sizes = scenario.cell_sizes
     steps = np.array([sizes[0], sizes[1], sizes[2] if len(sizes) == 3 else 0.0])
     target = scenario.goal_node
-    problem = (target, goal_cell(target, dims), mode, dims, steps, scale)
+    problem = search_problem(target, dims, steps, mode, scale)
     csr = search(astar_batch, (graph.indptr, graph.indices, graph.weights(cost), *problem), len(graph.offsets),
                  graph.n_nodes, scenario.start_node, batch, heap)
     moves = search(astar_moves_batch, (table.mask, table.shift, table.weight, table.cell, *problem), table.n_moves,
