@@ -41,6 +41,7 @@ from typing import Any, Iterator
 from pathzoo.parent_death import die_with_parent
 
 __all__ = [
+    "PRELOAD",
     "NoMainContext",
     "ForkServerNoMainProcess",
     "SpawnNoMainProcess",
@@ -52,7 +53,9 @@ __all__ = [
     "die_with_parent",
 ]
 
-_PRELOAD = ["pathzoo.harness.executors.warmup"]
+PRELOAD = ("pathzoo.harness.executors.warmup", "pathzoo.harness.executors.process")
+"""What the ``forkserver`` imports, in order: what every harness process needs (it stops the server with the harness
+first), then the workers' code."""
 _launch_lock = threading.Lock()
 
 
@@ -225,7 +228,7 @@ class NoMainContext:
         self.ctx: Any = mp.get_context(method)
         self.Process = _PROCESS[method]
         if method == "forkserver":
-            self.ctx.set_forkserver_preload(_PRELOAD)
+            self.ctx.set_forkserver_preload(list(PRELOAD))
 
     def __getattr__(self, name: str) -> Any:
         return getattr(self.ctx, name)

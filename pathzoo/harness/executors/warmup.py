@@ -21,7 +21,12 @@ die only once it is gone (:func:`pathzoo.harness.launch.die_with_harness`).
 Its children never run exit handlers (a forkserver child always leaves
 through ``os._exit``).
 
-Importing this module has these side effects on purpose; nothing else imports it.
+The worker's own code (:mod:`pathzoo.harness.executors.process`) is the
+server's next preload (:data:`pathzoo.harness.launch.PRELOAD`), not an
+import of this module: a sandboxed worker, spawned rather than forked,
+imports this module from inside that code.
+
+Importing this module has these side effects on purpose.
 """
 
 import atexit
@@ -31,7 +36,6 @@ from pathzoo.harness.launch import die_with_parent
 
 die_with_parent()  # the harness may be gone before the imports below end: the server's loop would notice only then
 
-import pathzoo.harness.executors.process  # noqa: E402,F401 - a worker's code
 import pathzoo.harness.judge_worker  # noqa: E402,F401 - the judge's code
 import pathzoo.metrics.catalogue  # noqa: E402,F401 - the built-in metrics the judge computes (every metric module)
 from pathzoo.harness.digest import scenario_digest, warm  # noqa: E402
