@@ -71,6 +71,9 @@ EXTRA = (  # planner, scenario id, parameters: non-default settings that take ot
     ("aco.gant", "gant.fig7", {"dead_end": "die"}),  # ants dropped at dead ends,
     ("aco.as", "dsaco.complex", {"dead_end": "die"}),  # the same under a turn limit,
     ("aco.mmas", "enclosed60", {}),  # a walled-off goal: the first ant exhausts the component, no other starts
+    ("swarm.mosfla", "ggaco.hugo", {}),  # the route rivals of GGACO's table: random routes (noisy A*), leaps,
+    ("search.movns", "ggaco.hugo", {}),  # neighbourhoods and objectives on terrain
+    ("swarm.mosfla", "gant.simple.1", {}),  # and on a 500 x 500 grid
 )
 LONG = (  # planner, scenario id, parameters, iterations: whole runs (schedules, evaporation, p decay)
     ("aco.dsaco", "dsaco.complex", {}, 500),

@@ -82,6 +82,7 @@ class RouteProblem:
         self.free = ~scenario.blocked
         self.clearance = scenario.clearance
         self._segment_ok: dict[tuple[int, int], bool] = {}
+        self._weights: np.ndarray | None = None  # random_route's noisy edge weights, one array reused
         vehicle = scenario.vehicle
         self._slopes_matter = scenario.kind == "terrain" and (
             min(vehicle.max_climb_deg, vehicle.max_descent_deg) < 90.0
@@ -147,7 +148,16 @@ class RouteProblem:
         Returns ``None`` when the goal cell is unreachable.
         """
         graph = self.scenario.graph
-        nodes = self.shortest_nodes(graph.length * rng.uniform(1.0, 1.0 + noise, graph.n_edges))
+        if self._weights is None:
+            self._weights = np.empty(graph.n_edges)
+        weights = self._weights
+        # rng.uniform(1, 1 + noise, n) written into one reused array: uniform draws 1 + ((1 + noise) - 1) * U
+        # from the same stream as rng.random, so the weights are bit for bit the same without two temporaries
+        rng.random(out=weights)
+        weights *= (1.0 + noise) - 1.0
+        weights += 1.0
+        weights *= graph.length
+        nodes = self.shortest_nodes(weights)
         return None if nodes is None else self.pull_string(nodes)
 
     def pull_string(self, nodes: np.ndarray) -> np.ndarray:
