@@ -28,7 +28,8 @@ from pathzoo.core import Param, Scenario
 from pathzoo.core.object_memo import ObjectMemo
 from pathzoo.grid.graph import GridGraph
 from pathzoo_exact.base import GraphSearchPlanner
-from pathzoo_exact.kernel import H_EUCLID, H_OCTILE, Batch, astar_batch, astar_moves_batch, grid_dims, search_problem
+from pathzoo_exact.answer import Batch, astar_answer, astar_moves_answer
+from pathzoo_exact.kernel import H_EUCLID, H_OCTILE, grid_dims, search_problem
 from pathzoo_exact.moves import move_table
 
 __all__ = ["AStarPlanner", "least_energy_per_metre"]
@@ -83,5 +84,7 @@ class AStarPlanner(GraphSearchPlanner):
         problem = search_problem(target, dims, steps, mode, scale)
         table = move_table(graph, self.cost)
         if table is not None:
-            return Batch(astar_moves_batch, (table.mask, table.shift, table.weight, table.cell, *problem), table.n_moves)
-        return Batch(astar_batch, (graph.indptr, graph.indices, graph.weights(self.cost), *problem), len(graph.offsets))
+            moves = (table.mask, table.shift, table.weight, table.cell)
+            return Batch(astar_moves_answer, (*moves, *problem), table.n_moves)
+        csr = (graph.indptr, graph.indices, graph.weights(self.cost))
+        return Batch(astar_answer, (*csr, *problem), len(graph.offsets))

@@ -53,8 +53,9 @@ goal cells, whether the end points lie on their cell centres, the
 connectors' verdicts and costs. :meth:`GraphSearchPlanner._prepared` works
 them out on the first ``plan()`` of a configuration on a scenario and keeps
 them beside the scenario (:class:`PreparedSearch`), so that a search on a
-small map costs a few microseconds besides its expansions. The path is then
-built in one compiled pass (:func:`~pathzoo_exact.waypoints.waypoints`).
+small map costs a few microseconds besides its expansions. The batch that
+finds the target also builds the path, in the same compiled call
+(:mod:`pathzoo_exact.answer`, :func:`~pathzoo_exact.waypoints.waypoints`).
 
 Budgets
 -------
@@ -82,8 +83,9 @@ from pathzoo.core.object_memo import ObjectMemo
 from pathzoo.grid.paths import centre_path, on_centre
 from pathzoo.grid.terrain import segment_profile
 from pathzoo.rules import segment_problem
-from pathzoo_exact.kernel import EXHAUSTED, FOUND, HEAP_FULL, RUNNING, Batch, SearchState, grid_dims
-from pathzoo_exact.waypoints import path_ends, path_layout, waypoints
+from pathzoo_exact.answer import Batch, answer_problem
+from pathzoo_exact.kernel import EXHAUSTED, FOUND, HEAP_FULL, RUNNING, SearchState, grid_dims
+from pathzoo_exact.waypoints import path_ends, path_layout
 
 __all__ = ["GraphSearchPlanner", "SPARE_MAX_NODES", "Endpoints", "endpoints", "connector_cost", "PreparedSearch"]
 
@@ -162,8 +164,10 @@ class PreparedSearch(NamedTuple):
     Attributes
     ----------
     batch : Batch
-        The kernel that advances a search by one batch, with its arguments
-        (:meth:`GraphSearchPlanner._make_batch`).
+        The kernel that advances a search by one batch and returns the answer
+        when it finds the target (:mod:`pathzoo_exact.answer`), with its
+        leading arguments: :meth:`GraphSearchPlanner._make_batch`'s, the
+        path's ``layout`` and ``ends`` packed after the problem's ``ints, reals``.
     source, target : int
         The start and goal cells' node ids.
     n_nodes : int
@@ -211,7 +215,11 @@ class GraphSearchPlanner(Planner, abc.ABC):
 
     @abc.abstractmethod
     def _make_batch(self, scenario: Scenario, target: int) -> Batch:
-        """Return the kernel that advances the search on ``scenario`` by one batch, with its arguments."""
+        """The kernel of :mod:`pathzoo_exact.answer` that searches ``scenario``, with its graph and problem arguments.
+
+        The arguments end with the problem's ``ints, reals`` (:func:`~pathzoo_exact.kernel.search_problem`);
+        :meth:`_prepare` packs the path's ``layout`` and ``ends`` into them.
+        """
 
     def _cost_kind(self) -> str:
         """The edge cost minimised, ``"length"`` or ``"energy"``."""
@@ -251,14 +259,17 @@ class GraphSearchPlanner(Planner, abc.ABC):
             if problem is not None:
                 break
             costs.append(connector_cost(scenario, p0, p1, kind))
+        layout = path_layout(grid_dims(graph.shape), scenario.shape[1] if scenario.kind == "grid2d" else 0,
+                             ends.start_on_centre, ends.goal_on_centre)
+        path_points = path_ends(scenario.cell_sizes, scenario.start, scenario.goal)
+        kernel, args, degree = self._make_batch(scenario, ends.target)
         return PreparedSearch(
-            batch=self._make_batch(scenario, ends.target),
+            batch=Batch(kernel, (*args[:-2], *answer_problem(args[-2], args[-1], layout, path_points)), degree),
             source=ends.source,
             target=ends.target,
             n_nodes=graph.n_nodes,
-            layout=path_layout(grid_dims(graph.shape), scenario.shape[1] if scenario.kind == "grid2d" else 0,
-                               ends.start_on_centre, ends.goal_on_centre),
-            ends=path_ends(scenario.cell_sizes, scenario.start, scenario.goal),
+            layout=layout,
+            ends=path_points,
             cost_kind=kind,
             connector_problem=problem,
             connector_costs=tuple(costs),
@@ -276,52 +287,57 @@ class GraphSearchPlanner(Planner, abc.ABC):
         clock = budget.start() if budget.timed or budget.stop is not None else None  # else no clock can end it
         search = self._prepared(scenario)
         state = _search_state(search.n_nodes, search.source, self.initial_heap_capacity)
-        (kernel, args, degree), cap, step = search.batch, budget.evaluations, self.batch_expansions
+        (kernel, args, degree), cap, step, expanded = search.batch, budget.evaluations, self.batch_expansions, 0
         try:  # batches until the search ends or the budget does; nothing returned refers to the state's arrays
             while True:
                 if cap is not None:
-                    step = min(self.batch_expansions, cap - state.expanded)
-                status = kernel(*args, *state.arrays, step, degree)  # run_batch, written out: one call less
+                    step = min(self.batch_expansions, cap - expanded)
+                status, expanded, graph_cost, path = kernel(*args, *state.arrays, step, degree)
                 if status == FOUND:
-                    return self._solved(scenario, search, state, progress)
+                    return self._solved(scenario, search, expanded, graph_cost, path, progress)
                 if status == HEAP_FULL:
                     state.grow_heap()
                     continue
                 if status != RUNNING:
                     break
-                if cap is not None and state.expanded >= cap:
-                    return self._failed(state, f"evaluation budget of {cap} expansions exhausted before the goal")
+                if cap is not None and expanded >= cap:
+                    return self._failed(expanded, f"evaluation budget of {cap} expansions exhausted before the goal")
                 spent = None if clock is None else clock.time_up()
                 if spent is not None:
-                    return self._failed(state, f"{'CPU' if spent == 'cpu_time' else 'wall'} time budget exhausted "
-                                        "before the goal")
+                    return self._failed(expanded, f"{'CPU' if spent == 'cpu_time' else 'wall'} time budget "
+                                        "exhausted before the goal")
             assert status == EXHAUSTED
             return PlanResult(
                 Status.NO_PATH,
                 iterations=1,
-                evaluations=state.expanded,
+                evaluations=expanded,
                 message="the goal cell is not reachable from the start cell in the neighbourhood graph",
             )
         finally:
             _keep_spare(state)
 
-    def _failed(self, state: SearchState, message: str) -> PlanResult:
-        return PlanResult(Status.FAILED, iterations=1, evaluations=state.expanded, message=message)
+    def _failed(self, expanded: int, message: str) -> PlanResult:
+        return PlanResult(Status.FAILED, iterations=1, evaluations=expanded, message=message)
 
     def _solved(
-        self, scenario: Scenario, search: PreparedSearch, state: SearchState, progress: ProgressCallback | None
+        self,
+        scenario: Scenario,
+        search: PreparedSearch,
+        expanded: int,
+        graph_cost: float,
+        path: np.ndarray,
+        progress: ProgressCallback | None,
     ) -> PlanResult:
-        """The answer of a search that expanded ``search.target``."""
+        """The answer of a search that expanded ``search.target`` after ``expanded`` expansions.
+
+        ``graph_cost`` is the target's ``g`` and ``path`` the path the kernel built (:mod:`pathzoo_exact.answer`).
+        """
         if search.connector_problem is not None:
-            return self._failed(state, "connector between an endpoint and its cell centre is not allowed: "
+            return self._failed(expanded, "connector between an endpoint and its cell centre is not allowed: "
                                 f"{search.connector_problem}")
-        target = search.target
-        path = waypoints(state.parent, target, search.layout, search.ends)
-        graph_cost = float(state.g[target])
         cost = graph_cost
         for connector in search.connector_costs:
             cost += connector
-        expanded = state.expanded
         if progress is not None:
             progress(1, expanded, cost)
         return PlanResult(

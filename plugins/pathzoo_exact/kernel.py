@@ -39,7 +39,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Callable, NamedTuple
+from typing import Callable
 
 import numba
 import numpy as np
@@ -64,6 +64,8 @@ __all__ = [
     "grid_dims",
     "goal_cell",
     "search_problem",
+    "PROBLEM_INTS",
+    "PROBLEM_REALS",
     "heap_push",
     "heap_pop",
     "next_open",
@@ -78,7 +80,6 @@ __all__ = [
     "thetastar_batch",
     "trace_path",
     "run_batch",
-    "Batch",
 ]
 
 H_ZERO = 0
@@ -293,6 +294,12 @@ def goal_cell(target: int, dims: np.ndarray) -> np.ndarray:
     layer, rest = divmod(int(target), h * w)
     row, col = divmod(rest, w)
     return np.array([col, row, layer], dtype=np.int64)
+
+
+PROBLEM_INTS = 8
+"""Length of :func:`search_problem`'s ``ints``; the kernels read no further (more may follow)."""
+PROBLEM_REALS = 4
+"""Length of :func:`search_problem`'s ``reals``; the kernels read no further (more may follow)."""
 
 
 def search_problem(target: int, dims: np.ndarray, steps: np.ndarray, mode: int, scale: float) -> tuple[np.ndarray, np.ndarray]:
@@ -634,13 +641,3 @@ def run_batch(kernel: Callable[..., int], args: tuple, max_degree: int, state: S
     """
     return kernel(*args, *state.arrays, max_expansions, max_degree)
 
-
-class Batch(NamedTuple):
-    """A batch kernel and its leading arguments: what advances one search (:func:`run_batch`)."""
-
-    kernel: Callable[..., int]
-    """:func:`astar_batch`, :func:`astar_moves_batch` or :func:`thetastar_batch`."""
-    args: tuple
-    """The kernel's graph arrays and the problem's ``ints, reals`` (:func:`search_problem`)."""
-    max_degree: int
-    """Upper bound on a node's out-degree."""

@@ -29,7 +29,8 @@ import numpy as np
 
 from pathzoo.core import Scenario
 from pathzoo_exact.base import GraphSearchPlanner
-from pathzoo_exact.kernel import H_EUCLID, Batch, search_problem, thetastar_batch
+from pathzoo_exact.answer import Batch, thetastar_answer
+from pathzoo_exact.kernel import H_EUCLID, search_problem
 
 __all__ = ["ThetaStarPlanner"]
 
@@ -52,4 +53,4 @@ class ThetaStarPlanner(GraphSearchPlanner):
         steps = np.array([scenario.cell_size, scenario.cell_size, 0.0])
         problem = search_problem(target, dims, steps, H_EUCLID, 1.0)
         args = (graph.indptr, graph.indices, graph.length, scenario.blocked, *problem)
-        return Batch(thetastar_batch, args, len(graph.offsets))
+        return Batch(thetastar_answer, args, len(graph.offsets))

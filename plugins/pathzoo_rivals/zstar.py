@@ -49,7 +49,8 @@ import numpy as np
 
 from pathzoo.core import Param, PlanResult, ProgressCallback, Scenario
 from pathzoo_exact.base import GraphSearchPlanner, PreparedSearch
-from pathzoo_exact.kernel import H_ZERO, Batch, SearchState, astar_batch, grid_dims, search_problem
+from pathzoo_exact.answer import Batch, astar_answer
+from pathzoo_exact.kernel import H_ZERO, grid_dims, search_problem
 
 __all__ = ["ZStarPlanner", "zstar_heuristic", "zstar_edge_cost", "reduced_costs"]
 
@@ -144,12 +145,17 @@ class ZStarPlanner(GraphSearchPlanner):
         weights = reduced_costs(scenario, zstar_edge_cost(scenario, theta_m), zstar_heuristic(scenario, theta_m))
         dims = grid_dims(graph.shape)
         args = (graph.indptr, graph.indices, weights, *search_problem(target, dims, np.zeros(3), H_ZERO, 0.0))
-        return Batch(astar_batch, args, len(graph.offsets))
+        return Batch(astar_answer, args, len(graph.offsets))
 
     def _solved(
-        self, scenario: Scenario, search: PreparedSearch, state: SearchState, progress: ProgressCallback | None
+        self,
+        scenario: Scenario,
+        search: PreparedSearch,
+        expanded: int,
+        graph_cost: float,
+        path: np.ndarray,
+        progress: ProgressCallback | None,
     ) -> PlanResult:
         """Turn the goal's reduced cost back into energy (add ``h(start)``), then build the result as usual."""
         h = zstar_heuristic(scenario, self.max_climb_rad(scenario))
-        state.g[search.target] += h[scenario.start_node]
-        return super()._solved(scenario, search, state, progress)
+        return super()._solved(scenario, search, expanded, graph_cost + float(h[scenario.start_node]), path, progress)
