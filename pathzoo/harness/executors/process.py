@@ -441,7 +441,8 @@ class ProcessExecutor(RunExecutor):
                 group.remove()
             raise
         child.close()
-        cpu = ChargedCpu(process.pid or 0, None if group is None else group.cpu_seconds)
+        cpu = (ChargedCpu(process.pid or 0) if group is None
+               else ChargedCpu(process.pid or 0, group.cpu_seconds, members=group.pids))  # its tree is its cgroup
         worker = _Worker(process, parent, SharedClockStop(flag), cpu, config=config,
                          group=group, scratch=scratch, visible=visible)
         self._workers.append(worker)
