@@ -69,7 +69,7 @@ def load_experiment(db: str | Path, experiment: str | None = None) -> StoredExpe
     ------
     InvalidParameterError
         ``db`` holds several experiments and none was chosen, or none at all.
-    pathzoo.harness.store.ResultsDatabaseError
+    pathzoo.harness.store_file.ResultsDatabaseError
         ``db`` is missing or not a results database, or has no such experiment.
     """
     from pathzoo.harness.store import read_experiments, read_history, read_runs

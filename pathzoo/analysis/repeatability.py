@@ -125,7 +125,8 @@ def compare_results(first: str | Path, second: str | Path, experiment: str | Non
     ResultsDatabaseError
         A file is missing or not a results database, or lacks the experiment.
     """
-    from pathzoo.harness.store import ResultsDatabaseError, read_experiments, read_path, read_runs
+    from pathzoo.harness.store import read_experiments, read_path, read_runs
+    from pathzoo.harness.store_file import ResultsDatabaseError
 
     first, second = Path(first), Path(second)
     if experiment is None:

@@ -163,7 +163,7 @@ def random_records(
 
     Yields ``n_scenarios x len(planners) x n_seeds`` :class:`~pathzoo.core.results.RunRecord`
     objects, scenario by scenario, for :meth:`ResultStore.insert_batch
-    <pathzoo.harness.store.ResultStore.insert_batch>`: scenarios
+    <pathzoo.harness.store_writer.ResultStore.insert_batch>`: scenarios
     ``s00000, s00001, ...`` with metrics ``length``, ``length_ratio`` and
     ``planning_time``, no path and no history. A few runs per hundred end
     by the clock (``stopped_by="wall_time"``).

@@ -8,7 +8,7 @@ The public names are loaded lazily, so importing the package stays cheap:
 - :func:`~pathzoo.harness.store.read_runs`, :func:`~pathzoo.harness.store.read_history`,
   :func:`~pathzoo.harness.store.read_path`, :func:`~pathzoo.harness.store.read_record`,
   :func:`~pathzoo.harness.store.read_experiments`,
-  :class:`~pathzoo.harness.store.ResultsDatabaseError`;
+  :class:`~pathzoo.harness.store_file.ResultsDatabaseError`;
 - :func:`~pathzoo.rules.validate_path`.
 """
 
@@ -32,7 +32,7 @@ __all__ = [
 _WHERE = {
     "Experiment": "experiment",
     "PlannerSpec": "specs",
-    "ResultsDatabaseError": "store",
+    "ResultsDatabaseError": "store_file",
     "read_experiments": "store",
     "read_history": "store",
     "read_path": "store",

@@ -25,7 +25,9 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Sequence
 
-from pathzoo.harness.store import ResultsDatabaseError, ResultStore, read_experiments
+from pathzoo.harness.store import read_experiments
+from pathzoo.harness.store_file import ResultsDatabaseError
+from pathzoo.harness.store_writer import ResultStore
 
 __all__ = ["MergedExperiment", "merge_databases"]
 

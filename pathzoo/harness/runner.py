@@ -31,7 +31,8 @@ from pathzoo.harness.eta import RunTimes, pilot_first
 from pathzoo.harness.run_record import unjudged
 from pathzoo.harness.judge_worker import JUDGE_TIMEOUT_S, JudgePool
 from pathzoo.harness.planner_info import extra_plugin_modules
-from pathzoo.harness.store import ResultStore, read_runs
+from pathzoo.harness.store import read_runs
+from pathzoo.harness.store_writer import ResultStore
 
 if TYPE_CHECKING:
     import pandas as pd

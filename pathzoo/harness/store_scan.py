@@ -18,7 +18,7 @@ import json
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Iterator, Sequence
 
-from pathzoo.harness.store import _connect, _experiment_filter
+from pathzoo.harness.store_file import connect, experiment_filter
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -73,9 +73,9 @@ def scenario_chunks(db: str | Path, experiment: str, metrics: Sequence[str], *,
     import pandas as pd
 
     path = Path(db)
-    conn = _connect(path, create=False)
+    conn = connect(path, create=False)
     try:
-        where, args = _experiment_filter(conn, path, experiment)
+        where, args = experiment_filter(conn, path, experiment)
         present = {str(r[1]) for r in conn.execute("PRAGMA table_info(runs)")}
         wanted = [m for m in dict.fromkeys(metrics) if m not in CHUNK_COLUMNS]
         exprs: list[str] = []
@@ -117,9 +117,9 @@ def configurations(db: str | Path, experiment: str) -> "pd.DataFrame":
     import pandas as pd
 
     path = Path(db)
-    conn = _connect(path, create=False)
+    conn = connect(path, create=False)
     try:
-        where, args = _experiment_filter(conn, path, experiment)
+        where, args = experiment_filter(conn, path, experiment)
         present = {str(r[1]) for r in conn.execute("PRAGMA table_info(runs)")}
         label = "label" if "label" in present else "'' AS label"
         rows = conn.execute(f"SELECT DISTINCT planner, params_hash, {label}, planner_version FROM runs{where} "
@@ -132,9 +132,9 @@ def configurations(db: str | Path, experiment: str) -> "pd.DataFrame":
 def library_versions(db: str | Path, experiment: str, skip: Sequence[str] = ()) -> dict[str, list[str]]:
     """Each key of the runs' stored ``versions`` (but ``skip``) with the sorted distinct values the runs hold."""
     path = Path(db)
-    conn = _connect(path, create=False)
+    conn = connect(path, create=False)
     try:
-        where, args = _experiment_filter(conn, path, experiment)
+        where, args = experiment_filter(conn, path, experiment)
         rows = conn.execute(
             f"SELECT DISTINCT j.key, CAST(j.value AS TEXT) FROM (SELECT versions FROM runs{where}) r, "
             "json_each(r.versions) j WHERE j.key NOT IN (SELECT value FROM json_each(?))",
@@ -151,9 +151,9 @@ def library_versions(db: str | Path, experiment: str, skip: Sequence[str] = ()) 
 def isolation_counts(db: str | Path, experiment: str) -> tuple[int, int]:
     """``(runs, runs not isolated)`` of one experiment (runs of the ``inline`` executor are not isolated)."""
     path = Path(db)
-    conn = _connect(path, create=False)
+    conn = connect(path, create=False)
     try:
-        where, args = _experiment_filter(conn, path, experiment)
+        where, args = experiment_filter(conn, path, experiment)
         present = {str(r[1]) for r in conn.execute("PRAGMA table_info(runs)")}
         inline = "SUM(isolated = 0)" if "isolated" in present else "0"
         total, not_isolated = conn.execute(f"SELECT COUNT(*), {inline} FROM runs{where}", args).fetchone()

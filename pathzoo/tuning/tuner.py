@@ -33,7 +33,8 @@ from pathzoo.analysis.tuning_report import optuna_storage_path, study_name
 from pathzoo.core.errors import PathzooError
 from pathzoo.harness.runner import DEFAULT_DB, run_experiment
 from pathzoo.harness.specs import PlannerSpec
-from pathzoo.harness.store import ResultsDatabaseError, read_runs
+from pathzoo.harness.store import read_runs
+from pathzoo.harness.store_file import ResultsDatabaseError
 from pathzoo.tuning.objective import WORST_RATIO, trial_score
 from pathzoo.tuning.setup import TuningSetup
 from pathzoo.tuning.space import SearchRange, suggest
