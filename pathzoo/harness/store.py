@@ -2,8 +2,9 @@
 
 The file's layout is in :mod:`pathzoo.harness.store_file`; :class:`ResultStore`
 (:mod:`pathzoo.harness.store_writer`) writes it. A file written before a
-column of :data:`RUN_COLUMNS` existed reads with the column's default.
-:mod:`pathzoo.harness.store_scan` reads large files in bounded memory.
+column of :data:`RUN_COLUMNS` existed reads with the column's default
+(:data:`RUN_DEFAULTS`). :mod:`pathzoo.harness.store_scan` reads large files
+in bounded memory.
 """
 
 from __future__ import annotations
@@ -11,13 +12,13 @@ from __future__ import annotations
 import json
 import math
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Collection
+from typing import TYPE_CHECKING, Any, Collection, Iterable
 
 import numpy as np
 
 from pathzoo.core.results import HistoryPoint, RunRecord
 from pathzoo.core.status import RunStatus
-from pathzoo.harness.store_file import SCHEMA_VERSION, ResultsDatabaseError, connect, experiment_filter
+from pathzoo.harness.store_file import SCHEMA_VERSION, ResultsDatabaseError, present_columns, reading
 from pathzoo.harness.store_writer import ResultStore
 
 if TYPE_CHECKING:
@@ -28,6 +29,9 @@ __all__ = [
     "ResultsDatabaseError",
     "ResultStore",
     "RUN_COLUMNS",
+    "RUN_DEFAULTS",
+    "column_sql",
+    "decode_runs",
     "read_runs",
     "read_history",
     "read_versions",
@@ -45,6 +49,31 @@ RUN_COLUMNS: tuple[str, ...] = (
     "stopped_by",
 )
 """The leading columns of :func:`read_runs`; one column per metric id follows."""
+RUN_DEFAULTS: dict[str, str] = {"label": "''", "isolated": "1", "sandboxed": "0", "stopped_by": "''"}
+"""SQL values of the columns added after the first files were written, for files that lack them."""
+
+RUN_FLAGS = ("valid", "isolated", "sandboxed")
+"""Columns read as bool."""
+
+RUN_NUMBERS = ("wall_time_s", "cpu_time_s", "iterations", "evaluations")
+"""Columns read as float (NaN where the file has NULL)."""
+
+
+def column_sql(columns: Iterable[str], present: Collection[str]) -> list[str]:
+    """Each column as a SELECT expression: its name, or its :data:`RUN_DEFAULTS` value (else NULL) where missing."""
+    return [f'"{c}"' if c in present else f'{RUN_DEFAULTS.get(c, "NULL")} AS "{c}"' for c in columns]
+
+
+def decode_runs(frame: "pd.DataFrame", numbers: Iterable[str] = RUN_NUMBERS) -> "pd.DataFrame":
+    """``frame`` (rows of runs) with :data:`RUN_FLAGS` as bool and ``numbers`` as float64, in place."""
+    import pandas as pd
+
+    for col in RUN_FLAGS:
+        frame[col] = frame[col].astype(bool)
+    for col in numbers:
+        frame[col] = pd.to_numeric(frame[col], errors="coerce").astype(np.float64)
+    return frame
+
 
 def _metrics_of(text: str) -> dict[str, float]:
     """The metrics of :func:`_metrics_json` (and of older files, which wrote NaN), ``null`` read as NaN."""
@@ -67,26 +96,14 @@ def read_runs(db: str | Path, experiment: str | None = None, run_keys: "Collecti
     """
     import pandas as pd
 
-    path = Path(db)
-    conn = connect(path, create=False)
-    try:
-        where, args = experiment_filter(conn, path, experiment)
-        present = {str(r[1]) for r in conn.execute("PRAGMA table_info(runs)")}
-        defaults = {"label": "''", "isolated": "1", "sandboxed": "0", "stopped_by": "''"}
-        base = ", ".join(f'"{c}"' if c in present else f'{defaults.get(c, "NULL")} AS "{c}"' for c in RUN_COLUMNS)
+    with reading(db, experiment) as (conn, where, args):
+        base = ", ".join(column_sql(RUN_COLUMNS, present_columns(conn)))
         if run_keys is not None:  # the keys go to SQLite as one JSON array: no row outside them is read
             where += (" AND" if where else " WHERE") + " run_key IN (SELECT value FROM json_each(?))"
             args = (*args, json.dumps(list(run_keys)))
         rows = conn.execute(f"SELECT {base}, metrics FROM runs{where} ORDER BY id", args).fetchall()
-    finally:
-        conn.close()
-    frame = pd.DataFrame([r[: len(RUN_COLUMNS)] for r in rows], columns=list(RUN_COLUMNS))
+    frame = decode_runs(pd.DataFrame([r[: len(RUN_COLUMNS)] for r in rows], columns=list(RUN_COLUMNS)))
     frame["params"] = [json.loads(p) for p in frame["params"]]
-    frame["valid"] = frame["valid"].astype(bool)
-    frame["isolated"] = frame["isolated"].astype(bool)
-    frame["sandboxed"] = frame["sandboxed"].astype(bool)
-    for col in ("wall_time_s", "cpu_time_s", "iterations", "evaluations"):
-        frame[col] = pd.to_numeric(frame[col], errors="coerce").astype(float)
     metrics = [_metrics_of(r[-1]) for r in rows]
     ids: dict[str, None] = {}
     for m in metrics:
@@ -116,25 +133,17 @@ def read_versions(db: str | Path, experiment: str | None = None) -> dict[str, di
 
 def _select(db: str | Path, experiment: str | None, sql: str) -> list[Any]:
     """The rows of ``sql``, whose ``{where}`` becomes the filter on ``experiment`` (checked to exist)."""
-    path = Path(db)
-    conn = connect(path, create=False)
-    try:
-        where, args = experiment_filter(conn, path, experiment)
+    with reading(db, experiment) as (conn, where, args):
         return conn.execute(sql.format(where=where), args).fetchall()
-    finally:
-        conn.close()
 
 
 def _run_row(db: str | Path, experiment: str, run_key: str, columns: str) -> tuple[Any, ...]:
-    path = Path(db)
-    conn = connect(path, create=False)
-    try:
-        experiment_filter(conn, path, experiment)
+    with reading(db, experiment) as (conn, _, _):
         row = conn.execute(
             f"SELECT {columns} FROM runs WHERE experiment = ? AND run_key = ?", (experiment, run_key)
         ).fetchone()
         if row is None:
-            raise ResultsDatabaseError(f"{path}: experiment '{experiment}' has no run '{run_key}'")
+            raise ResultsDatabaseError(f"{Path(db)}: experiment '{experiment}' has no run '{run_key}'")
         if columns == "*":
             names = [d[0] for d in conn.execute("SELECT * FROM runs LIMIT 0").description]
             hist = conn.execute(
@@ -143,8 +152,6 @@ def _run_row(db: str | Path, experiment: str, run_key: str, columns: str) -> tup
             ).fetchall()
             return (dict(zip(names, row)), hist)
         return tuple(row)
-    finally:
-        conn.close()
 
 
 def _arrays(blob: bytes | None, shape: str | None, times: bytes | None) -> tuple[np.ndarray | None, np.ndarray | None]:
@@ -198,15 +205,11 @@ def read_experiments(db: str | Path) -> "pd.DataFrame":
     """Stored experiments: name, seed, budget (dict), timeout_s, created, n_runs, config (dict)."""
     import pandas as pd
 
-    path = Path(db)
-    conn = connect(path, create=False)
-    try:
+    with reading(db, None) as (conn, _, _):
         rows = conn.execute(
             "SELECT e.name, e.seed, e.budget, e.timeout_s, e.created, "
             "(SELECT COUNT(*) FROM runs r WHERE r.experiment = e.name), e.config FROM experiments e ORDER BY e.created"
         ).fetchall()
-    finally:
-        conn.close()
     frame = pd.DataFrame(rows, columns=["name", "seed", "budget", "timeout_s", "created", "n_runs", "config"])
     frame["budget"] = [json.loads(b) for b in frame["budget"]]
     frame["config"] = [json.loads(c) for c in frame["config"]]

@@ -52,6 +52,8 @@ __all__ = [
     "connect",
     "transaction",
     "experiment_filter",
+    "reading",
+    "present_columns",
 ]
 
 SCHEMA_VERSION = 1
@@ -232,6 +234,32 @@ def transaction(conn: sqlite3.Connection, path: Path) -> Iterator[sqlite3.Connec
             f"{path}: the disk is full (SQLite: {exc}); the runs stored so far are kept: free some space and run the "
             "same command again to resume"
         ) from None
+
+
+@contextmanager
+def reading(db: str | Path, experiment: str | None) -> Iterator[tuple[sqlite3.Connection, str, tuple[Any, ...]]]:
+    """An existing database opened for reading: ``(connection, where, args)``, closed on leaving.
+
+    ``where`` and ``args`` filter the ``runs`` or ``history`` table on
+    ``experiment`` (checked to exist; no filter for ``None``).
+
+    Raises
+    ------
+    ResultsDatabaseError
+        Missing or foreign file, or unknown experiment.
+    """
+    path = Path(db)
+    conn = connect(path, create=False)
+    try:
+        where, args = experiment_filter(conn, path, experiment)
+        yield conn, where, args
+    finally:
+        conn.close()
+
+
+def present_columns(conn: sqlite3.Connection) -> set[str]:
+    """The columns of the file's ``runs`` table (an older file lacks some: see :mod:`pathzoo.harness.store`)."""
+    return {str(r[1]) for r in conn.execute("PRAGMA table_info(runs)")}
 
 
 def experiment_filter(conn: sqlite3.Connection, path: Path, experiment: str | None) -> tuple[str, tuple[Any, ...]]:

@@ -18,7 +18,8 @@ import json
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Iterator, Sequence
 
-from pathzoo.harness.store_file import connect, experiment_filter
+from pathzoo.harness.store import RUN_NUMBERS, column_sql, decode_runs
+from pathzoo.harness.store_file import present_columns, reading
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -31,9 +32,6 @@ CHUNK_COLUMNS: tuple[str, ...] = (
     "stopped_by",
 )
 """The columns of :data:`~pathzoo.harness.store.RUN_COLUMNS` a chunk holds (not the parameters or messages)."""
-
-_NUMERIC = ("wall_time_s", "cpu_time_s", "iterations", "evaluations")
-
 
 def _metric_expression(metric: str, present: set[str]) -> str:
     """SQL for one metric's value: its own REAL column, else the value in the run's metrics JSON."""
@@ -69,14 +67,10 @@ def scenario_chunks(db: str | Path, experiment: str, metrics: Sequence[str], *,
     ResultsDatabaseError
         Missing or foreign file, or unknown experiment.
     """
-    import numpy as np
     import pandas as pd
 
-    path = Path(db)
-    conn = connect(path, create=False)
-    try:
-        where, args = experiment_filter(conn, path, experiment)
-        present = {str(r[1]) for r in conn.execute("PRAGMA table_info(runs)")}
+    with reading(db, experiment) as (conn, where, args):
+        present = present_columns(conn)
         wanted = [m for m in dict.fromkeys(metrics) if m not in CHUNK_COLUMNS]
         exprs: list[str] = []
         metric_args: list[str] = []
@@ -85,18 +79,12 @@ def scenario_chunks(db: str | Path, experiment: str, metrics: Sequence[str], *,
             exprs.append(f"{expr} AS \"m:{len(exprs)}\"")
             if "?" in expr:
                 metric_args.append(m)
-        defaults = {"label": "''", "isolated": "1", "sandboxed": "0", "stopped_by": "''"}
-        base = [f'"{c}"' if c in present else f'{defaults.get(c, "NULL")} AS "{c}"' for c in CHUNK_COLUMNS]
+        base = column_sql(CHUNK_COLUMNS, present)
         cursor = conn.execute(f"SELECT {', '.join(base + exprs)} FROM runs{where} ORDER BY scenario, id",
                               (*metric_args, *args))
 
         def frame(rows: list[tuple[Any, ...]]) -> pd.DataFrame:
-            out = pd.DataFrame(rows, columns=[*CHUNK_COLUMNS, *wanted])
-            for col in ("valid", "isolated", "sandboxed"):
-                out[col] = out[col].astype(bool)
-            for col in (*_NUMERIC, *wanted):
-                out[col] = pd.to_numeric(out[col], errors="coerce").astype(np.float64)
-            return out
+            return decode_runs(pd.DataFrame(rows, columns=[*CHUNK_COLUMNS, *wanted]), (*RUN_NUMBERS, *wanted))
 
         scenario_at = CHUNK_COLUMNS.index("scenario")
         buffer: list[tuple[Any, ...]] = []
@@ -108,40 +96,27 @@ def scenario_chunks(db: str | Path, experiment: str, metrics: Sequence[str], *,
                 buffer.append(row)
         if buffer:
             yield frame(buffer)
-    finally:
-        conn.close()
 
 
 def configurations(db: str | Path, experiment: str) -> "pd.DataFrame":
     """``planner, params_hash, label, planner_version``: each distinct combination the experiment's runs hold."""
     import pandas as pd
 
-    path = Path(db)
-    conn = connect(path, create=False)
-    try:
-        where, args = experiment_filter(conn, path, experiment)
-        present = {str(r[1]) for r in conn.execute("PRAGMA table_info(runs)")}
-        label = "label" if "label" in present else "'' AS label"
+    with reading(db, experiment) as (conn, where, args):
+        label = column_sql(["label"], present_columns(conn))[0]
         rows = conn.execute(f"SELECT DISTINCT planner, params_hash, {label}, planner_version FROM runs{where} "
                             "ORDER BY planner, params_hash, label, planner_version", args).fetchall()
-    finally:
-        conn.close()
     return pd.DataFrame(rows, columns=["planner", "params_hash", "label", "planner_version"])
 
 
 def library_versions(db: str | Path, experiment: str, skip: Sequence[str] = ()) -> dict[str, list[str]]:
     """Each key of the runs' stored ``versions`` (but ``skip``) with the sorted distinct values the runs hold."""
-    path = Path(db)
-    conn = connect(path, create=False)
-    try:
-        where, args = experiment_filter(conn, path, experiment)
+    with reading(db, experiment) as (conn, where, args):
         rows = conn.execute(
             f"SELECT DISTINCT j.key, CAST(j.value AS TEXT) FROM (SELECT versions FROM runs{where}) r, "
             "json_each(r.versions) j WHERE j.key NOT IN (SELECT value FROM json_each(?))",
             (*args, json.dumps(list(skip))),
         ).fetchall()
-    finally:
-        conn.close()
     out: dict[str, set[str]] = {}
     for key, value in rows:
         out.setdefault(str(key), set()).add(str(value))
@@ -150,13 +125,7 @@ def library_versions(db: str | Path, experiment: str, skip: Sequence[str] = ()) 
 
 def isolation_counts(db: str | Path, experiment: str) -> tuple[int, int]:
     """``(runs, runs not isolated)`` of one experiment (runs of the ``inline`` executor are not isolated)."""
-    path = Path(db)
-    conn = connect(path, create=False)
-    try:
-        where, args = experiment_filter(conn, path, experiment)
-        present = {str(r[1]) for r in conn.execute("PRAGMA table_info(runs)")}
-        inline = "SUM(isolated = 0)" if "isolated" in present else "0"
+    with reading(db, experiment) as (conn, where, args):
+        inline = "SUM(isolated = 0)" if "isolated" in present_columns(conn) else "0"
         total, not_isolated = conn.execute(f"SELECT COUNT(*), {inline} FROM runs{where}", args).fetchone()
-    finally:
-        conn.close()
     return int(total), int(not_isolated or 0)
