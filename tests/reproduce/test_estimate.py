@@ -42,3 +42,13 @@ def test_estimate_refuses_options_that_store_results(capsys):
     assert main(["reproduce", "iaca", "--estimate", "--markdown", "page.md"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "--estimate" in err[0] and "--markdown" in err[0]
+
+
+def test_the_pilot_raises_a_cap_until_the_run_costs_twice_the_first():
+    from pathzoo.analysis.reproduction.estimate import PILOT_GROWTH, _resolved
+
+    assert PILOT_GROWTH == 2.0
+    assert not _resolved((1.0, 5.0), (3.0, 5.1), 3)   # set-up dominates: try a higher cap
+    assert _resolved((1.0, 5.0), (30.0, 10.0), 30)    # twice the first run: fit through these two
+    assert _resolved((1.0, 5.0), (12.0, 5.5), 30)     # ended before its cap (converged): nothing more to learn
+    assert _resolved((1.0, 5.0), (1.0, 5.0), 3)       # made no more iterations

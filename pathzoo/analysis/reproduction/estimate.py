@@ -2,8 +2,13 @@
 
 The pilot runs every available planner once (seed index 0) on every chosen
 scenario with the iteration count capped at :data:`PILOT_ITERATIONS` ``[0]``,
-then runs the planners whose pilot runs were ended by that cap again at
-``[1]``. From the CPU seconds the harness measured for the two runs it fits
+then runs the planners whose pilot runs were ended by that cap again at the
+next cap, and the next, until each of its runs took at least
+:data:`PILOT_GROWTH` times the CPU of its first run (or ended before its
+cap): a planner whose iterations are cheap beside its set-up climbs the
+ladder, one whose iterations are dear stops at the second cap, so the pilot
+stays short. From the CPU seconds the harness measured for the first and the
+last of these runs it fits
 ``cpu = fixed + per_iteration x iterations`` per planner and scenario (the
 fixed part: loading the scenario, building graphs and tables; both parts
 clipped at zero), and evaluates it at the iterations the full run would make:
@@ -41,10 +46,13 @@ from pathzoo.analysis.reproduction.runs import (
     selected_scenarios,
 )
 
-__all__ = ["PILOT_ITERATIONS", "PlannerEstimate", "full_iterations", "fit_run", "estimate_paper", "format_estimate"]
+__all__ = ["PILOT_ITERATIONS", "PILOT_GROWTH", "PlannerEstimate", "full_iterations", "fit_run", "estimate_paper", "format_estimate"]
 
-PILOT_ITERATIONS = (1, 3)
-"""The pilot's two iteration caps: a planner's cost is fitted through its runs at these two counts."""
+PILOT_ITERATIONS = (1, 3, 10, 30, 100)
+"""The pilot's iteration caps, tried in turn until a planner's higher run is dear enough to fit (:data:`PILOT_GROWTH`)."""
+
+PILOT_GROWTH = 2.0
+"""The pilot stops raising a planner's cap once its run there took this many times the CPU of its first run."""
 
 
 @dataclass(frozen=True)
@@ -109,6 +117,11 @@ def fit_run(low: tuple[float, float], high: tuple[float, float] | None, iteratio
     return fixed + slope * iterations
 
 
+def _resolved(low: tuple[float, float], high: tuple[float, float] | None, cap: int) -> bool:
+    """Whether a scenario's pilot runs fit a line: the higher run ended early, or cost :data:`PILOT_GROWTH` x the first."""
+    return high is None or high[0] <= low[0] or high[0] < cap or high[1] >= PILOT_GROWTH * low[1]
+
+
 def _points(runs: pd.DataFrame, capped_only: bool = False) -> dict[tuple[str, str], tuple[float, float]]:
     """Per (planner key, scenario): (iterations done, CPU s) of the pilot run there (only runs its cap ended)."""
     out = {}
@@ -134,7 +147,7 @@ def estimate_paper(paper: PaperData, options: RerunOptions) -> tuple[list[Planne
 
     seeds = options.seeds if options.seeds is not None else paper.runs
     ids = list(selected_scenarios(paper, options.scenarios).values())
-    low_cap, high_cap = PILOT_ITERATIONS
+    low_cap = PILOT_ITERATIONS[0]
     with tempfile.TemporaryDirectory(prefix="pathzoo-estimate-") as tmp:
         pilot = replace(options, db=Path(tmp) / "pilot.sqlite", seeds=1)
 
@@ -147,14 +160,22 @@ def estimate_paper(paper: PaperData, options: RerunOptions) -> tuple[list[Planne
                 for variant, specs in sorted(groups.items())]
             return pd.concat(frames, ignore_index=True)
 
-        low_runs = run_level(low_cap, None)
-        capped = low_runs["stopped_by"].astype(str).eq("iterations")
-        iterative = set(low_runs.loc[capped, "planner"].astype(str))
-        high_runs = run_level(high_cap, iterative) if iterative else low_runs.iloc[0:0]
-    low, capped_low = _points(low_runs), _points(low_runs, capped_only=True)
-    high = {k: v for k, v in _points(high_runs).items() if k in capped_low}
-    pilot_cpu = float(pd.to_numeric(pd.concat([low_runs["cpu_time_s"], high_runs["cpu_time_s"]]),
-                                    errors="coerce").sum())
+        runs = [run_level(low_cap, None)]
+        low, capped_low = _points(runs[0]), _points(runs[0], capped_only=True)
+        high: dict[tuple[str, str], tuple[float, float]] = {}
+        full = {p.key: full_iterations(paper, p, options.iterations) for p in paper.planners
+                if any(k[0] == p.key for k in capped_low)}
+        pending = set(full)
+        for cap in PILOT_ITERATIONS[1:]:
+            pending = {key for key in pending if (full[key] or cap) >= cap}  # None: nothing caps it
+            if not pending:
+                break
+            runs.append(run_level(cap, pending))
+            high.update({k: v for k, v in _points(runs[-1]).items() if k in capped_low})
+            pending = {key for key in pending
+                       if not all(_resolved(low[k], high.get(k), cap) for k in capped_low if k[0] == key)}
+    every = pd.concat(runs, ignore_index=True)
+    pilot_cpu = float(pd.to_numeric(every["cpu_time_s"], errors="coerce").sum())
     estimates = []
     for p in paper.planners:
         if planner_status(p):
@@ -163,8 +184,7 @@ def estimate_paper(paper: PaperData, options: RerunOptions) -> tuple[list[Planne
         grows = any(hi is not None and hi[0] > lo[0] for lo, hi in cells)
         iters = full_iterations(paper, p, options.iterations) if grows else None
         cpu = sum(fit_run(lo, hi, iters) for lo, hi in cells) * seeds
-        mine = pd.concat([low_runs.loc[low_runs["planner"] == p.key, "cpu_time_s"],
-                          high_runs.loc[high_runs["planner"] == p.key, "cpu_time_s"]])
+        mine = every.loc[every["planner"] == p.key, "cpu_time_s"]
         estimates.append(PlannerEstimate(p.key, p.label, seeds * len(cells), iters,
                                          float(pd.to_numeric(mine, errors="coerce").sum()), cpu))
     return estimates, pilot_cpu
@@ -183,8 +203,9 @@ def format_estimate(paper: PaperData, estimates: list[PlannerEstimate], pilot_cp
         + [format_number(total / 3600.0, 3)],
     })
     notes = [
-        f"Pilot: 1 run per planner and scenario at {PILOT_ITERATIONS[0]} iteration(s), and again at "
-        f"{PILOT_ITERATIONS[1]} for the planners that iterate; CPU = fixed + per iteration x iterations, "
+        f"Pilot: 1 run per planner and scenario at {PILOT_ITERATIONS[0]} iteration, and again at "
+        f"{', '.join(map(str, PILOT_ITERATIONS[1:]))} in turn for the planners that iterate, until a run costs "
+        f"{PILOT_GROWTH:g}x the first; CPU = fixed + per iteration x iterations through the first and last, "
         f"times {seeds} run(s) per planner and scenario (the paper: {paper.runs}).",
         "An estimate on this machine under its present load: runs that converge early cost less.",
     ]
