@@ -17,6 +17,12 @@ and ``ends`` (:func:`~pathzoo_exact.waypoints.path_layout`,
 ``reals`` in the same two arrays (:func:`answer_problem`), where the batch
 kernel does not read: two more arguments would cost about as much again as
 the path.
+
+These kernels are compiled with the code of :mod:`~pathzoo_exact.kernel`
+and :mod:`~pathzoo_exact.waypoints` inside them, and numba's on-disk cache
+checks only the file of the function it caches: after editing either of
+those files, delete this package's ``__pycache__/*.nbi`` index files, or
+a stale copy of the search may be loaded from the cache.
 """
 
 from __future__ import annotations

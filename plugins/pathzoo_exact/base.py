@@ -197,6 +197,8 @@ class PreparedSearch(NamedTuple):
     connector_costs: tuple[float, ...]
 
 
+_SOLVED = Status.SOLVED
+
 _PREPARED: "ObjectMemo[Scenario, dict[str, PreparedSearch]]" = ObjectMemo()
 
 
@@ -340,10 +342,6 @@ class GraphSearchPlanner(Planner, abc.ABC):
             cost += connector
         if progress is not None:
             progress(1, expanded, cost)
-        return PlanResult(
-            Status.SOLVED,
-            path=path,
-            iterations=1,
-            evaluations=expanded,
-            extras={"cost": search.cost_kind, "best_cost": cost, "graph_cost": graph_cost},
-        )
+        extras = {"cost": search.cost_kind, "best_cost": cost, "graph_cost": graph_cost}
+        # positional, and the member read once at import: keywords and an enum look-up cost as much as a small search
+        return PlanResult(_SOLVED, path, None, 1, expanded, "", extras)

@@ -172,6 +172,7 @@ def begin_batch(
         heap_f[0] = 0  # order_key(0.0)
         heap_g[0] = 0
         counters[0] = 1
+        counters[1] = 0
         counters[2] = -1
     return counters[0]
 
@@ -224,11 +225,11 @@ class SearchState:
     def restart(self, source: int, heap_capacity: int = 4096) -> None:
         """Forget the search and start a new one from ``source`` in the same node arrays.
 
-        The node arrays are set by the next batch (:func:`begin_batch`);
-        until then only :attr:`expanded` (0) may be read.
+        The arrays, the expansion count included, are set by the next batch
+        (:func:`begin_batch`): here only the source is noted (one write from
+        Python). Until then only :attr:`expanded` (0) may be read.
         """
         self._heap_of(heap_capacity)
-        self.counters[1] = 0
         self.counters[2] = source
 
     def _heap_of(self, capacity: int) -> None:
@@ -245,8 +246,8 @@ class SearchState:
 
     @property
     def expanded(self) -> int:
-        """Number of nodes expanded so far."""
-        return int(self.counters[1])
+        """Number of nodes expanded so far (0 before a restarted search's first batch)."""
+        return 0 if self.counters[2] >= 0 else int(self.counters[1])
 
 
 @numba.njit(cache=True)
