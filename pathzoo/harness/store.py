@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import json
 import math
+import sqlite3
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Collection, Iterable
 
@@ -80,6 +81,48 @@ def _metrics_of(text: str) -> dict[str, float]:
     return {k: math.nan if v is None else float(v) for k, v in json.loads(text).items()}
 
 
+_SHARED_COLUMNS = frozenset(RUN_COLUMNS) - {"run_key", "seed_index", "seed", "wall_time_s", "cpu_time_s",
+                                            "iterations", "evaluations"}
+"""Columns whose values repeat over runs: :func:`_run_columns` keeps one object per distinct value."""
+
+
+def _run_columns(cursor: sqlite3.Cursor, batch: int = 10_000) -> tuple[dict[str, list[Any]], dict[str, list[float]]]:
+    """The :data:`RUN_COLUMNS` and the metrics (first seen first, NaN where a run has none) of ``cursor``'s rows.
+
+    Rows are read ``batch`` at a time and spread into columns, so the rows are
+    never all held as tuples beside the columns; the strings and parameter
+    dicts that repeat over runs (planner, scenario, status, parameters, ...)
+    are one object per distinct value, not one per run. The parameter dicts
+    of equal configurations are the same object: do not modify one in place.
+    """
+    columns: dict[str, list[Any]] = {c: [] for c in RUN_COLUMNS}
+    shared: dict[str, dict[Any, Any]] = {c: {} for c in _SHARED_COLUMNS}
+    metrics: dict[str, list[float]] = {}
+    n = 0
+    while rows := cursor.fetchmany(batch):
+        *values, texts = zip(*rows)
+        del rows
+        for name, column in zip(RUN_COLUMNS, values):
+            seen = shared.get(name)
+            if seen is None:
+                columns[name].extend(column)
+                continue
+            for value in column:
+                kept = seen.get(value, seen)
+                if kept is seen:
+                    kept = seen[value] = json.loads(value) if name == "params" else value
+                columns[name].append(kept)
+        for text in texts:
+            run = _metrics_of(text)
+            for mid in run:
+                if mid not in metrics:
+                    metrics[mid] = [math.nan] * n
+            for mid, kept_values in metrics.items():
+                kept_values.append(run.get(mid, math.nan))
+            n += 1
+    return columns, metrics
+
+
 def read_runs(db: str | Path, experiment: str | None = None, run_keys: "Collection[str] | None" = None
               ) -> "pd.DataFrame":
     """One row per run, in the order they were stored (only ``run_keys``, when given).
@@ -101,17 +144,11 @@ def read_runs(db: str | Path, experiment: str | None = None, run_keys: "Collecti
         if run_keys is not None:  # the keys go to SQLite as one JSON array: no row outside them is read
             where += (" AND" if where else " WHERE") + " run_key IN (SELECT value FROM json_each(?))"
             args = (*args, json.dumps(list(run_keys)))
-        rows = conn.execute(f"SELECT {base}, metrics FROM runs{where} ORDER BY id", args).fetchall()
-    frame = decode_runs(pd.DataFrame([r[: len(RUN_COLUMNS)] for r in rows], columns=list(RUN_COLUMNS)))
-    frame["params"] = [json.loads(p) for p in frame["params"]]
-    metrics = [_metrics_of(r[-1]) for r in rows]
-    ids: dict[str, None] = {}
-    for m in metrics:
-        ids.update(dict.fromkeys(m))
-    for mid in ids:
-        if mid in frame.columns:  # iterations, evaluations: same numbers as the base columns
-            continue
-        frame[mid] = np.array([m.get(mid, math.nan) for m in metrics], dtype=np.float64)
+        columns, metrics = _run_columns(conn.execute(f"SELECT {base}, metrics FROM runs{where} ORDER BY id", args))
+    frame = decode_runs(pd.DataFrame(columns))
+    for mid, values in metrics.items():
+        if mid not in frame.columns:  # iterations, evaluations: same numbers as the base columns
+            frame[mid] = np.array(values, dtype=np.float64)
     return frame
 
 
