@@ -106,6 +106,8 @@ class ProcessTreeCpu:
     def __init__(self, pid: int, members: Callable[[], list[int]] | None = None) -> None:
         self.pid = pid
         self.members = members
+        self.reaped = math.nan
+        """Of the last :meth:`read`: the reaped-children time in it (whole clock ticks of each child)."""
         self._children: list[int] = []
         self._listed = -math.inf
 
@@ -117,12 +119,15 @@ class ProcessTreeCpu:
         elif relist or now - self._listed >= DESCENDANTS_REFRESH_S:
             self._children = _descendants(self.pid)
             self._listed = now
-        total = process_cpu_time(self.pid) + _reaped_children_cpu(self.pid)
+        reaped = _reaped_children_cpu(self.pid)
+        total = process_cpu_time(self.pid)
         for child in self._children:
             own = process_cpu_time(child)
             if not math.isnan(own):
-                total += own + _reaped_children_cpu(child)
-        return total
+                total += own
+                reaped += _reaped_children_cpu(child)
+        self.reaped = reaped
+        return total + reaped
 
 
 class ChargedCpu:
@@ -149,16 +154,28 @@ class ChargedCpu:
                  members: Callable[[], list[int]] | None = None) -> None:
         self.tree = ProcessTreeCpu(pid, members)
         self.cgroup = cgroup
-        self._tree0 = self._group0 = math.nan
+        self._tree0 = self._group0 = self._reaped0 = math.nan
 
     def start(self, *, relist: bool = True) -> None:
         """Start counting from now (with ``relist``, the descendants are listed afresh: a scan of every process)."""
         self._tree0 = self.tree.read(relist=relist)
+        self._reaped0 = self.tree.reaped
         self._group0 = self.cgroup() if self.cgroup is not None else math.nan
 
-    def spent(self) -> float:
-        """CPU seconds charged since :meth:`start` (NaN before it)."""
+    def spent(self, reaped: float = math.nan) -> float:
+        """CPU seconds charged since :meth:`start` (NaN before it).
+
+        ``reaped`` is the CPU seconds of a child that a process of the tree
+        has reaped since :meth:`start`, as ``wait4`` gave them to its parent:
+        exact, where the reaped-children time the tree reads counts whole
+        clock ticks of each of user and system time (up to two ticks short).
+        The part of it that the tree's reaped-children time gained since
+        :meth:`start` misses is added, so the figure can only rise, by at most
+        the child's own figure.
+        """
         tree = self.tree.read() - self._tree0
+        if math.isfinite(reaped):
+            tree += max(0.0, reaped - max(0.0, self.tree.reaped - self._reaped0))
         if self.cgroup is None:
             return tree
         group = self.cgroup() - self._group0

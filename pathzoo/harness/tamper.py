@@ -73,27 +73,34 @@ class ModuleFingerprint:
         self._clean: _CleanState | None = None
         self._seen_modules = -1
 
-    def _snap(self, label: str, owner: Any) -> None:
+    def _snap(self, label: str, owner: Any) -> int:
         self._owners[id(owner)] = (label, owner, _attributes(owner))
-        self._clean = None
+        return id(owner)
 
     def update(self) -> "ModuleFingerprint":
         """Snapshot the modules loaded since the last call (and their classes).
 
         Nothing to do while ``sys.modules`` has as many entries as at the last
         call: a module removed since makes :meth:`changed` examine everything.
+        The new snapshots join the clean state as they are, so the next
+        :meth:`changed` stays quick.
         """
         if len(sys.modules) == self._seen_modules:
             return self
         self._seen_modules = len(sys.modules)
+        names: list[str] = []
+        keys: list[int] = []
         for name, module in list(sys.modules.items()):
             if module is None or name in self._modules:
                 continue
             self._modules[name] = id(module)
-            self._snap(name, module)
+            names.append(name)
+            keys.append(self._snap(name, module))
             for value in list(_attributes(module).values()):
                 if isinstance(value, type) and getattr(value, "__module__", None) == name:
-                    self._snap(f"{name}.{value.__qualname__}", value)
+                    keys.append(self._snap(f"{name}.{value.__qualname__}", value))
+        if self._clean is not None:
+            self._clean.add(names, keys, self._owners)
         return self
 
     def changed(self, limit: int = 5) -> list[str]:
@@ -197,6 +204,30 @@ class _CleanState:
             self.sizes = list(map(len, self.namespaces))
             self.flat_keys = list(itertools.chain.from_iterable(self.namespaces))
             self.values = list(itertools.chain.from_iterable(map(_VALUES, self.namespaces)))
+
+    def add(self, module_names: list[str], keys: list[int],
+            owners: "dict[int, tuple[str, Any, dict[str, Any]]]") -> None:
+        """Hold also these modules and owners, just snapshotted (so clean as they are now)."""
+        self.module_names += module_names
+        self.modules += map(sys.modules.get, module_names)
+        held = set(self.keys)
+        keys = [key for key in dict.fromkeys(keys) if key not in held and _namespace(owners[key][1]) is not None]
+        namespaces = [_namespace(owners[key][1]) for key in keys]
+        self.keys += keys
+        self.namespaces += namespaces
+        if _TAGS:
+            for key, d in zip(keys, map(_dict_of, namespaces)):
+                if d is None:
+                    self.untagged.append(key)
+                    continue
+                self.index[key] = len(self.tagged)
+                self.tagged.append(key)
+                self.tags.append(ctypes.c_uint64.from_address(id(d) + _TAG_OFFSET))
+                self.seen.append(self.tags[-1].value)
+        else:
+            self.sizes += map(len, namespaces)
+            self.flat_keys += itertools.chain.from_iterable(namespaces)
+            self.values += itertools.chain.from_iterable(map(_VALUES, namespaces))
 
     def moved(self) -> "list[tuple[int, int | None]] | None":
         """``(owner key, its tag now)`` of each namespace that may have changed; None to examine everything.

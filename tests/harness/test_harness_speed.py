@@ -103,6 +103,24 @@ def test_the_quick_check_sees_writes_that_keep_keys_and_size(quick_path: bool):
         del sys.modules["pathzoo_tamper_probe3"]
 
 
+def test_modules_loaded_later_join_the_quick_check(quick_path: bool):
+    """A module snapshotted by a later update() keeps the quick path armed, and a replacement in it is still seen."""
+    fingerprint = ModuleFingerprint().update()
+    assert fingerprint.changed() == []
+    clean = fingerprint._clean
+    module = _module("pathzoo_tamper_probe4")
+    try:
+        fingerprint.update()
+        assert fingerprint._clean is clean is not None  # extended, not dropped: no full examination
+        assert fingerprint.changed() == []
+        module.K.m = lambda self: 3
+        assert fingerprint.changed() == ["pathzoo_tamper_probe4.K.m"]
+        module.f = len
+        assert sorted(fingerprint.changed()) == ["pathzoo_tamper_probe4.K.m", "pathzoo_tamper_probe4.f"]
+    finally:
+        del sys.modules["pathzoo_tamper_probe4"]
+
+
 def test_only_the_process_executor_queues_ahead():
     assert InlineExecutor().lookahead == 0
     with ProcessExecutor(2) as pool:

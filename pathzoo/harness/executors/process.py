@@ -189,6 +189,8 @@ def _worker_main(conn: Connection, alive: Connection, stop_flag: Any, sandboxed:
             return
         if isinstance(task, WarmUp):
             zygote.warm_up(task, _reporter(conn))
+            fingerprint.update().changed()  # the modules the warm-up loaded, and the quick check armed, uncharged:
+            # checked after a run, only what that run moved is examined, and the outcome goes out sooner
             conn.send_bytes(b"W")
             continue
         keep_payload(task.scenario)  # the executor counts it as held from now on
@@ -610,20 +612,19 @@ class ProcessExecutor(RunExecutor):
         """The outcome with the harness's own times (``P`` to ``D``) and stop; a ``D`` before ``P`` is a failed setup,
         whatever it says.
 
-        The CPU charged is the larger of the worker's tree and cgroup (read here)
-        and of the child's own figure, which the zygote read from the kernel
-        when it reaped it (microseconds, where the tree has the reaped child's
-        time in clock ticks only): a figure from the worker can raise the
-        charge, never lower it."""
+        The CPU charged is the larger of the worker's tree and cgroup (read here),
+        the tree's reaped child counted at the child's own figure, which the
+        zygote read from the kernel when it reaped it (microseconds, where the
+        tree has the reaped child's time in clock ticks only,
+        :meth:`~pathzoo.harness.cpu_clock.ChargedCpu.spent`): a figure from the
+        worker can raise the charge, never lower it."""
         assert worker.task is not None
         if math.isnan(worker.plan_t0):
             return RunOutcome(worker.task.run_key, crash=True, message=outcome.message, started_at=worker.started_at)
         worker.plan_t1 = _clock()
-        cpu = worker.cpu.spent()
+        cpu = worker.cpu.spent(reaped=child_cpu)
         worker.cpu.start(relist=False)  # what the worker spends until its next run's end is charged to that run;
         # its child is reaped by now, and a new one is listed within DESCENDANTS_REFRESH_S (the cgroup counts it)
-        if math.isfinite(child_cpu) and not child_cpu <= cpu:
-            cpu = child_cpu
         stopped_by = worker.stopped_by or worker.task.budget.count_reached(outcome.iterations, outcome.evaluations)
         return replace(outcome, wall_time_s=worker.plan_t1 - worker.plan_t0, cpu_time_s=cpu,
                        stopped_by=stopped_by or "none", started_at=worker.started_at)
