@@ -53,7 +53,7 @@ __all__ = [
     "die_with_parent",
 ]
 
-PRELOAD = ("pathzoo.harness.executors.warmup", "pathzoo.harness.executors.process")
+PRELOAD = ("pathzoo.harness.executors.warmup", "pathzoo.harness.executors.worker_loop")
 """What the ``forkserver`` imports, in order: what every harness process needs (it stops the server with the harness
 first), then the workers' code."""
 _launch_lock = threading.Lock()

@@ -143,7 +143,7 @@ class PatchClock(_Hostile):
 
 
 CLOCK_HOLDERS = ("pathzoo.harness.worker", "pathzoo.harness.history", "pathzoo.harness.executors.process",
-                 "pathzoo.harness.executors.cluster")
+                 "pathzoo.harness.executors.run_clocks", "pathzoo.harness.executors.cluster")
 """Modules whose import-bound clocks (``_clock``, ``_cpu``, ``process_cpu_time``) :class:`PatchAllClocks` freezes."""
 
 

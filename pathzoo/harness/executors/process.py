@@ -33,7 +33,7 @@ code, so nothing they send is unpickled: they send short tagged byte strings
   raise it), all read from the kernel, so a planner cannot change its own
   timings (``docs/sandbox.md``, "What a run is charged"). While a run with
   a clock limit plans, the monitor reads these clocks (for ``cpu_s``: see
-  :data:`CLOCK_POLL_S`) and sets the worker's shared stop byte
+  :data:`~pathzoo.harness.executors.run_clocks.CLOCK_POLL_S`) and sets the worker's shared stop byte
   (:class:`~pathzoo.harness.clock_stop.SharedClockStop`) when a limit is
   spent; the run is stored with the stop the harness set (``stopped_by``),
   whatever the planner did with the byte. A ``D`` before ``P`` (a failed
@@ -46,8 +46,9 @@ code, so nothing they send is unpickled: they send short tagged byte strings
   or signal; one that sends anything else, or more than
   :data:`~pathzoo.harness.wire.MAX_OUTCOME_BYTES`, is killed and its run is a ``crash``.
 
-Each worker runs one planner configuration (planner id, parameter hash
-and scenario kind, :func:`configuration`) for as many runs as the experiment has of it;
+Each worker runs one planner configuration (planner id, parameter hash and
+scenario kind, :func:`~pathzoo.harness.executors.worker_handle.configuration`)
+for as many runs as the experiment has of it;
 a queued run goes to an idle worker of its configuration, else to a new
 worker, so no interpreter state (a recursion limit, a replaced cached
 scenario) passes from one planner to another. At most ``jobs`` workers have
@@ -58,26 +59,16 @@ configurations keeps its workers instead of starting one per switch. Only
 when that many are alive is an idle worker that no queued run can use
 retired to make room.
 
-Where the system allows (:func:`~pathzoo.harness.sandbox.sandbox_problem`),
-workers are sandboxed: each is spawned through bubblewrap in a cgroup of its
-own (:mod:`pathzoo.harness.sandbox`, :mod:`pathzoo.harness.cgroup`, and
-``docs/sandbox.md``). When a sandboxed worker reports idle, its cgroup must
-hold only the processes it held when it became ready; anything else (a
-child, a daemon) gets the whole cgroup killed and the worker replaced, and a
-killed or timed-out worker's cgroup is emptied the same way.
+When a sandboxed worker reports idle, its cgroup must hold only the
+processes it held when it became ready; anything else (a child, a daemon)
+gets the whole cgroup killed and the worker replaced, and a killed or
+timed-out worker's cgroup is emptied the same way.
 
-Unsandboxed workers start with the ``forkserver`` method where available (``spawn``
-elsewhere), without the main module: the preparation data that would make
-them re-import ``__main__`` is left out (:class:`~pathzoo.harness.launch.NoMainContext`), so a
-script without an ``if __name__ == "__main__":`` guard (or ``python - <
-script.py``) works; planner classes defined in ``__main__`` travel by value
-(:attr:`~pathzoo.harness.specs.RunTask.planner_class`). Replacing a worker
-costs a fork of the server, which has numba and pathzoo's shared code loaded
-(:mod:`~pathzoo.harness.executors.warmup`); each worker discovers the plugins
-and imports the planner classes it runs itself, since the judge is forked
-from the same server and must never inherit planner code.
-Workers ignore ``SIGINT``; Ctrl-C reaches the harness, which kills them on shutdown,
-and they die with the harness however it ends (:func:`~pathzoo.harness.launch.die_with_harness`).
+How a worker starts and stops is in
+:mod:`~pathzoo.harness.executors.worker_handle`, the loop it runs in
+:mod:`~pathzoo.harness.executors.worker_loop`, the clocks and stops of its
+runs in :mod:`~pathzoo.harness.executors.run_clocks`, and what a sandboxed
+one may read in :mod:`~pathzoo.harness.executors.visibility`.
 
 A scenario object (:meth:`~pathzoo.harness.specs.ScenarioSpec.of_object`)
 is sent to each worker once; later tasks on it refer to it by digest
@@ -96,51 +87,37 @@ only, and the first result comes sooner.
 
 from __future__ import annotations
 
-import itertools
 import math
 import os
 import shutil
-import signal
-import struct
+import tempfile
 import threading
 import time
-import tempfile
 from collections import Counter, deque
 from concurrent.futures import Future
-from dataclasses import dataclass, field, replace
-from pathlib import Path
-from multiprocessing.connection import Connection
-from typing import TYPE_CHECKING, Any, Callable
+from dataclasses import replace
+from typing import TYPE_CHECKING, Any
 
 from pathzoo.core.errors import PathzooError
-from pathzoo.core.budget import StopReason
-from pathzoo.harness.clock_stop import SharedClockStop
-from pathzoo.harness.cpu_clock import ChargedCpu, process_cpu_time
+from pathzoo.harness.cpu_clock import process_cpu_time
 from pathzoo.harness.executors.base import RunExecutor
-from pathzoo.harness.cgroup import ProcessGroup
-from pathzoo.harness.poller import Poller
-from pathzoo.harness.launch import (NoMainContext, SandboxedProcess, default_start_method, die_with_harness,
-                                    harness_alive, start_server)
-from pathzoo.harness.sandbox import SandboxLimits, SandboxUnavailableError, sandbox_problem, sandboxed_command, \
-    worker_numba_cache
-from pathzoo.harness.specs import HeldScenarios
-from pathzoo.harness.tamper import ModuleFingerprint
-from pathzoo.harness.wire import MAX_OUTCOME_BYTES, decode_outcome
+from pathzoo.harness.executors.run_clocks import cpu_since, timed, watch_clocks
+from pathzoo.harness.executors.visibility import Visibility, sees
+from pathzoo.harness.executors.worker_handle import (Worker, any_configuration, configuration, describe_exit,
+                                                     launch_worker, wrote_to_exit_pipe)
+from pathzoo.harness.executors.worker_loop import CPU_FRAME
+from pathzoo.harness.launch import NoMainContext, default_start_method, start_server
 from pathzoo.harness.outcome import RunOutcome, utc_now
-from pathzoo.harness.scenario_cache import keep_payload
+from pathzoo.harness.poller import Poller
+from pathzoo.harness.sandbox import SandboxLimits, SandboxUnavailableError, sandbox_problem
+from pathzoo.harness.wire import MAX_OUTCOME_BYTES, decode_outcome
 from pathzoo.harness.worker import SETUP_TIMEOUT_S
-from pathzoo.harness.zygote import WarmUp, Zygote, drop_resource_tracker, refuse_audit_hooks, undumpable
+from pathzoo.harness.zygote import WarmUp
 
 if TYPE_CHECKING:
-    from multiprocessing.process import BaseProcess
-
     from pathzoo.harness.specs import RunTask
 
-__all__ = ["ProcessExecutor", "WorkerStartError", "default_start_method", "process_cpu_time", "configuration",
-           "MAX_START_FAILURES"]
-
-_WORKER_SERIALS = itertools.count(1)
-"""Numbers of the sandboxed workers of this process, over all its executors (their cgroups' names)."""
+__all__ = ["ProcessExecutor", "WorkerStartError", "default_start_method", "process_cpu_time", "MAX_START_FAILURES"]
 
 _clock = time.perf_counter  # bound at import: a later patch of time.perf_counter does not reach the harness
 
@@ -151,149 +128,6 @@ class WorkerStartError(PathzooError, RuntimeError):
 
 MAX_START_FAILURES = 3
 """Workers in a row that die before they are ready, after which the executor gives up (:class:`WorkerStartError`)."""
-
-CLOCK_POLL_S = 0.01
-"""How often, at most, the monitor reads the CPU time of a run with a ``cpu_s`` limit while it plans.
-
-Far from the limit it reads it less often: a process tree cannot use more
-than one CPU second per core in a wall second, so the next reading is due
-when the CPU seconds left, spread over every core, could be spent."""
-
-_CORES = os.cpu_count() or 1
-
-_EVENTS = {"warming": b"U", "started": b"S", "planning": b"P"}
-
-_CPU = struct.Struct("<d")
-"""The child's CPU seconds at the head of a ``D`` message, as the zygote's ``wait4`` read them from the kernel."""
-
-
-def _worker_main(conn: Connection, alive: Connection, stop_flag: Any, sandboxed: bool = False) -> None:
-    """Loop of one worker process (a :class:`~pathzoo.harness.zygote.Zygote`): receive a task, run it in a fresh
-    child, send the outcome and whether the process is clean."""
-    die_with_harness(alive)
-    drop_resource_tracker()
-    refuse_audit_hooks()
-    undumpable()
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-    if sandboxed:  # spawned, not forked from the server that has done this already
-        import pathzoo.harness.executors.warmup  # noqa: F401
-    fingerprint = ModuleFingerprint().update()
-    zygote = Zygote(SharedClockStop(stop_flag))
-    conn.send_bytes(b"R")
-    while True:
-        try:
-            task = conn.recv()
-        except (EOFError, OSError):
-            return
-        if task is None:
-            return
-        if isinstance(task, WarmUp):
-            zygote.warm_up(task, _reporter(conn))
-            fingerprint.update().changed()  # the modules the warm-up loaded, and the quick check armed, uncharged:
-            # checked after a run, only what that run moved is examined, and the outcome goes out sooner
-            conn.send_bytes(b"W")
-            continue
-        keep_payload(task.scenario)  # the executor counts it as held from now on
-        try:
-            data, child_cpu = zygote.run(task, _reporter(conn))
-        except (EOFError, OSError):
-            return
-        changed = fingerprint.changed() + zygote.residue  # the outcome and the verdict on the process go out together
-        try:
-            conn.send_bytes(b"D" + _CPU.pack(child_cpu) + data)
-        except (EOFError, OSError):
-            return
-        if changed:
-            conn.send_bytes(b"T" + ", ".join(changed).encode("utf-8", "replace")[:1000])
-            return
-        fingerprint.update()
-        conn.send_bytes(b"I")
-
-
-def _reporter(conn: Connection) -> "Callable[[str], None]":
-    """The ``report`` callback of :meth:`~pathzoo.harness.zygote.Zygote.run`: send the event."""
-
-    def report(event: str) -> None:
-        conn.send_bytes(_EVENTS[event])
-
-    return report
-
-
-def describe_exit(exitcode: int | None, *, sandboxed: bool = False) -> str:
-    """``"exit code 3"`` or ``"signal 9 (SIGKILL)"``.
-
-    ``bwrap`` exits with 128 + the signal that killed the sandboxed process,
-    so for a sandboxed worker codes 129-192 are read as that signal.
-    """
-    if exitcode is None:
-        return "unknown exit status"
-    if sandboxed and 128 < exitcode <= 128 + 64:
-        exitcode = 128 - exitcode
-    if exitcode < 0:
-        try:
-            return f"signal {-exitcode} ({signal.Signals(-exitcode).name})"
-        except ValueError:
-            return f"signal {-exitcode}"
-    return f"exit code {exitcode}"
-
-
-def _written(sentinel: int) -> bool:
-    """Whether a readable exit pipe holds data (written by planner code in the worker) rather than its end of file."""
-    try:
-        return bool(os.read(sentinel, 64))
-    except OSError:
-        return False
-
-
-@dataclass
-class _Worker:
-    process: "BaseProcess"
-    conn: Connection
-    stop: SharedClockStop
-    cpu: ChargedCpu
-    idle: bool = False
-    was_ready: bool = False
-    started_once: bool = False
-    task: "RunTask | None" = None
-    future: "Future[RunOutcome] | None" = None
-    sent_at: float = math.nan
-    started_at: str = ""
-    deadline: float = math.inf
-    in_setup: bool = False
-    plan_t0: float = math.nan
-    plan_t1: float = math.nan
-    stopped_by: StopReason | None = None
-    """The clock stop the harness set for the current run."""
-    held: HeldScenarios = field(default_factory=HeldScenarios)
-    config: "tuple[str, str, str] | None" = None
-    warm: bool = False
-    """The worker has reported its warm-up done (``W``): its CPU is charged to its runs from then on."""
-    group: ProcessGroup | None = None
-    scratch: str = ""
-    baseline: frozenset[int] = frozenset()
-    visible: frozenset[str] = frozenset()
-
-    @property
-    def listening(self) -> bool:
-        return self.task is not None or not self.idle
-
-    def finish(self, outcome: RunOutcome) -> None:
-        assert self.future is not None
-        if not self.future.done():
-            self.future.set_result(outcome)
-        self.task, self.future, self.deadline = None, None, math.inf
-
-
-def configuration(task: "RunTask") -> tuple[str, str, str]:
-    """The planner configuration of a task, ``(planner id, parameter hash, scenario kind)``: a worker process runs one
-    only, warmed up on synthetic scenarios of that kind (:class:`~pathzoo.harness.zygote.WarmUp`)."""
-    return task.planner.id, task.params_hash, task.scenario.kind
-
-
-def _any_configuration(planner_id: str) -> tuple[str, str, str]:
-    """The configuration of a worker started early for a planner (:meth:`ProcessExecutor.start_worker`): its first
-    run, whatever its parameters, fixes the configuration."""
-    return planner_id, "", ""
 
 
 class ProcessExecutor(RunExecutor):
@@ -336,12 +170,12 @@ class ProcessExecutor(RunExecutor):
         if not self.sandboxed:
             start_server(start_method)  # from this thread, not the monitor: the server dies with its starting thread
         self._scratch_root = tempfile.mkdtemp(prefix="pathzoo-sandbox-") if self.sandboxed else ""
-        self._readable_dirs: set[str] = set()
+        self._visibility = Visibility()
         self._start_failures = 0
         self._lock = threading.Lock()
         self._pending: deque[tuple[RunTask, Future[RunOutcome]]] = deque()
         self._early: list[str] = []  # planner ids of start_worker, for the monitor to start
-        self._workers: list[_Worker] = []
+        self._workers: list[Worker] = []
         self._first_alone = self.capacity > 1  # see _dispatch
         self._closing = False
         self._wake_r, self._wake_w = self._ctx.Pipe(duplex=False)
@@ -382,8 +216,7 @@ class ProcessExecutor(RunExecutor):
 
     def prepare(self, tasks: "list[RunTask]") -> None:
         """Note where the experiment's scenario files are (a sandboxed worker sees only those directories)."""
-        with self._lock:
-            self._see_files(tasks)
+        self._visibility.see_files(tasks)
 
     def shutdown(self) -> None:
         """Stop the monitor, ask idle workers to exit, kill busy ones, cancel queued runs."""
@@ -395,7 +228,7 @@ class ProcessExecutor(RunExecutor):
         self._thread.join()
         for worker in self._workers:
             if worker.task is not None or not worker.idle:
-                self._kill_tree(worker)
+                worker.kill_tree()
             elif worker.process.is_alive():
                 try:
                     worker.conn.send(None)
@@ -404,7 +237,7 @@ class ProcessExecutor(RunExecutor):
         deadline = time.monotonic() + 2.0
         for worker in self._workers:
             worker.process.join(max(0.0, deadline - time.monotonic()))
-            self._release(worker)
+            worker.release()
             if worker.future is not None:
                 worker.future.cancel()
         self._workers.clear()
@@ -417,82 +250,16 @@ class ProcessExecutor(RunExecutor):
             shutil.rmtree(self._scratch_root, ignore_errors=True)
 
     # ------------------------------------------------------------- internals
-    def _spawn(self, config: "tuple[str, str, str] | None") -> _Worker:
-        """A new worker, for ``config`` (sandboxed: in its own cgroup and bubblewrap sandbox)."""
-        parent, child = self._ctx.Pipe(duplex=True)
-        group, scratch, visible = None, "", frozenset(self._visible_dirs())
-        flag = self._ctx.RawArray("b", 1)
-        if self.sandboxed:
-            assert config is not None
-            serial = next(_WORKER_SERIALS)  # of this process: two executors here never share a cgroup
-            group = ProcessGroup(f"w{serial}", memory_bytes=self.limits.memory_bytes,
-                                 max_tasks=self.limits.max_tasks)
-            scratch = os.path.join(self._scratch_root, f"w{serial}")
-            process: Any = SandboxedProcess(target=_worker_main, args=(child, harness_alive(), flag, True),
-                                            name="pathzoo-worker")
-            process.sandbox_prefix = sandboxed_command(
-                (), procs_files=group.procs_files, scratch=Path(scratch), numba_cache=worker_numba_cache(config[0]),
-                readable=visible, scratch_bytes=self.limits.scratch_bytes)
-        else:
-            process = self._ctx.Process(target=_worker_main, args=(child, harness_alive(), flag),
-                                        name="pathzoo-worker")
-        try:
-            process.start()
-        except BaseException:
-            if group is not None:
-                group.remove()
-            raise
-        child.close()
-        cpu = (ChargedCpu(process.pid or 0) if group is None
-               else ChargedCpu(process.pid or 0, group.cpu_seconds, members=group.pids))  # its tree is its cgroup
-        worker = _Worker(process, parent, SharedClockStop(flag), cpu, config=config,
-                         group=group, scratch=scratch, visible=visible)
+    def _spawn(self, config: "tuple[str, str, str] | None") -> Worker:
+        """A new worker, for ``config`` (:func:`~pathzoo.harness.executors.worker_handle.launch_worker`)."""
+        worker = launch_worker(self._ctx, config, sandboxed=self.sandboxed, limits=self.limits,
+                               scratch_root=self._scratch_root, dirs=self._visibility.dirs())
         self._workers.append(worker)
         return worker
 
-    def _visible_dirs(self) -> list[str]:
-        with self._lock:
-            return sorted(self._readable_dirs)
-
-    def _kill_tree(self, worker: _Worker) -> None:
-        """``SIGKILL`` the worker and, when sandboxed, every process of its cgroup."""
-        if worker.group is not None:
-            worker.group.kill()
-        if worker.process.is_alive():
-            worker.process.kill()
-
-    def _release(self, worker: _Worker) -> None:
-        """Kill what is left of a worker, reap it, remove its cgroup and scratch directory, close its pipe."""
-        self._kill_tree(worker)
-        worker.process.join()
-        if worker.group is not None:
-            worker.group.remove()
-        if worker.scratch:
-            shutil.rmtree(worker.scratch, ignore_errors=True)
-        worker.conn.close()
-
-    def _retire(self, worker: _Worker) -> None:
-        self._release(worker)
+    def _retire(self, worker: Worker) -> None:
+        worker.release()
         self._workers.remove(worker)
-
-    def _see_files(self, tasks: "list[RunTask]") -> None:
-        """Note the directories of the tasks' scenario files and of the files their planners read (``LazyPlanner.folders``).
-
-        Sandboxed workers started from now on can read them.
-        """
-        self._readable_dirs.update(os.path.dirname(os.path.abspath(t.scenario.location)) for t in tasks
-                                   if t.scenario.source == "file")
-        for planner_id in {t.planner.id for t in tasks}:
-            self._see_planner(planner_id)
-
-    def _see_planner(self, planner_id: str) -> None:
-        """Note the folders the planner reads (``LazyPlanner.folders``), for the sandboxed workers started from now on."""
-        from pathzoo.plugins.entries import LazyPlanner
-        from pathzoo.plugins.manager import get_registry
-
-        entry = get_registry().planners.get(planner_id)
-        if entry is not None and isinstance(entry.provided, LazyPlanner):
-            self._readable_dirs.update(entry.provided.folders)
 
     def _start_workers(self) -> None:
         """Start the workers asked for by :meth:`start_worker`, then those for the queued runs that no idle or starting
@@ -502,26 +269,25 @@ class ProcessExecutor(RunExecutor):
             queued = [task for task, _ in self._pending]
         for planner_id in early:
             if len(self._workers) < self.capacity and not self._closing:
-                with self._lock:
-                    self._see_planner(planner_id)
-                self._spawn(_any_configuration(planner_id))
+                self._visibility.see_planner(planner_id)
+                self._spawn(any_configuration(planner_id))
         if self._first_alone and any(w.task is not None for w in self._workers):
             return
         starting = Counter(w.config for w in self._workers if not w.was_ready)
         wanted = {configuration(task) for task in queued}
-        wanted |= {_any_configuration(config[0]) for config in wanted}
+        wanted |= {any_configuration(config[0]) for config in wanted}
         for task in queued[:1] if self._first_alone else queued:
             config = configuration(task)
             if starting[config] > 0:
                 starting[config] -= 1
                 continue
-            if starting[_any_configuration(config[0])] > 0:  # started early for this planner: it takes this one
-                starting[_any_configuration(config[0])] -= 1
+            if starting[any_configuration(config[0])] > 0:  # started early for this planner: it takes this one
+                starting[any_configuration(config[0])] -= 1
                 continue
             if starting[None] > 0 and not self.sandboxed:
                 starting[None] -= 1
                 continue
-            if sum(w.config in (config, _any_configuration(config[0])) and self._sees(w, task)
+            if sum(w.config in (config, any_configuration(config[0])) and sees(w, task)
                    for w in self._workers) >= self.capacity:
                 continue  # as many of its configuration as can run at once: one of them takes it
             if len(self._workers) >= self.kept_workers:  # retire an idle worker that no queued run can use
@@ -529,17 +295,10 @@ class ProcessExecutor(RunExecutor):
                 if spare is None:
                     return
                 self._retire(spare)
-            with self._lock:
-                self._see_files([task])
+            self._visibility.see_files([task])
             self._spawn(config)
 
-    def _sees(self, worker: _Worker, task: "RunTask") -> bool:
-        """Whether the worker can read the task's scenario (a sandboxed one sees the files known when it started)."""
-        spec = task.scenario
-        return (worker.group is None or spec.source != "file"
-                or os.path.dirname(os.path.abspath(spec.location)) in worker.visible)
-
-    def _take(self) -> "tuple[_Worker, RunTask, Future[RunOutcome]] | None":
+    def _take(self) -> "tuple[Worker, RunTask, Future[RunOutcome]] | None":
         """The first queued run with an idle worker of its configuration (or, unsandboxed, one not yet used), while
         fewer than :attr:`capacity` workers have a run."""
         with self._lock:
@@ -548,7 +307,7 @@ class ProcessExecutor(RunExecutor):
             for i, (task, future) in enumerate(self._pending):
                 config = configuration(task)
                 worker = next((w for w in self._workers if w.idle and w.task is None
-                               and w.config in (config, _any_configuration(config[0])) and self._sees(w, task)), None)
+                               and w.config in (config, any_configuration(config[0])) and sees(w, task)), None)
                 if worker is None and not self.sandboxed:
                     worker = next((w for w in self._workers if w.idle and w.task is None and w.config is None), None)
                 if worker is not None:
@@ -578,7 +337,7 @@ class ProcessExecutor(RunExecutor):
             worker.in_setup = True
             self._send(worker, task, future)
 
-    def _send(self, worker: _Worker, task: "RunTask", future: "Future[RunOutcome]") -> None:
+    def _send(self, worker: Worker, task: "RunTask", future: "Future[RunOutcome]") -> None:
         """Send the task to its worker, or first the order to warm up (a new worker; the task follows its ``W``)."""
         try:
             if worker.warm:
@@ -596,77 +355,24 @@ class ProcessExecutor(RunExecutor):
                                             started_at=worker.started_at))
             worker.idle = True
 
-    def _finish(self, worker: _Worker, outcome: RunOutcome) -> None:
+    def _finish(self, worker: Worker, outcome: RunOutcome) -> None:
         self._first_alone = False
         if worker.group is not None and worker.group.out_of_memory() and outcome.crash:
             outcome = replace(outcome, message=f"{outcome.message} (out of memory: over the sandbox's limit of "
                                                f"{self.limits.memory_bytes / 2**20:.0f} MiB)")
         worker.finish(replace(outcome, sandboxed=worker.group is not None))
 
-    @staticmethod
-    def _cpu_since(worker: _Worker) -> float:
-        """CPU seconds charged to the current run (NaN before the worker's warm-up ended)."""
-        return worker.cpu.spent() if worker.warm else math.nan
-
-    def _timed(self, worker: _Worker, outcome: RunOutcome, child_cpu: float) -> RunOutcome:
-        """The outcome with the harness's own times (``P`` to ``D``) and stop; a ``D`` before ``P`` is a failed setup,
-        whatever it says.
-
-        The CPU charged is the larger of the worker's tree and cgroup (read here),
-        the tree's reaped child counted at the child's own figure, which the
-        zygote read from the kernel when it reaped it (microseconds, where the
-        tree has the reaped child's time in clock ticks only,
-        :meth:`~pathzoo.harness.cpu_clock.ChargedCpu.spent`): a figure from the
-        worker can raise the charge, never lower it."""
-        assert worker.task is not None
-        if math.isnan(worker.plan_t0):
-            return RunOutcome(worker.task.run_key, crash=True, message=outcome.message, started_at=worker.started_at)
-        worker.plan_t1 = _clock()
-        cpu = worker.cpu.spent(reaped=child_cpu)
-        worker.cpu.start(relist=False)  # what the worker spends until its next run's end is charged to that run;
-        # its child is reaped by now, and a new one is listed within DESCENDANTS_REFRESH_S (the cgroup counts it)
-        stopped_by = worker.stopped_by or worker.task.budget.count_reached(outcome.iterations, outcome.evaluations)
-        return replace(outcome, wall_time_s=worker.plan_t1 - worker.plan_t0, cpu_time_s=cpu,
-                       stopped_by=stopped_by or "none", started_at=worker.started_at)
-
-    def _planning(self, worker: _Worker) -> bool:
-        """True while the worker's run plans under a clock limit that the harness has not stopped yet."""
-        return (worker.task is not None and worker.task.budget.timed and worker.stopped_by is None
-                and not math.isnan(worker.plan_t0) and math.isnan(worker.plan_t1))
-
-    def _watch_clocks(self, now: float) -> float:
-        """Set the stop of each planning run whose clock limit is spent; return when to look again."""
-        nearest = math.inf
-        for worker in self._workers:
-            if not self._planning(worker):
-                continue
-            assert worker.task is not None
-            budget = worker.task.budget
-            cpu_left = math.inf if budget.cpu_s is None else budget.cpu_s - worker.cpu.spent()
-            if cpu_left <= 0.0:
-                worker.stopped_by = "cpu_time"
-            elif budget.time_s is not None and now - worker.plan_t0 >= budget.time_s:
-                worker.stopped_by = "wall_time"
-            if worker.stopped_by is not None:
-                worker.stop.set(worker.stopped_by)
-                continue
-            if budget.cpu_s is not None:  # a process tree uses at most one CPU second per core and wall second
-                nearest = min(nearest, now + max(CLOCK_POLL_S, cpu_left / _CORES))
-            if budget.time_s is not None:
-                nearest = min(nearest, worker.plan_t0 + budget.time_s)
-        return nearest
-
-    def _violation(self, worker: _Worker, what: str) -> None:
+    def _violation(self, worker: Worker, what: str) -> None:
         if worker.task is not None:
             self._finish(worker, RunOutcome(worker.task.run_key, crash=True, started_at=worker.started_at,
                                             message=f"the worker broke the protocol ({what}) and was killed"))
         self._retire(worker)
 
-    def _left_behind(self, worker: _Worker) -> bool:
+    def _left_behind(self, worker: Worker) -> bool:
         """Whether the worker's cgroup holds a process that was not there when it became ready (a planner's child)."""
         return worker.group is not None and not set(worker.group.pids()) <= worker.baseline
 
-    def _receive(self, worker: _Worker) -> None:
+    def _receive(self, worker: Worker) -> None:
         while worker.listening and worker.conn.poll():
             try:
                 message = worker.conn.recv_bytes(MAX_OUTCOME_BYTES + 1)
@@ -705,9 +411,9 @@ class ProcessExecutor(RunExecutor):
             elif tag == b"P" and worker.task is not None and worker.started_once and math.isnan(worker.plan_t0):
                 worker.plan_t0 = _clock()
                 self._first_alone = False
-            elif tag == b"D" and worker.task is not None and worker.warm and len(body) >= _CPU.size:
-                (child_cpu,) = _CPU.unpack(body[:_CPU.size])
-                self._finish(worker, self._timed(worker, decode_outcome(body[_CPU.size:], worker.task.run_key),
+            elif tag == b"D" and worker.task is not None and worker.warm and len(body) >= CPU_FRAME.size:
+                (child_cpu,) = CPU_FRAME.unpack(body[:CPU_FRAME.size])
+                self._finish(worker, timed(worker, decode_outcome(body[CPU_FRAME.size:], worker.task.run_key),
                                                  child_cpu))
             elif worker.task is not None:
                 continue  # a repeated announcement, or one out of turn (planner code can write frames during its
@@ -716,11 +422,11 @@ class ProcessExecutor(RunExecutor):
                 self._violation(worker, f"unexpected message {bytes(message[:8])!r}")
                 return
 
-    def _died(self, worker: _Worker) -> None:
+    def _died(self, worker: Worker) -> None:
         worker.process.join()
         if worker.task is not None:
             elapsed = _clock() - worker.sent_at
-            cpu = self._cpu_since(worker)
+            cpu = cpu_since(worker)
             how = describe_exit(worker.process.exitcode, sandboxed=worker.group is not None)
             self._finish(worker, RunOutcome(
                 worker.task.run_key, crash=True, wall_time_s=elapsed, cpu_time_s=cpu, started_at=worker.started_at,
@@ -733,11 +439,11 @@ class ProcessExecutor(RunExecutor):
                                        f"{describe_exit(worker.process.exitcode)})")
         self._retire(worker)
 
-    def _kill(self, worker: _Worker) -> None:
+    def _kill(self, worker: Worker) -> None:
         assert worker.task is not None
         elapsed = _clock() - worker.sent_at
-        cpu = self._cpu_since(worker)
-        self._kill_tree(worker)
+        cpu = cpu_since(worker)
+        worker.kill_tree()
         if worker.in_setup:  # not the planner's time: its plan() never started
             outcome = RunOutcome(worker.task.run_key, crash=True, started_at=worker.started_at,
                                  message=f"run setup (planner, scenario and its graph) took over {elapsed:.3g} s")
@@ -758,7 +464,8 @@ class ProcessExecutor(RunExecutor):
                         return
                 self._dispatch()
                 listening = [w for w in self._workers if w.listening]
-                nearest = min(min((w.deadline for w in listening), default=math.inf), self._watch_clocks(_clock()))
+                nearest = min(min((w.deadline for w in listening), default=math.inf),
+                              watch_clocks(self._workers, _clock()))
                 timeout = None if math.isinf(nearest) else max(0.0, nearest - _clock())
                 ready = set(self._poller.wait(
                     [self._wake_r, *(w.conn for w in listening), *(w.process.sentinel for w in self._workers)], timeout
@@ -772,7 +479,7 @@ class ProcessExecutor(RunExecutor):
                 for worker in list(self._workers):
                     if worker.process.sentinel in ready and worker in self._workers:
                         self._receive(worker)  # a result sent just before exiting still counts
-                        if worker in self._workers and _written(worker.process.sentinel):
+                        if worker in self._workers and wrote_to_exit_pipe(worker.process.sentinel):
                             self._violation(worker, "it wrote to its exit pipe")  # planner code wrote there
                         elif worker in self._workers:
                             self._died(worker)

@@ -21,7 +21,7 @@ die only once it is gone (:func:`pathzoo.harness.launch.die_with_harness`).
 Its children never run exit handlers (a forkserver child always leaves
 through ``os._exit``).
 
-The worker's own code (:mod:`pathzoo.harness.executors.process`) is the
+The worker's own loop (:mod:`pathzoo.harness.executors.worker_loop`) is the
 server's next preload (:data:`pathzoo.harness.launch.PRELOAD`), not an
 import of this module: a sandboxed worker, spawned rather than forked,
 imports this module from inside that code.
