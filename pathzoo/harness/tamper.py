@@ -189,21 +189,21 @@ class _CleanState:
     """
 
     def __init__(self, module_names: list[str], owners: "dict[int, tuple[str, Any, dict[str, Any]]]") -> None:
-        self.module_names = module_names
-        self.modules = list(map(sys.modules.get, module_names))
-        self.keys = [key for key, (_, owner, _) in owners.items() if _namespace(owner) is not None]
-        self.namespaces = [_namespace(owners[key][1]) for key in self.keys]
+        self.module_names: list[str] = []
+        self.modules: list[Any] = []
+        self.keys: list[int] = []
+        self.namespaces: list[Any] = []
         if _TAGS:
-            dicts = [_dict_of(ns) for ns in self.namespaces]
-            self.untagged = [key for key, d in zip(self.keys, dicts) if d is None]  # examined after every run
-            self.tagged = [key for key, d in zip(self.keys, dicts) if d is not None]
-            self.tags = [ctypes.c_uint64.from_address(id(d) + _TAG_OFFSET) for d in dicts if d is not None]
-            self.seen = list(map(_TAG_VALUE, self.tags))
-            self.index = {key: i for i, key in enumerate(self.tagged)}
+            self.untagged: list[int] = []  # examined after every run
+            self.tagged: list[int] = []
+            self.tags: list[ctypes.c_uint64] = []
+            self.seen: list[int] = []
+            self.index: dict[int, int] = {}
         else:
-            self.sizes = list(map(len, self.namespaces))
-            self.flat_keys = list(itertools.chain.from_iterable(self.namespaces))
-            self.values = list(itertools.chain.from_iterable(map(_VALUES, self.namespaces)))
+            self.sizes: list[int] = []
+            self.flat_keys: list[Any] = []
+            self.values: list[Any] = []
+        self.add(module_names, list(owners), owners)
 
     def add(self, module_names: list[str], keys: list[int],
             owners: "dict[int, tuple[str, Any, dict[str, Any]]]") -> None:
