@@ -182,7 +182,7 @@ def estimate_paper(paper: PaperData, options: RerunOptions) -> tuple[list[Planne
             continue
         cells = [(low[k], high.get(k)) for k in low if k[0] == p.key]
         grows = any(hi is not None and hi[0] > lo[0] for lo, hi in cells)
-        iters = full_iterations(paper, p, options.iterations) if grows else None
+        iters = full[p.key] if grows else None  # grows: a higher run was fitted, so its cap ended the first one
         cpu = sum(fit_run(lo, hi, iters) for lo, hi in cells) * seeds
         mine = every.loc[every["planner"] == p.key, "cpu_time_s"]
         estimates.append(PlannerEstimate(p.key, p.label, seeds * len(cells), iters,
