@@ -91,19 +91,6 @@ def _format_eta(seconds: float | None) -> str:
     return f"{hours}h{minutes:02d}m" if hours else f"{minutes}m{secs:02d}s"
 
 
-def _names(tasks: list["RunTask"]) -> dict[str, str]:
-    """Each task's configuration name by run key, :attr:`PlannerSpec.name` read once per spec (it looks the
-    description up by the parameters' JSON: milliseconds per stored run when read per run)."""
-    by_spec: dict[int, str] = {}
-    names: dict[str, str] = {}
-    for task in tasks:
-        spec = id(task.planner)  # the tasks hold their specs for the whole run: an id is not reused meanwhile
-        if spec not in by_spec:
-            by_spec[spec] = task.planner.name
-        names[task.run_key] = by_spec[spec]
-    return names
-
-
 def _execute(
     executor: RunExecutor,
     tasks: list["RunTask"],
@@ -118,8 +105,7 @@ def _execute(
     judging: dict[Future[RunRecord], tuple[RunTask, RunOutcome]] = {}
     isolated = bool(getattr(executor, "isolated", False))
     failures = 0
-    names = _names(tasks)
-    remaining = Counter((names[t.run_key], t.scenario.id) for t in tasks)
+    remaining = Counter((t.planner.name, t.scenario.id) for t in tasks)
     times = RunTimes(parallel=executor.capacity)
 
     scenarios_seen: set[tuple[str, str, str, str]] = set()
@@ -151,7 +137,7 @@ def _execute(
                 judging[judges.submit(task, outcome, isolated=isolated)] = (task, outcome)
             else:
                 task, outcome = judging.pop(future)
-                name = names[task.run_key]
+                name = task.planner.name
                 record = _store(store, future.result(), task, outcome, retry, name)
                 _call_hook(registry, "pathzoo_run_finished", record=record)
                 if record.status is not RunStatus.SOLVED:

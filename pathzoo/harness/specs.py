@@ -148,10 +148,19 @@ class PlannerSpec:
             raise InvalidExperimentError(f"planner '{planner_id}' is not available here: it {unavailable}")
         return cls(planner_id, info_of(planner_id, params).params, label)
 
-    @property
+    @functools.cached_property
     def info(self) -> PlannerInfo:
-        """Version, kinds and default name, not importing the planner here (:mod:`~pathzoo.harness.planner_info`)."""
+        """Version, kinds and default name, not importing the planner here (:mod:`~pathzoo.harness.planner_info`).
+
+        Looked up once per spec (the look-up keys on the parameters' JSON) and
+        kept on it; a pickled spec leaves it behind (:meth:`__getstate__`), so
+        a worker describes the configuration itself.
+        """
         return info_of(self.id, self.params)
+
+    def __getstate__(self) -> dict[str, Any]:
+        """The fields, without the cached :attr:`info`."""
+        return {key: value for key, value in self.__dict__.items() if key != "info"}
 
     @property
     def name(self) -> str:
