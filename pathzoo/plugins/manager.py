@@ -3,8 +3,8 @@
 Each kind of plugin has its own entry-point group, so a process loads only the
 kinds it needs (:data:`GROUP_KINDS`). The judge process loads scenario and
 metric plugins only (:func:`limit_kinds`): a planner plugin's import-time code
-never runs where verdicts are made. The group ``pathzoo`` of earlier versions
-still provides planners (see ``docs/register-a-planner.md``).
+never runs where verdicts are made. The group ``pathzoo`` (:data:`ENTRY_POINT_GROUP`,
+the one group of pathzoo before 0.2) provides planners only (see ``docs/register-a-planner.md``).
 """
 
 from __future__ import annotations
@@ -33,7 +33,7 @@ KIND_GROUPS: dict[str, str] = {"planners": "pathzoo.planners", "scenarios": "pat
 """The entry-point group of each kind of plugin."""
 
 ENTRY_POINT_GROUP = "pathzoo"
-"""The single group of earlier versions; its plugins still provide planners (and observers), nothing else."""
+"""The one group of pathzoo before 0.2: its plugins provide planners (and observers), nothing else."""
 
 GROUP_KINDS: dict[str, tuple[str, ...]] = {
     **{group: (kind,) for kind, group in KIND_GROUPS.items()},

@@ -20,9 +20,9 @@ only in Figs. 11-12, so they are built here:
 - scenario 3 follows what the paper says of it (Table 5: two static
   obstacles of different shapes, three moving ones) and nothing more: a long
   polygonal block across the diagonal between the start and goal corners,
-  open only near the south-east corner, and a disc. An earlier version put
-  the goal inside a C-shaped obstacle; that layout is our invention, not the
-  paper's, and is kept as the stress test ``fgdaco.trap``;
+  open only near the south-east corner, and a disc. A goal inside a
+  C-shaped obstacle is our invention, not the paper's: that layout is the
+  stress test ``fgdaco.trap``;
 - each moving obstacle is a disc of radius 2 m going back and forth along a
   segment that crosses the free corridors, with speed ~ U(0.5, 1.5) m/s and a
   start phase ~ U(0, period) drawn from ``numpy.random.default_rng(SEED + k)``
