@@ -28,11 +28,13 @@ plateaus of equal ``f``. Ties never change the optimal cost, only which of
 several optimal paths is returned.
 
 The heap stores ``f`` and ``g`` as integers (:func:`order_key`), not floats:
-two integers compare in the same order as the two floats they stand for, so
-every comparison, and hence every push, pop and path, is what it was with
-float keys, but an integer comparison is one cycle where a float one is
-several, on the critical path of every heap level. Replayed on the searches of
-``8room_000`` the heap operations took 26.8 ms instead of 34 ms.
+read as unsigned integers, two keys compare in the same order as the two
+floats they stand for, so every comparison, and hence every push, pop and
+path, is what it is with float keys. The test "comes before" (``f``
+ascending, then ``g`` descending) is then one comparison of two unsigned
+128-bit numbers (:func:`_comes_before`), one compare and one
+subtract-with-borrow on the chain of dependent steps of every heap level,
+where float keys take several compares and their logic.
 """
 
 from __future__ import annotations
@@ -101,7 +103,7 @@ HEAP_FULL = 3
 _SQRT2_M1 = math.sqrt(2.0) - 1.0
 _ZERO = np.uint64(0)
 _ONE = np.uint64(1)
-_MAGNITUDE = np.int64(0x7FFF_FFFF_FFFF_FFFF)
+_SIGN = np.int64(-(1 << 63))
 
 
 @intrinsic
@@ -124,25 +126,63 @@ def _trailing_zeros(typingctx, x):
     return types.uint64(types.uint64), codegen
 
 
+@intrinsic
+def _comes_before(typingctx, f1, g1, f0, g0):
+    """1 (uint64) when the heap entry ``(f1, g1)`` comes before ``(f0, g0)``, else 0: ``f`` ascending, then ``g`` descending.
+
+    That is ``f1 < f0 or (f1 == f0 and g1 > g0)``. Float keys are compared
+    as floats, in that expression. Integer keys (:func:`order_key`) are
+    compared as unsigned 64-bit integers, and the whole test is one
+    comparison of two unsigned 128-bit numbers, ``(f1, g0) < (f0, g1)``
+    (high half, low half): one compare and one subtract-with-borrow, where
+    the expression takes three compares and their logic, on the chain of
+    dependent steps of every heap level.
+    """
+    keys = (f1, g1, f0, g0)
+    if all(isinstance(k, types.Integer) for k in keys):
+        kind = types.int64
+    elif all(isinstance(k, (types.Integer, types.Float)) for k in keys):
+        kind = types.float64
+    else:
+        return None
+
+    def codegen(context, builder, signature, args):
+        f1, g1, f0, g0 = (context.cast(builder, v, t, kind) for v, t in zip(args, signature.args))
+        if kind == types.float64:
+            less = builder.fcmp_ordered("<", f1, f0)
+            tie = builder.and_(builder.fcmp_ordered("==", f1, f0), builder.fcmp_ordered(">", g1, g0))
+            return builder.zext(builder.or_(less, tie), ir.IntType(64))
+        wide = ir.IntType(128)
+
+        def pair(high: ir.Value, low: ir.Value) -> ir.Value:
+            return builder.or_(builder.shl(builder.zext(high, wide), ir.Constant(wide, 64)), builder.zext(low, wide))
+
+        return builder.zext(builder.icmp_unsigned("<", pair(f1, g0), pair(f0, g1)), ir.IntType(64))
+
+    return types.uint64(f1, g1, f0, g0), codegen
+
+
 @numba.njit(cache=True)
 def order_key(x: float) -> int:
-    """An int64 that compares with other keys exactly as the float ``x`` compares with their floats.
+    """A 64-bit key that, read as an unsigned integer, compares with other keys exactly as the float ``x`` with theirs.
 
-    A non-negative float's bit pattern, read as an integer, grows with the
-    float; a negative float's does too once its 63 magnitude bits are flipped
-    (they then fall below every non-negative key, in reverse magnitude
-    order). So for all floats other than NaN, ``order_key(a) < order_key(b)``
-    exactly when ``a < b``, and the keys are equal exactly when the floats
-    are, with one exception: ``-0.0`` gets a key below ``+0.0``'s. No heap
-    key is ever ``-0.0``: a search starts at ``g = +0.0``, and under
-    round-to-nearest a sum is ``-0.0`` only when both terms are, so neither
-    ``g + weight`` nor ``g + h`` can be. Negative keys do occur: Z*
+    A non-negative float's bit pattern, read as an unsigned integer, grows
+    with the float; with its sign bit flipped it lies above every negative
+    float's pattern with all its bits flipped, and those grow with the
+    float too (their magnitude bits fall). So for all floats other than
+    NaN, ``order_key(a) < order_key(b)`` as unsigned integers exactly when
+    ``a < b``, and the keys are equal exactly when the floats are, with one
+    exception: ``-0.0`` gets a key below ``+0.0``'s. No heap key is ever
+    ``-0.0``: a search starts at ``g = +0.0``, and under round-to-nearest a
+    sum is ``-0.0`` only when both terms are, so neither ``g + weight`` nor
+    ``g + h`` can be. Negative floats do occur: Z*
     (``pathzoo_rivals.zstar``) searches reduced costs that rounding can
     leave slightly below zero. NaN keys never reach the heap (``cand < g``
-    is false for a NaN ``cand``).
+    is false for a NaN ``cand``). The key is returned, and stored in the
+    heap's int64 arrays, as the int64 of the same bits.
     """
     bits = _float_bits(x)
-    return bits ^ ((bits >> 63) & _MAGNITUDE)
+    return bits ^ ((bits >> 63) | _SIGN)
 
 
 @numba.njit(cache=True)
@@ -169,8 +209,8 @@ def begin_batch(
         g[source] = 0.0
         parent[source] = -1
         heap_node[0] = source
-        heap_f[0] = 0  # order_key(0.0)
-        heap_g[0] = 0
+        heap_f[0] = _SIGN  # order_key(0.0)
+        heap_g[0] = _SIGN
         counters[0] = 1
         counters[1] = 0
         counters[2] = -1
@@ -330,22 +370,22 @@ def search_problem(target: int, dims: np.ndarray, steps: np.ndarray, mode: int, 
     return ints, np.array([*steps, scale], dtype=np.float64)
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def heap_push(heap_node: np.ndarray, heap_f: np.ndarray, heap_g: np.ndarray, size: int, node: int, f: int | float, g: int | float) -> int:
     """Push ``node`` with key ``f`` (ties: larger ``g`` first) on a heap of ``size`` entries; returns the new size.
 
-    The keys are compared as they are: floats, or :func:`order_key` integers
-    in arrays of int64 (the search kernels'). Slots are unsigned here and in
-    :func:`heap_pop`, which says why.
+    The keys are floats, or :func:`order_key` integers in arrays of int64
+    (the search kernels'), compared as unsigned integers; :func:`_comes_before`
+    orders two entries. Slots are unsigned here and in :func:`heap_pop`,
+    which says why.
     """
     i = np.uint64(size)
     while i > _ZERO:
         p = (i - _ONE) >> _ONE
-        pf = heap_f[p]
-        if pf < f or (pf == f and heap_g[p] >= g):
+        if not _comes_before(f, g, heap_f[p], heap_g[p]):
             break
         heap_node[i] = heap_node[p]
-        heap_f[i] = pf
+        heap_f[i] = heap_f[p]
         heap_g[i] = heap_g[p]
         i = p
     heap_node[i] = node
@@ -354,7 +394,7 @@ def heap_push(heap_node: np.ndarray, heap_f: np.ndarray, heap_g: np.ndarray, siz
     return size + 1
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def heap_pop(heap_node: np.ndarray, heap_f: np.ndarray, heap_g: np.ndarray, size: int) -> int:
     """Remove the first entry of a heap of ``size > 0`` entries and return its node (the size drops by one).
 
@@ -376,16 +416,15 @@ def heap_pop(heap_node: np.ndarray, heap_f: np.ndarray, heap_g: np.ndarray, size
         return top
     n = np.uint64(size)
     i = _ZERO
-    while True:
+    c = _ONE
+    while c + _ONE < n:  # two children: the better one, chosen without a branch (a coin toss for the predictor)
+        c += _comes_before(heap_f[c + _ONE], heap_g[c + _ONE], heap_f[c], heap_g[c])
+        heap_node[i] = heap_node[c]
+        heap_f[i] = heap_f[c]
+        heap_g[i] = heap_g[c]
+        i = c
         c = i + i + _ONE
-        if c >= n:
-            break
-        if c + _ONE < n:
-            f1 = heap_f[c + _ONE]
-            f0 = heap_f[c]
-            # branch-free choice of the better child: which child wins is a coin toss
-            # the branch predictor misses about half the time
-            c += np.uint64((f1 < f0) | ((f1 == f0) & (heap_g[c + _ONE] > heap_g[c])))
+    if c < n:  # one child, the last entry
         heap_node[i] = heap_node[c]
         heap_f[i] = heap_f[c]
         heap_g[i] = heap_g[c]
@@ -397,19 +436,19 @@ def heap_pop(heap_node: np.ndarray, heap_f: np.ndarray, heap_g: np.ndarray, size
 
 @numba.njit(cache=True, inline="always")
 def next_open(
-    closed: np.ndarray, heap_node: np.ndarray, heap_f: np.ndarray, heap_g: np.ndarray, size: int, max_degree: int
+    closed: np.ndarray, heap_node: np.ndarray, heap_f: np.ndarray, heap_g: np.ndarray, size: int, room: int
 ) -> tuple[int, int, int]:
     """Pop stale entries until an open node comes out, and close it.
 
     Returns ``(node, size, status)``: ``status`` is :data:`RUNNING` with the
     node to expand, or :data:`EXHAUSTED` (empty heap) or :data:`HEAP_FULL`
-    (fewer than ``max_degree`` free slots, the pushes of one expansion) with
-    node ``-1``.
+    (the heap holds more than ``room`` entries: the heap's slots less the
+    pushes of one expansion) with node ``-1``.
     """
     while True:
         if size == 0:
             return -1, size, EXHAUSTED
-        if size + max_degree > heap_node.shape[0]:
+        if size > room:
             return -1, size, HEAP_FULL
         u = heap_pop(heap_node, heap_f, heap_g, size)
         size -= 1
@@ -479,8 +518,9 @@ def search_loop(rule: int) -> Callable[..., int]:
         size = begin_batch(g, parent, closed, heap_node, heap_f, heap_g, counters)
         status = RUNNING
         done = 0
+        room = heap_node.shape[0] - max_degree  # the largest heap an expansion may start from
         while done < max_expansions:
-            u, size, status = next_open(closed, heap_node, heap_f, heap_g, size, max_degree)
+            u, size, status = next_open(closed, heap_node, heap_f, heap_g, size, room)
             if status != RUNNING:
                 break
             done += 1

@@ -1,4 +1,4 @@
-"""``order_key``: integer heap keys that compare exactly as the floats they stand for."""
+"""``order_key``: integer heap keys that, read as unsigned integers, compare exactly as the floats they stand for."""
 
 from __future__ import annotations
 
@@ -22,15 +22,16 @@ def floats(seed: int) -> np.ndarray:
 
 def test_keys_compare_like_their_floats() -> None:
     x = floats(0)
-    k = np.array([order_key(v) for v in x])
+    k = np.array([order_key(v) for v in x], dtype=np.int64).view(np.uint64)
     assert np.array_equal(k[:, None] < k[None, :], x[:, None] < x[None, :])
     assert np.array_equal(k[:, None] == k[None, :], x[:, None] == x[None, :])
-    assert order_key(0.0) == 0  # what begin_batch stores for the source
+    assert order_key(0.0) == -(1 << 63)  # what begin_batch stores for the source: the sign bit alone
 
 
 def test_minus_zero_is_the_one_exception() -> None:
     # documented: -0.0 == +0.0 as floats, but its key is lower; the kernels never make a -0.0 key
-    assert order_key(-0.0) < order_key(0.0)
+    minus, plus = np.array([order_key(-0.0), order_key(0.0)], dtype=np.int64).view(np.uint64)
+    assert minus < plus
 
 
 def test_heap_pops_the_same_nodes_with_float_and_integer_keys() -> None:
