@@ -5,7 +5,7 @@ neighbourhood graph (:attr:`Scenario.graph`: 8-connected, no corner cutting,
 slope limits on terrain), so every route it returns is a chain of graph
 edges and therefore a valid path under the judge's rules. A* (octile
 heuristic, admissible for 2-D and 3-D edge lengths) uses the binary heap of
-the exact planners (:mod:`pathzoo_exact.kernel`, also its ``trace_path``); its per-node arrays are
+the exact planners (:mod:`pathzoo_exact.heap`, and :func:`pathzoo_exact.waypoints.trace_path`); its per-node arrays are
 reset lazily with a search counter, so a query costs what it expands, not
 the map size.
 
@@ -25,7 +25,8 @@ from scipy import ndimage
 from scipy.sparse.csgraph import breadth_first_order
 
 from pathzoo.core import Scenario
-from pathzoo_exact.kernel import heap_pop, heap_push, trace_path
+from pathzoo_exact.heap import heap_pop, heap_push
+from pathzoo_exact.waypoints import trace_path
 
 __all__ = ["CellRouter", "remove_loops", "route_kernel"]
 

@@ -29,7 +29,7 @@ from pathzoo.core.object_memo import ObjectMemo
 from pathzoo.grid.graph import GridGraph
 from pathzoo_exact.base import GraphSearchPlanner
 from pathzoo_exact.answer import Batch, astar_answer, astar_moves_answer
-from pathzoo_exact.kernel import H_EUCLID, H_OCTILE, grid_dims, search_problem
+from pathzoo_exact.problem import H_EUCLID, H_OCTILE, grid_dims, search_problem
 from pathzoo_exact.moves import move_table
 
 __all__ = ["AStarPlanner", "least_energy_per_metre"]

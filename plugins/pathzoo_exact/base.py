@@ -32,10 +32,10 @@ in air volumes too, so that each segment is one checked graph edge.
 
 Reused arrays
 -------------
-A search's state (:class:`~pathzoo_exact.kernel.SearchState`) has a cost,
+A search's state (:class:`~pathzoo_exact.search_state.SearchState`) has a cost,
 a parent and a closed flag per node. Each thread keeps the state of its last
 search as a spare, and the next search on a graph of the same size
-restarts it (:meth:`~pathzoo_exact.kernel.SearchState.restart`) instead of
+restarts it (:meth:`~pathzoo_exact.search_state.SearchState.restart`) instead of
 allocating: refilling warm arrays costs the same as filling fresh ones, but a
 fresh allocation of a few megabytes often comes from memory the C allocator
 has just handed back to the system, and then every page faults once. On
@@ -84,7 +84,8 @@ from pathzoo.grid.paths import centre_path, on_centre
 from pathzoo.grid.terrain import segment_profile
 from pathzoo.rules import segment_problem
 from pathzoo_exact.answer import Batch, answer_problem
-from pathzoo_exact.kernel import EXHAUSTED, FOUND, HEAP_FULL, RUNNING, SearchState, grid_dims
+from pathzoo_exact.problem import grid_dims
+from pathzoo_exact.search_state import EXHAUSTED, FOUND, HEAP_FULL, RUNNING, SearchState
 from pathzoo_exact.waypoints import path_ends, path_layout
 
 __all__ = ["GraphSearchPlanner", "SPARE_MAX_NODES", "Endpoints", "endpoints", "connector_cost", "PreparedSearch"]
@@ -219,7 +220,7 @@ class GraphSearchPlanner(Planner, abc.ABC):
     def _make_batch(self, scenario: Scenario, target: int) -> Batch:
         """The kernel of :mod:`pathzoo_exact.answer` that searches ``scenario``, with its graph and problem arguments.
 
-        The arguments end with the problem's ``ints, reals`` (:func:`~pathzoo_exact.kernel.search_problem`);
+        The arguments end with the problem's ``ints, reals`` (:func:`~pathzoo_exact.problem.search_problem`);
         :meth:`_prepare` packs the path's ``layout`` and ``ends`` into them.
         """
 

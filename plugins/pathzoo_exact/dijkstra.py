@@ -10,7 +10,7 @@ from typing import ClassVar
 
 from pathzoo.core import Scenario
 from pathzoo_exact.astar import AStarPlanner
-from pathzoo_exact.kernel import H_ZERO
+from pathzoo_exact.problem import H_ZERO
 
 __all__ = ["DijkstraPlanner"]
 

@@ -4,7 +4,7 @@ On a flat occupancy grid (and on any graph built with a cost per move, not
 per edge) the CSR arrays say little that the move itself does not: the target
 of an edge is ``u + shift`` and its cost is the move's cost. A
 :class:`MoveTable` keeps only which moves each cell may make, one bit per
-move, so an expansion of :func:`~pathzoo_exact.kernel.astar_moves_batch`
+move, so an expansion of :func:`~pathzoo_exact.search_loop.astar_moves_batch`
 reads one byte (on 8-connected grids) instead of an ``indptr`` pair and
 about eight node ids and eight weights. On ``8room_000`` (512 x 512) this made
 the A* kernel about 1.5 times faster; the search is bound by memory, not by

@@ -30,7 +30,7 @@ import numpy as np
 from pathzoo.core import Scenario
 from pathzoo_exact.base import GraphSearchPlanner
 from pathzoo_exact.answer import Batch, thetastar_answer
-from pathzoo_exact.kernel import H_EUCLID, search_problem
+from pathzoo_exact.problem import H_EUCLID, search_problem
 
 __all__ = ["ThetaStarPlanner"]
 

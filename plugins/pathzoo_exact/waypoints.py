@@ -16,9 +16,23 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-from pathzoo_exact.kernel import trace_path
+__all__ = ["trace_path", "straight_run_ends", "waypoints", "path_layout", "path_ends"]
 
-__all__ = ["straight_run_ends", "waypoints", "path_layout", "path_ends"]
+
+@numba.njit(cache=True)
+def trace_path(parent: np.ndarray, target: int) -> np.ndarray:
+    """Node ids from the source to ``target`` following ``parent`` links."""
+    n = 0
+    u = target
+    while u != -1:
+        n += 1
+        u = parent[u]
+    out = np.empty(n, dtype=np.int64)
+    u = target
+    for i in range(n - 1, -1, -1):
+        out[i] = u
+        u = parent[u]
+    return out
 
 
 @numba.njit(cache=True)

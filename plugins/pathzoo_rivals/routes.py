@@ -42,17 +42,10 @@ from pathzoo.grid.terrain import segment_profile
 from pathzoo.rules import segment_problem
 from pathzoo.grid.paths import path_pieces
 from pathzoo.metrics.geometry import travel_time_energy, turn_angles
-from pathzoo_exact.kernel import (
-    FOUND,
-    H_OCTILE,
-    HEAP_FULL,
-    RUNNING,
-    SearchState,
-    astar_batch,
-    run_batch,
-    search_problem,
-    trace_path,
-)
+from pathzoo_exact.problem import H_OCTILE, search_problem
+from pathzoo_exact.search_loop import astar_batch
+from pathzoo_exact.search_state import FOUND, HEAP_FULL, RUNNING, SearchState, run_batch
+from pathzoo_exact.waypoints import trace_path
 
 __all__ = ["RouteProblem", "SLOPE_MARGIN_DEG", "N_OBJECTIVES", "OBJECTIVES"]
 

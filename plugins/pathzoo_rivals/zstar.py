@@ -50,7 +50,7 @@ import numpy as np
 from pathzoo.core import Param, PlanResult, ProgressCallback, Scenario
 from pathzoo_exact.base import GraphSearchPlanner, PreparedSearch
 from pathzoo_exact.answer import Batch, astar_answer
-from pathzoo_exact.kernel import H_ZERO, grid_dims, search_problem
+from pathzoo_exact.problem import H_ZERO, grid_dims, search_problem
 
 __all__ = ["ZStarPlanner", "zstar_heuristic", "zstar_edge_cost", "reduced_costs"]
 

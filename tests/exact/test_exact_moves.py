@@ -11,19 +11,9 @@ import pathzoo
 from pathzoo.core import Budget, Scenario
 from pathzoo.generators import random_obstacles
 from pathzoo.core.tiny_scenarios import check_scenario
-from pathzoo_exact.kernel import (
-    FOUND,
-    H_EUCLID,
-    H_OCTILE,
-    H_ZERO,
-    HEAP_FULL,
-    RUNNING,
-    SearchState,
-    astar_batch,
-    astar_moves_batch,
-    run_batch,
-    search_problem,
-)
+from pathzoo_exact.problem import H_EUCLID, H_OCTILE, H_ZERO, search_problem
+from pathzoo_exact.search_loop import astar_batch, astar_moves_batch
+from pathzoo_exact.search_state import FOUND, HEAP_FULL, RUNNING, SearchState, run_batch
 from pathzoo_exact.moves import move_table
 
 

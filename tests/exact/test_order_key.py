@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
-from pathzoo_exact.kernel import heap_pop, heap_push, order_key
+from pathzoo_exact.heap import heap_pop, heap_push, order_key
 
 
 def floats(seed: int) -> np.ndarray:
