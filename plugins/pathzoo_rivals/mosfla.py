@@ -37,7 +37,7 @@ class MosflaPlanner(RouteSearchPlanner):
     """MOSFLA reconstruction (see the module docstring and ``docs/planners/swarm.mosfla.md``)."""
 
     id: ClassVar[str] = "swarm.mosfla"
-    version: ClassVar[str] = "1"
+    version: ClassVar[str] = "2"
     summary: ClassVar[str] = ("MOSFLA after Hidalgo-Paniagua et al. 2015 (reconstructed): shuffled frog-leaping on "
                               "waypoint routes, objectives length, safety, smoothness")
     params = {

@@ -49,7 +49,7 @@ class MovnsPlanner(RouteSearchPlanner):
     """MOVNS reconstruction (see the module docstring and ``docs/planners/search.movns.md``)."""
 
     id: ClassVar[str] = "search.movns"
-    version: ClassVar[str] = "1"
+    version: ClassVar[str] = "2"
     summary: ClassVar[str] = ("MOVNS after Hidalgo-Paniagua et al. 2016 (reconstructed): multi-objective VNS on "
                               "waypoint routes, objectives length, safety, smoothness")
     params = {

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from pathzoo_rivals.route_kernels import bridge_corners_free
 from pathzoo_rivals.routes import RouteProblem
 
 __all__ = ["relocate", "insert", "remove", "leap", "resample"]
@@ -109,6 +110,8 @@ def _bridge_corners(problem: RouteProblem, cells: np.ndarray) -> np.ndarray:
     blocked corner; the blend itself does not cross the obstacle, so going
     round the corner on the free side is the faithful cell route.
     """
+    if problem.collision_only:
+        return bridge_corners_free(problem.blocked, problem.cell_size, cells)
     w = problem.shape[1]
     out = [int(cells[0])]
     for v in (int(c) for c in cells[1:]):

@@ -19,9 +19,17 @@ segment). Every route a planner keeps has passed this test segment by
 segment; operators that would break it are rejected, never repaired silently
 (the leap's corner bridging builds a different route and tests it too).
 
-Objectives, all minimised (the three of Hidalgo-Paniagua et al.):
+Random routes (:meth:`RouteProblem.random_route`) are shortest routes
+through a random *via* cell, read off two shortest-path trees (from the
+start, to the goal) built once per problem, so each costs the length of the
+route, not a search of the map. Where only the collision test applies, the
+segment test, string-pulling and corner bridging run compiled
+(:mod:`pathzoo_rivals.route_kernels`), with the same verdicts.
 
-- **length**: 3-D length in metres (:func:`pathzoo.metrics.geometry.path_pieces`);
+Objectives of a route's world path (the start and goal connectors
+included), all minimised (the three of Hidalgo-Paniagua et al.):
+
+- **length**: 3-D length in metres (:func:`pathzoo.metrics.geometry.driven_pieces`);
 - **risk** (path safety): minus the mean clearance, in metres, of the cells
   under points sampled every half cell along the route (clearance from
   :attr:`Scenario.clearance`), so routes that keep away from obstacles have
@@ -37,17 +45,16 @@ import numpy as np
 
 from pathzoo.core import Scenario
 from pathzoo.grid.paths import centre_path
-from pathzoo.grid.segments import first_blocked_cell_2d, to_cell_units
 from pathzoo.grid.terrain import segment_profile
 from pathzoo.rules import segment_problem
-from pathzoo.grid.paths import path_pieces
-from pathzoo.metrics.geometry import travel_time_energy, turn_angles
-from pathzoo_exact.problem import H_OCTILE, search_problem
+from pathzoo.metrics.geometry import driven_pieces, travel_time_energy, turn_angles
+from pathzoo_exact.problem import H_OCTILE, H_ZERO, search_problem
 from pathzoo_exact.search_loop import astar_batch
 from pathzoo_exact.search_state import FOUND, HEAP_FULL, RUNNING, SearchState, run_batch
 from pathzoo_exact.waypoints import trace_path
+from pathzoo_rivals.route_kernels import pull_string_free, route_free, segment_free, via_route
 
-__all__ = ["RouteProblem", "SLOPE_MARGIN_DEG", "N_OBJECTIVES", "OBJECTIVES"]
+__all__ = ["RouteProblem", "SLOPE_MARGIN_DEG", "N_OBJECTIVES", "OBJECTIVES", "DETOUR", "SEGMENT_CACHE_SIZE"]
 
 SLOPE_MARGIN_DEG = 1e-6
 """How far inside the climb and descent limits every segment of a route must stay, degrees."""
@@ -56,6 +63,13 @@ OBJECTIVES = ("length_m", "risk_m", "turning_rad")
 """Names of the three objectives, in the order of :meth:`RouteProblem.objectives`."""
 
 N_OBJECTIVES = len(OBJECTIVES)
+
+DETOUR = 1.2
+"""Longest random route's detour: the via cell of :meth:`RouteProblem.random_route` is drawn among the cells whose
+shortest route through them is at most this multiple of the shortest route."""
+
+SEGMENT_CACHE_SIZE = 1 << 20
+"""Most segment verdicts :meth:`RouteProblem.segment_ok` keeps (slope-checked maps); the cache starts again when full."""
 
 
 class RouteProblem:
@@ -75,16 +89,23 @@ class RouteProblem:
         self.free = ~scenario.blocked
         self.clearance = scenario.clearance
         self._segment_ok: dict[tuple[int, int], bool] = {}
-        self._weights: np.ndarray | None = None  # random_route's noisy edge weights, one array reused
+        self._via: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None = None  # random_route's trees
+        self._candidates: tuple[float, np.ndarray, np.ndarray] | None = None  # its via cells and scratch array
         vehicle = scenario.vehicle
         self._slopes_matter = scenario.kind == "terrain" and (
             min(vehicle.max_climb_deg, vehicle.max_descent_deg) < 90.0
             or (scenario.elevation is not None and bool(np.isnan(scenario.elevation).any()))
         )
+        self.collision_only = not self._slopes_matter
+        """Whether a segment's only test is the collision test (no slope limit can be broken)."""
+        self.blocked = np.ascontiguousarray(scenario.blocked)
+        self.cell_size = float(scenario.cell_size)
 
     # ------------------------------------------------------------ feasibility
     def segment_ok(self, u: int, v: int) -> bool:
         """Whether the straight segment between the centres of cells ``u`` and ``v`` is allowed (see module)."""
+        if self.collision_only:
+            return bool(segment_free(self.blocked, self.cell_size, u, v))
         key = (u, v)
         known = self._segment_ok.get(key)
         if known is not None:
@@ -92,16 +113,15 @@ class RouteProblem:
         s = self.scenario
         p0, p1 = s.point_of(np.array([u, v]))
         ok = u != v and bool(self.free.flat[u] and self.free.flat[v])
-        if ok and not self._slopes_matter:
-            a, b = to_cell_units(p0, s.cell_size), to_cell_units(p1, s.cell_size)
-            ok = first_blocked_cell_2d(s.blocked, a[0], a[1], b[0], b[1])[0] == -2
-        elif ok:
+        if ok:
             ok = segment_problem(s, p0, p1) is None
-        if ok and self._slopes_matter:
+        if ok:
             _, slopes = segment_profile(s.elevation, p0, p1, s.cell_size)
             deg = np.degrees(slopes)
             ok = bool(deg.max() <= s.vehicle.max_climb_deg - SLOPE_MARGIN_DEG
                       and -deg.min() <= s.vehicle.max_descent_deg - SLOPE_MARGIN_DEG)
+        if len(self._segment_ok) >= SEGMENT_CACHE_SIZE:
+            self._segment_ok.clear()
         self._segment_ok[key] = ok
         return ok
 
@@ -109,11 +129,13 @@ class RouteProblem:
         """Whether a route runs from the start cell to the goal cell through allowed segments only."""
         if len(route) < 2 or int(route[0]) != self.start or int(route[-1]) != self.goal:
             return False
+        if self.collision_only:
+            return bool(route_free(self.blocked, self.cell_size, np.asarray(route, dtype=np.int64)))
         return all(self.segment_ok(int(a), int(b)) for a, b in zip(route[:-1], route[1:]))
 
     def reachable(self) -> bool:
         """Whether the goal cell can be reached from the start cell in the neighbourhood graph."""
-        return self.shortest_nodes(self.scenario.graph.length) is not None
+        return bool(np.isfinite(self._trees()[2][self.goal]))
 
     # ------------------------------------------------------------ construction
     def shortest_nodes(self, weights: np.ndarray) -> np.ndarray | None:
@@ -135,23 +157,73 @@ class RouteProblem:
             status = run_batch(astar_batch, args, len(graph.offsets), state, 1 << 20)
         return trace_path(state.parent, self.goal) if status == FOUND else None
 
-    def random_route(self, rng: np.random.Generator, noise: float = 2.0) -> np.ndarray | None:
-        """A feasible route: the shortest path under edge lengths scaled by ``U(1, 1 + noise)``, string-pulled.
+    def _trees(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """Shortest-path trees by 3-D length: ``(from_start, to_goal, d_start, d_goal)``, built once.
 
-        Returns ``None`` when the goal cell is unreachable.
+        ``from_start[v]`` is ``v``'s predecessor on a shortest path from the
+        start cell and ``d_start[v]`` its length; ``to_goal[v]`` is ``v``'s
+        successor on a shortest path to the goal cell and ``d_goal[v]`` its
+        length (a search from the goal over the reversed edges). Unreached
+        cells have an infinite distance.
         """
-        graph = self.scenario.graph
-        if self._weights is None:
-            self._weights = np.empty(graph.n_edges)
-        weights = self._weights
-        # rng.uniform(1, 1 + noise, n) written into one reused array: uniform draws 1 + ((1 + noise) - 1) * U
-        # from the same stream as rng.random, so the weights are bit for bit the same without two temporaries
-        rng.random(out=weights)
-        weights *= (1.0 + noise) - 1.0
-        weights += 1.0
-        weights *= graph.length
-        nodes = self.shortest_nodes(weights)
-        return None if nodes is None else self.pull_string(nodes)
+        if self._via is None:
+            graph = self.scenario.graph
+            from_start, d_start = self._dijkstra(graph.indptr, graph.indices, graph.length, self.start)
+            if self._symmetric():
+                rev_indptr, rev_indices, rev_length = graph.indptr, graph.indices, graph.length
+            else:
+                rev = graph.to_sparse("length").T.tocsr()
+                rev_indptr, rev_indices = rev.indptr.astype(np.int64), rev.indices.astype(np.int64)
+                rev_length = np.asarray(rev.data, dtype=np.float64)
+            to_goal, d_goal = self._dijkstra(rev_indptr, rev_indices, rev_length, self.goal)
+            self._via = from_start, to_goal, d_start, d_goal
+        return self._via
+
+    def _symmetric(self) -> bool:
+        """Whether every edge has its reverse with the same length (no climb limit differs from the descent's)."""
+        vehicle = self.scenario.vehicle
+        return self.scenario.kind != "terrain" or (
+            vehicle.max_climb_deg == vehicle.max_descent_deg or min(vehicle.max_climb_deg, vehicle.max_descent_deg) >= 90.0)
+
+    def _dijkstra(self, indptr: np.ndarray, indices: np.ndarray, weights: np.ndarray, source: int
+                  ) -> tuple[np.ndarray, np.ndarray]:
+        """Parents and distances of a whole-map search from ``source`` (the exact kernel, zero heuristic)."""
+        dims = np.array((1, *self.shape), dtype=np.int64)
+        cs = self.scenario.cell_size
+        problem = search_problem(-1, dims, np.array([cs, cs, 0.0]), H_ZERO, 1.0)
+        args = (indptr, indices, weights, *problem)
+        state = SearchState.start(len(indptr) - 1, source)
+        status = RUNNING
+        while status in (RUNNING, HEAP_FULL):
+            if status == HEAP_FULL:
+                state.grow_heap()
+            status = run_batch(astar_batch, args, len(self.scenario.graph.offsets), state, 1 << 22)
+        reached = state.closed
+        parent = np.where(reached, state.parent, -1)
+        dist = np.where(reached, state.g, np.inf)
+        return parent, dist
+
+    def random_route(self, rng: np.random.Generator, detour: float = DETOUR) -> np.ndarray | None:
+        """A feasible route: the shortest route through a random *via* cell, string-pulled.
+
+        The via cell is drawn uniformly among the cells whose shortest route
+        through them is at most ``detour`` times the shortest route (the
+        trees of :meth:`_trees`, built on the first call); the route is the
+        start tree's path to it and the goal tree's path on, with any loop
+        cut. Returns ``None`` when the goal cell is unreachable.
+        """
+        from_start, to_goal, d_start, d_goal = self._trees()
+        best = float(d_goal[self.start])
+        if not np.isfinite(best):
+            return None
+        if self._candidates is None or self._candidates[0] != detour:
+            through = d_start + d_goal
+            self._candidates = (detour, np.flatnonzero(through <= detour * best),
+                                np.full(len(d_start), -1, dtype=np.int64))
+        _, candidates, seen = self._candidates
+        via = int(candidates[rng.integers(len(candidates))])
+        nodes = via_route(from_start, to_goal, via, self.goal, seen)
+        return self.pull_string(nodes)
 
     def pull_string(self, nodes: np.ndarray) -> np.ndarray:
         """Drop waypoints greedily: from each kept waypoint, go straight to the last node still in reach.
@@ -159,6 +231,8 @@ class RouteProblem:
         ``nodes`` must be a feasible route (every consecutive pair allowed);
         the result is one too, with the same first and last node.
         """
+        if self.collision_only:
+            return pull_string_free(self.blocked, self.cell_size, np.asarray(nodes, dtype=np.int64))
         keep = [int(nodes[0])]
         anchor = 0
         i = 1
@@ -177,9 +251,15 @@ class RouteProblem:
         return self.scenario.point_of(route)
 
     def objectives(self, route: np.ndarray) -> np.ndarray:
-        """``(length, risk, turning)`` of a route, all to be minimised (see module)."""
-        pts = self.polyline(route)
-        lengths, _ = path_pieces(self.scenario, pts)
+        """``(length, risk, turning)`` of a route's world path, all to be minimised (see module).
+
+        The pieces and turns are the harness's memoised ones
+        (:func:`~pathzoo.metrics.geometry.driven_pieces`,
+        :func:`~pathzoo.metrics.geometry.turn_angles`), so the energy of the
+        same route (:meth:`criterion`) reuses them.
+        """
+        pts = self.world_path(route)
+        lengths, _ = driven_pieces(self.scenario, pts)
         return np.array([float(lengths.sum()), -self.mean_clearance(pts), float(turn_angles(pts).sum())])
 
     def mean_clearance(self, pts: np.ndarray) -> float:

@@ -143,3 +143,72 @@ def test_segment_verdicts_equal_the_judges(scenario_id):
         agree += 1
         rejected += not judge
     assert agree > 200 and rejected > 10
+
+
+@pytest.fixture(scope="module", params=["ggaco.hugo", "ggaco.frontrange", "one-way slopes"])
+def ggaco_problem(request):
+    import dataclasses
+
+    import pathzoo
+
+    if request.param == "one-way slopes":  # climb and descent limits differ: edges without their reverse
+        s = check_scenario("terrain")
+        s = dataclasses.replace(s, vehicle=dataclasses.replace(s.vehicle, max_climb_deg=8.0, max_descent_deg=30.0))
+        graph = s.graph.to_sparse("length")
+        assert (graph != graph.T).nnz > 0
+        return RouteProblem(s)
+    return RouteProblem(pathzoo.load_scenario(request.param))
+
+
+def test_compiled_segment_test_agrees_with_the_judge():
+    # ggaco.frontrange has no slope limit and no missing height: the compiled collision-only test must give the
+    # verdicts of the judge's segment_problem
+    import pathzoo
+
+    problem = RouteProblem(pathzoo.load_scenario("ggaco.frontrange"))
+    assert problem.collision_only
+    slow = RouteProblem(problem.scenario)
+    slow.collision_only = False  # the Python path: segment_problem, then the slope margin (90 degrees: never binding)
+    rng = np.random.default_rng(5)
+    h, w = problem.shape
+    free = np.flatnonzero(problem.free.ravel())
+    agree = 0
+    for _ in range(400):
+        u = int(rng.choice(free))
+        r, c = divmod(u, w)
+        v = int(np.clip(r + rng.integers(-12, 13), 0, h - 1) * w + np.clip(c + rng.integers(-12, 13), 0, w - 1))
+        assert problem.segment_ok(u, v) == slow.segment_ok(u, v)
+        agree += problem.segment_ok(u, v)
+    assert 0 < agree < 400  # both verdicts occur
+    route = problem.random_route(rng)
+    assert route is not None
+    nodes = np.concatenate([[problem.start], route[1:-1].repeat(1), [problem.goal]]).astype(np.int64)
+    assert np.array_equal(problem.pull_string(route), slow.pull_string(route))
+
+
+def test_random_route_is_the_shortest_route_through_its_via_cell(ggaco_problem):
+    from scipy.sparse.csgraph import dijkstra
+
+    problem = ggaco_problem
+    from_start, to_goal, d_start, d_goal = problem._trees()
+    graph = problem.scenario.graph.to_sparse("length")
+    ref_start = dijkstra(graph, indices=problem.start)
+    ref_goal = dijkstra(graph.T.tocsr(), indices=problem.goal)  # distances *to* the goal
+    np.testing.assert_allclose(d_start, ref_start, rtol=1e-12)
+    np.testing.assert_allclose(d_goal, ref_goal, rtol=1e-12)
+    from pathzoo_rivals.route_kernels import via_route
+
+    rng = np.random.default_rng(2)
+    seen = np.full(len(d_start), -1, dtype=np.int64)
+    lengths = problem.scenario.graph.length
+    for via in rng.choice(np.flatnonzero(np.isfinite(d_start + d_goal)), 30):
+        cells = via_route(from_start, to_goal, int(via), problem.goal, seen)
+        assert cells[0] == problem.start and cells[-1] == problem.goal
+        assert len(np.unique(cells)) == len(cells)  # no cell twice: loops are cut
+        assert (seen == -1).all()
+        hops = [lengths[problem.scenario.graph.indptr[a] + np.flatnonzero(problem.scenario.graph.neighbours(a) == b)[0]]
+                for a, b in zip(cells[:-1], cells[1:])]
+        assert sum(hops) <= d_start[via] + d_goal[via] + 1e-6  # the shortest route through via, or shorter (a cut loop)
+    route = problem.random_route(rng)
+    assert route is not None and problem.route_ok(route)
+    assert validate_path(problem.scenario, problem.world_path(route)).valid

@@ -1,0 +1,136 @@
+"""Compiled loops of the route rivals: segment tests on a flat map, string-pulling, corner bridging, via routes.
+
+The segment test is :meth:`pathzoo_rivals.routes.RouteProblem.segment_ok`'s
+collision-only case (no slope can break a limit): both cells free and
+:func:`~pathzoo.grid.segments.first_blocked_cell_2d` finding no blocked cell
+between the two cell centres, with the centres converted to cell units by
+the same float operations as ``Scenario.point_of`` followed by
+``to_cell_units`` (``((col + 0.5) * cs) / cs``), so every verdict is the
+Python one. String-pulling and corner bridging are the loops of
+:meth:`RouteProblem.pull_string` and :func:`pathzoo_rivals.route_moves.leap`
+over that test; :func:`via_route` joins the two shortest-path trees of a
+route problem through one cell.
+"""
+
+from __future__ import annotations
+
+import numba
+import numpy as np
+
+from pathzoo.grid.segments import first_blocked_cell_2d
+
+__all__ = ["segment_free", "route_free", "pull_string_free", "bridge_corners_free", "via_route"]
+
+
+@numba.njit(cache=True)
+def segment_free(blocked: np.ndarray, cs: float, u: int, v: int) -> bool:
+    """Whether the segment between the centres of cells ``u`` and ``v`` (flat ids) touches no blocked cell."""
+    w = blocked.shape[1]
+    ru, cu = u // w, u % w
+    rv, cv = v // w, v % w
+    if u == v or blocked[ru, cu] or blocked[rv, cv]:
+        return False
+    x0 = ((cu + 0.5) * cs) / cs
+    y0 = ((ru + 0.5) * cs) / cs
+    x1 = ((cv + 0.5) * cs) / cs
+    y1 = ((rv + 0.5) * cs) / cs
+    return first_blocked_cell_2d(blocked, x0, y0, x1, y1)[0] == -2
+
+
+@numba.njit(cache=True)
+def route_free(blocked: np.ndarray, cs: float, route: np.ndarray) -> bool:
+    """Whether every segment of ``route`` passes :func:`segment_free`."""
+    for i in range(len(route) - 1):
+        if not segment_free(blocked, cs, route[i], route[i + 1]):
+            return False
+    return True
+
+
+@numba.njit(cache=True)
+def pull_string_free(blocked: np.ndarray, cs: float, nodes: np.ndarray) -> np.ndarray:
+    """:meth:`RouteProblem.pull_string` with :func:`segment_free` as the segment test."""
+    keep = np.empty(len(nodes), dtype=np.int64)
+    keep[0] = nodes[0]
+    k = 1
+    anchor = 0
+    i = 1
+    while i < len(nodes):
+        j = i
+        while j + 1 < len(nodes) and segment_free(blocked, cs, nodes[anchor], nodes[j + 1]):
+            j += 1
+        keep[k] = nodes[j]
+        k += 1
+        anchor = j
+        i = j + 1
+    return keep[:k].copy()
+
+
+@numba.njit(cache=True)
+def bridge_corners_free(blocked: np.ndarray, cs: float, cells: np.ndarray) -> np.ndarray:
+    """:func:`pathzoo_rivals.route_moves._bridge_corners` with :func:`segment_free` as the segment test."""
+    w = blocked.shape[1]
+    out = np.empty(2 * len(cells), dtype=np.int64)
+    out[0] = cells[0]
+    k = 1
+    for i in range(1, len(cells)):
+        v = cells[i]
+        u = out[k - 1]
+        ru, cu = u // w, u % w
+        rv, cv = v // w, v % w
+        if abs(ru - rv) == 1 and abs(cu - cv) == 1 and not segment_free(blocked, cs, u, v):
+            for side in (ru * w + cv, rv * w + cu):
+                if segment_free(blocked, cs, u, side) and segment_free(blocked, cs, side, v):
+                    out[k] = side
+                    k += 1
+                    break
+        out[k] = v
+        k += 1
+    return out[:k].copy()
+
+
+@numba.njit(cache=True)
+def via_route(from_start: np.ndarray, to_goal: np.ndarray, via: int, goal: int, seen: np.ndarray) -> np.ndarray:
+    """Cells of the shortest route through ``via``: the start tree's path to it, then the goal tree's path on.
+
+    ``from_start[v]`` is ``v``'s predecessor on a shortest path from the
+    start (``-1`` at the start), ``to_goal[v]`` its successor on a shortest
+    path to ``goal``. Where the two halves meet again (a ``via`` in a cul-de-sac)
+    the loop between is cut, so no cell appears twice. ``seen`` is a
+    scratch array of ``-1`` per node, left as found.
+    """
+    n = 0
+    u = via
+    while u != -1:
+        n += 1
+        u = from_start[u]
+    u = via
+    while u != goal:
+        u = to_goal[u]
+        n += 1
+    cells = np.empty(n, dtype=np.int64)
+    u = via
+    i = 0
+    while u != -1:
+        cells[i] = u
+        i += 1
+        u = from_start[u]
+    cells[:i] = cells[:i][::-1].copy()
+    u = via
+    while u != goal:
+        u = to_goal[u]
+        cells[i] = u
+        i += 1
+    out = np.empty(n, dtype=np.int64)
+    k = 0
+    for c in cells:
+        if seen[c] >= 0:  # a loop back to an earlier cell: drop what lies between
+            for j in range(seen[c] + 1, k):
+                seen[out[j]] = -1
+            k = seen[c] + 1
+            continue
+        seen[c] = k
+        out[k] = c
+        k += 1
+    for j in range(k):
+        seen[out[j]] = -1
+    return out[:k].copy()
