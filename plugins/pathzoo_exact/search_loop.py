@@ -19,7 +19,9 @@ from typing import Callable
 import numba
 import numpy as np
 from llvmlite import ir
+from llvmlite.binding import llvm_version_info
 from numba import types
+from numba.core import cgutils
 from numba.extending import intrinsic
 
 from pathzoo.grid.segments import segment_blocked_2d
@@ -40,6 +42,8 @@ __all__ = [
 
 _ZERO = np.uint64(0)
 _ONE = np.uint64(1)
+_PREFETCH = "llvm.prefetch.p0" if llvm_version_info >= (15,) else "llvm.prefetch.p0i8"
+"""LLVM's prefetch intrinsic, named for its pointer argument: opaque pointers from LLVM 15 (numba >= 0.59 allows both)."""
 
 
 @intrinsic
@@ -50,6 +54,30 @@ def _trailing_zeros(typingctx, x):
         return builder.cttz(args[0], ir.Constant(ir.IntType(1), 0))
 
     return types.uint64(types.uint64), codegen
+
+
+@intrinsic
+def _prefetch(typingctx, arr, index):
+    """Ask the processor to bring ``arr[index]`` into its caches: no effect on any result, and no fault.
+
+    A prefetch of a slot outside the array is allowed (the instruction never
+    faults), so the caller need not check its index.
+    """
+    if not isinstance(arr, types.Array) or not isinstance(index, types.Integer):
+        return None
+
+    def codegen(context, builder, signature, args):
+        data = context.make_array(signature.args[0])(context, builder, args[0]).data
+        slot = builder.gep(data, [context.cast(builder, args[1], signature.args[1], types.intp)])
+        byte_ptr = ir.IntType(8).as_pointer()
+        i32 = ir.IntType(32)
+        prefetch = cgutils.get_or_insert_function(
+            builder.module, ir.FunctionType(ir.VoidType(), [byte_ptr, i32, i32, i32]), _PREFETCH)
+        # read, keep in every cache level, data
+        builder.call(prefetch, [builder.bitcast(slot, byte_ptr), ir.Constant(i32, 0), ir.Constant(i32, 3), ir.Constant(i32, 1)])
+        return context.get_dummy_value()
+
+    return types.void(arr, index), codegen
 
 
 @numba.njit(cache=True, inline="always")
@@ -148,6 +176,12 @@ def search_loop(rule: int) -> Callable[..., int]:
                         f = cand + heuristic(v, goal, mode, dims, steps, scale)
                         size = heap_push(heap_node, heap_f, heap_g, size, v, order_key(f), order_key(cand))
             elif rule == MOVES_STEP:
+                if size > 0:  # the likely next node: its rows of g on their way while this node's are read
+                    top = heap_node[0]
+                    _prefetch(g, top - dims[2])
+                    _prefetch(g, top)
+                    _prefetch(g, top + dims[2])
+                    _prefetch(mask, top)
                 ui = np.uint64(u)
                 gu = g[ui]
                 # unsigned divisions: numba's signed ``//`` rounds towards minus infinity, which costs a correction
