@@ -20,13 +20,14 @@ What it measures, each in the same run, as a ratio where the issue asks for one:
   (target <= 2x); wall times are printed beside it;
 - **report memory**: peak RSS of ``pathzoo report`` on the 200,000-run
   database of the leaderboard figure (target: the leaderboard's 400 MB);
-- **--jobs 2 against --jobs 1**: runs per second of the same sandboxed sweep
-  (``exact.astar`` and ``aco.as`` with 3 iterations on bundled MovingAI
-  problems) run with two and with one worker, each into a new database
-  (target >= 1.6x), and the CPU the harness's own process spends per stored
-  run (its threads included; workers and judges are other processes);
-- **sweep figures** of ``benchmarks/sweep.py`` (its ``figures()``), when that
-  script exists.
+- **--jobs 2 against --jobs 1**: stored runs per second, from the first
+  stored run to the last (start-up excluded, as in ``benchmarks/sweep.py``), of
+  the issue's sandboxed sweep (``exact.astar`` and ``aco.as`` with 3
+  iterations on 200 MovingAI problems of one map, one seed) run with two and
+  with one worker, each into a new database (target >= 1.6x), and the CPU the
+  harness's own process spends per stored run (its threads included; workers
+  and judges are other processes);
+- **sweep figures** of ``benchmarks/sweep.py`` (its ``figures()``).
 
 Times are from a shared machine, so the load average is printed first;
 CPU-time ratios are the steadier ones.
@@ -132,47 +133,34 @@ def report_figures(folder: Path) -> Iterator[Figure]:
     yield (f"report peak RSS MB, {REPORT_RUNS:,} runs", peak, f"<= {LEADERBOARD_MB_TARGET:.0f}")
 
 
-def movingai_problems(count: int) -> list[str]:
-    """``count`` bundled MovingAI problems of the 32x32 maps, spread over them in a fixed order."""
-    import pathzoo
+def _sweep_script() -> Any:
+    """``benchmarks/sweep.py`` as a module (the issue's sweep: its problems and its steady-state rate)."""
+    spec = importlib.util.spec_from_file_location("sweep", Path(__file__).with_name("sweep.py"))
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
 
-    ids = sorted(e.id for e in pathzoo.list_plugins("scenarios")
-                 if e.id.startswith("movingai.") and "-32-32-" in e.id)
-    return ids[:: max(1, len(ids) // count)][:count]
 
-
-def jobs_figures(folder: Path, problems: int, seeds: int) -> Iterator[Figure]:
-    """Runs per second of one sandboxed sweep with ``--jobs 2`` against ``--jobs 1``."""
-    from pathzoo import Budget
-    from pathzoo.harness import Experiment, run_experiment
-
-    experiment = Experiment.build(planners=list(PLANNERS), scenarios=movingai_problems(problems), seeds=seeds,
-                                  name="jobs", budget=Budget(iterations=3, time_s=5.0), timeout_s=30.0)
-    n = len(experiment.tasks())
+def jobs_figures(folder: Path, problems: int) -> Iterator[Figure]:
+    """Runs per second of the issue's sandboxed sweep with ``--jobs 2`` against ``--jobs 1``."""
+    sweep = _sweep_script()
+    chosen = sweep.problem_ids(problems)
     rate = {}
     parent_ms = {}
     for jobs in (1, 2):
-        t0, c0 = time.perf_counter(), time.process_time()
-        run_experiment(experiment, db=folder / f"jobs{jobs}.sqlite", jobs=jobs, progress=False)
-        wall, cpu = time.perf_counter() - t0, time.process_time() - c0
-        rate[jobs], parent_ms[jobs] = n / wall, 1000 * cpu / n
-        print(f"  --jobs {jobs}: {n} runs in {wall:.1f} s = {rate[jobs]:.1f} runs/s; the harness's own process "
-              f"{parent_ms[jobs]:.1f} ms CPU per stored run", flush=True)
-    yield ("--jobs 2 / --jobs 1 runs per second", rate[2] / rate[1], f">= {JOBS_TARGET:.1f}")
+        c0 = time.process_time()
+        rate[jobs] = sweep.stored_rate(chosen, 1, jobs, folder / f"jobs{jobs}.sqlite")
+        parent_ms[jobs] = 1000 * (time.process_time() - c0) / (2 * len(chosen))
+        print(f"  --jobs {jobs}: {rate[jobs]:.1f} runs/s from the first stored run to the last; the harness's own "
+              f"process {parent_ms[jobs]:.1f} ms CPU per stored run", flush=True)
+    yield (f"--jobs 2 / --jobs 1 runs per second, {len(chosen)} problems", rate[2] / rate[1], f">= {JOBS_TARGET:.1f}")
     yield ("harness process CPU ms per stored run, --jobs 2", parent_ms[2], "small (the issue measured 11.8-14.1)")
 
 
 def sweep_figures() -> Iterator[Figure]:
     """The figures of ``benchmarks/sweep.py`` (``figures() -> list[(name, value, target)]``), when it exists."""
-    script = Path(__file__).with_name("sweep.py")
-    if not script.is_file():
-        print("  benchmarks/sweep.py does not exist: no sweep figures")
-        return
-    spec = importlib.util.spec_from_file_location("sweep", script)
-    assert spec is not None and spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    for name, value, target in module.figures():
+    for name, value, target in _sweep_script().figures():
         yield (str(name), float(value), str(target))
 
 
@@ -183,9 +171,8 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--only", choices=groups, action="append", help="measure only this group (repeatable)")
     parser.add_argument("--large-runs", type=positive_int, default=1_000_000,
                         help="runs of the large leaderboard database (default 1,000,000)")
-    parser.add_argument("--problems", type=positive_int, default=25,
-                        help="MovingAI problems of the --jobs sweep (default 25; x 2 planners x --seeds)")
-    parser.add_argument("--seeds", type=positive_int, default=4, help="seeds of the --jobs sweep (default 4)")
+    parser.add_argument("--problems", type=positive_int, default=200,
+                        help="MovingAI problems of the --jobs sweep (default 200, the issue's; x 2 planners, 1 seed)")
     args = parser.parse_args(argv)
     chosen = args.only or list(groups)
     print(f"load average: {' '.join(f'{x:.2f}' for x in os.getloadavg())} on {os.cpu_count()} cores", flush=True)
@@ -193,7 +180,7 @@ def main(argv: list[str] | None = None) -> int:
     measure: dict[str, Callable[[], Iterator[Figure]]] = {
         "leaderboard": lambda: leaderboard_figures(folder, args.large_runs),
         "report": lambda: report_figures(folder),
-        "jobs": lambda: jobs_figures(folder, args.problems, args.seeds),
+        "jobs": lambda: jobs_figures(folder, args.problems),
         "sweep": sweep_figures,
     }
     figures: list[Figure] = []

@@ -29,7 +29,7 @@ PLANNERS = ["exact.astar", "aco.as"]
 TARGET = 0.8
 
 
-def _rate(scenarios: list[str], seeds: int, jobs: int, db: Path) -> float:
+def stored_rate(scenarios: list[str], seeds: int, jobs: int, db: Path) -> float:
     """Stored runs per wall second, from the first stored run to the last."""
     import pathzoo
     from pathzoo import Budget
@@ -57,14 +57,19 @@ def _rate(scenarios: list[str], seeds: int, jobs: int, db: Path) -> float:
     return (len(stamps) - 1) / (stamps[-1] - stamps[0])
 
 
-def figures(problems: int = 200, jobs: int = 2) -> list[tuple[str, float, float]]:
-    """``[(name, value, target)]``: the sweep's runs per second as a ratio to the reference's (target 0.8)."""
+def problem_ids(problems: int) -> list[str]:
+    """The first ``problems`` scenario ids of :data:`MAP`, in sorted order."""
     from pathzoo.plugins.manager import get_registry
 
-    chosen = sorted(get_registry().match("scenarios", MAP))[:problems]
+    return sorted(get_registry().match("scenarios", MAP))[:problems]
+
+
+def figures(problems: int = 200, jobs: int = 2) -> list[tuple[str, float, float]]:
+    """``[(name, value, target)]``: the sweep's runs per second as a ratio to the reference's (target 0.8)."""
+    chosen = problem_ids(problems)
     with tempfile.TemporaryDirectory(prefix="pathzoo-sweep-") as tmp:
-        reference = _rate(chosen[:2], problems // 2, jobs, Path(tmp) / "two.sqlite")
-        sweep = _rate(chosen, 1, jobs, Path(tmp) / "many.sqlite")
+        reference = stored_rate(chosen[:2], problems // 2, jobs, Path(tmp) / "two.sqlite")
+        sweep = stored_rate(chosen, 1, jobs, Path(tmp) / "many.sqlite")
     return [(f"runs/s over {problems} problems / over 2 ({sweep:.1f} / {reference:.1f}, --jobs {jobs})",
              sweep / reference, TARGET)]
 

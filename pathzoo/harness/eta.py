@@ -29,7 +29,7 @@ import math
 import time
 from collections import Counter, defaultdict
 from dataclasses import dataclass, field
-from typing import Callable, Hashable, Iterable, Sequence, TypeVar
+from typing import Callable, Hashable, Iterable, Mapping, Sequence, TypeVar
 
 __all__ = ["RunTimes", "pilot_first", "PILOT_FRACTION"]
 
@@ -133,11 +133,13 @@ class RunTimes:
             out[pair] = sum(seen) / len(seen) if seen else math.exp(mean + planner.get(p, 0.0) + scenario.get(s, 0.0))
         return out
 
-    def eta(self, remaining: Iterable[Pair]) -> float | None:
-        """Estimated seconds until the ``remaining`` runs are done; None until two runs have finished."""
+    def eta(self, remaining: "Mapping[Pair, int] | Iterable[Pair]") -> float | None:
+        """Estimated seconds until the ``remaining`` runs are done (pairs, or a count per pair); None until two runs
+        have finished. Its cost grows with the pairs seen and left, not with the runs."""
         if self.finished_after_first == 0:
             return None
-        counts = Counter(remaining)
+        counts = ({pair: n for pair, n in remaining.items() if n > 0} if isinstance(remaining, Mapping)
+                  else Counter(remaining))
         if not counts:
             return 0.0
         overhead = self.overhead_s()

@@ -17,6 +17,7 @@ from __future__ import annotations
 import logging
 import os
 import sqlite3
+import time
 import warnings
 from collections import Counter
 from concurrent.futures import FIRST_COMPLETED, Future, wait
@@ -48,6 +49,9 @@ __all__ = ["run_experiment", "skipped_summary", "never_run", "DEFAULT_DB"]
 
 DEFAULT_DB = "pathzoo-results.sqlite"
 """Result database used when neither the call nor the experiment names one."""
+
+ETA_EVERY_S = 0.5
+"""Seconds between two costings of the progress bar's time left (:meth:`~pathzoo.harness.eta.RunTimes.eta`)."""
 
 log = logging.getLogger("pathzoo.harness")
 
@@ -107,6 +111,7 @@ def _execute(
     failures = 0
     remaining = Counter((t.planner.name, t.scenario.id) for t in tasks)
     times = RunTimes(parallel=executor.capacity)
+    eta_due, left = 0.0, _format_eta(None)
 
     scenarios_seen: set[tuple[str, str, str, str]] = set()
 
@@ -145,8 +150,10 @@ def _execute(
                 remaining[(name, task.scenario.id)] -= 1
                 times.add(name, task.scenario.id, record.wall_time_s)
                 if bar is not None:
-                    eta = times.eta(remaining.elements())
-                    bar.set_postfix(failures=failures, left=_format_eta(eta), refresh=False)
+                    now = time.monotonic()
+                    if now >= eta_due or not (in_flight or judging):  # its cost grows with the pairs: not every run
+                        left, eta_due = _format_eta(times.eta(remaining)), now + ETA_EVERY_S
+                    bar.set_postfix(failures=failures, left=left, refresh=False)
                     bar.update(1)
         submit_more()
 

@@ -75,18 +75,17 @@ is sent to each worker once; later tasks on it refer to it by digest
 (:func:`~pathzoo.harness.scenario_cache.keep_payload`).
 
 Unsandboxed workers all start when the executor is built (sandboxed ones when
-a run of their configuration is queued, or earlier for a planner named to
+a run of their configuration is queued and a slot is free, counting workers
+still starting as taking a slot, or earlier for a planner named to
 :meth:`ProcessExecutor.start_worker`), and the runner keeps one run per
-worker queued here (:attr:`lookahead`), so a worker goes from one run to
-the next without waiting for the harness. The very first run goes alone,
-though: the other workers get nothing, and no other sandboxed worker starts,
-until it starts planning or ends, so that its setup (interpreter, plugins,
-planner class, scenario, warm-up) shares the cores with the judge's start
-only, and the first result comes sooner.
+worker queued here (:attr:`lookahead`), so a worker goes from one run to the
+next without waiting for the harness. The very first run goes alone: no other worker gets a run or starts
+until it plans or ends, so that its setup shares the cores with the judge's start only.
 """
 
 from __future__ import annotations
 
+import contextlib
 import math
 import os
 import shutil
@@ -230,10 +229,8 @@ class ProcessExecutor(RunExecutor):
             if worker.task is not None or not worker.idle:
                 worker.kill_tree()
             elif worker.process.is_alive():
-                try:
+                with contextlib.suppress(OSError):
                     worker.conn.send(None)
-                except OSError:
-                    pass
         deadline = time.monotonic() + 2.0
         for worker in self._workers:
             worker.process.join(max(0.0, deadline - time.monotonic()))
@@ -274,6 +271,7 @@ class ProcessExecutor(RunExecutor):
         if self._first_alone and any(w.task is not None for w in self._workers):
             return
         starting = Counter(w.config for w in self._workers if not w.was_ready)
+        taken = sum(w.listening for w in self._workers)  # a slot is taken by a run, or a start or end on its way
         wanted = {configuration(task) for task in queued}
         wanted |= {any_configuration(config[0]) for config in wanted}
         for task in queued[:1] if self._first_alone else queued:
@@ -290,6 +288,8 @@ class ProcessExecutor(RunExecutor):
             if sum(w.config in (config, any_configuration(config[0])) and sees(w, task)
                    for w in self._workers) >= self.capacity:
                 continue  # as many of its configuration as can run at once: one of them takes it
+            if taken >= self.capacity:
+                return
             if len(self._workers) >= self.kept_workers:  # retire an idle worker that no queued run can use
                 spare = next((w for w in self._workers if w.idle and w.task is None and w.config not in wanted), None)
                 if spare is None:
@@ -297,6 +297,7 @@ class ProcessExecutor(RunExecutor):
                 self._retire(spare)
             self._visibility.see_files([task])
             self._spawn(config)
+            taken += 1
 
     def _take(self) -> "tuple[Worker, RunTask, Future[RunOutcome]] | None":
         """The first queued run with an idle worker of its configuration (or, unsandboxed, one not yet used), while
