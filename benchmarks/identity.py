@@ -67,7 +67,7 @@ EXTRA = (  # planner, scenario id, parameters: non-default settings that take ot
     ("aco.as", "gant.fig7", {"alpha": 0.5}),  # precomputed colony weights with a power of the trail
     ("aco.mmas", "random60", {"alpha": 1.5}),  # precomputed weights: power, floor and ceiling of the trail
     ("aco.iaca", "iaca.offroad", {"decr": 0.0}),  # precomputed weights of a node trail (no local update)
-    ("aco.as", "gant.fig7", {"max_steps": 20}),  # the sequential weighted kernel (walk_sequential.py): step caps,
+    ("aco.as", "gant.fig7", {"max_steps": 20}),  # the weighted kernel (walk_kernel.py): step caps,
     ("aco.gant", "gant.fig7", {"dead_end": "die"}),  # ants dropped at dead ends,
     ("aco.as", "dsaco.complex", {"dead_end": "die"}),  # the same under a turn limit,
     ("aco.mmas", "enclosed60", {}),  # a walled-off goal: the first ant exhausts the component, no other starts

@@ -39,7 +39,7 @@ the same colony with three changes that leave every result bit-identical:
   iteration) are computed beforehand by the same Python functions as the
   generic loop uses.
 
-The walk follows :func:`pathzoo_aco.engine.walk_generic.generic_colony` operation for
+The walk follows :func:`pathzoo_aco.engine.walk_kernel.generic_colony` operation for
 operation for the rules DSACO builds (product rule, ``q0``, turn table of
 zeros and ones, edge trails in ``[τmin, τmax]``, no local update, ants one
 after another): the same candidates in the same order, the same random draws,
@@ -75,7 +75,7 @@ def _walk_ant(wid, adj_ptr, node, weight, move, horizontal, turn, move_class, cl
     """One ant from ``start``; returns ``(outcome, depth, steps)``, the adjacency positions it took in
     ``stack[:depth]``.
 
-    Step for step :func:`pathzoo_aco.engine.walk_generic.generic_colony` for one ant walking
+    Step for step :func:`pathzoo_aco.engine.walk_kernel.generic_colony` for one ant walking
     alone, reading the records of (node, heading) instead of the node's whole
     adjacency: ``rec_node``, ``rec_place`` and ``rec_weight`` are the fields
     of ``to_rec``, or without a turn table the adjacency's targets and weights

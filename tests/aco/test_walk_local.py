@@ -1,6 +1,7 @@
-"""The kernel of colonies with a local update (walk_sequential.py) against the generic kernel on the same colonies.
+"""The kernel of colonies with a local update (walk_kernel.py) against the generic kernel on the same colonies.
 
-Both kernels are called directly with fresh buffers, as ``WalkEngine.walk``
+Both kernels (the walk body compiled for ants one after another, and for racing ants and pre-choice additions)
+are called directly with fresh buffers, as ``WalkEngine.walk``
 calls them, and must leave every output the same: outcomes, steps, depths,
 counters, offsets, the walks' edges, the trail after the local updates, how
 often they asked for room, and numba's random stream after the colony.
@@ -20,8 +21,8 @@ from pathzoo_aco.engine import ABORTED, EXHAUSTED, REACHED, STEP_CAP, STUCK, Col
 from pathzoo_aco.engine import WalkRules
 from pathzoo_aco.engine.outcomes import DONE, FRESH
 from pathzoo_aco.engine.walk import _seed
-from pathzoo_aco.engine.walk_generic import generic_colony
-from pathzoo_aco.engine.walk_sequential import local_colony, unsigned_lists
+from pathzoo_aco.engine import walk_kernel
+from pathzoo_aco.engine.walk_kernel import generic_colony, local_colony, unsigned_lists
 
 from aco_maps import hill, open_grid, walled_grid
 
@@ -55,21 +56,12 @@ def _run(specialised: bool, problem: ColonyProblem, rules: WalkRules, trail: Phe
         base = 1 + (colony - 1) * n_ants
         while True:
             out["calls"] += 1
-            if specialised:
-                status = local_colony(*unsigned_lists(problem, engine.indices, adjacency), None,
-                                      problem.horizontal_offsets, rules.turn, x, scale, trail.lo, trail.hi,
-                                      trail.on_nodes, rules.tau_exp, rules.q0, rules.local_keep, rules.local_add,
-                                      powers, power_stamp, colony, problem.start, problem.goal, rules.backtrack,
-                                      rules.max_steps, allowance, base, stamps[0], stacks[0], prevs[0],
-                                      engine.cand_w, depth, steps, flags, counters, flat, offsets)
-            else:
-                status = generic_colony(engine.indices, engine.offset_id, *adjacency, None,
-                                        problem.horizontal_offsets,
-                                        rules.turn, x, scale, trail.lo, trail.hi, trail.on_nodes, rules.tau_exp,
-                                        rules.q0, rules.local_keep, rules.local_add, rules.pre_add, problem.start,
-                                        problem.goal, rules.backtrack, rules.max_steps, allowance, False, base, stamps,
-                                        stacks, prevs, engine.cand_q, engine.cand_w, cur, depth, prev, steps, flags,
-                                        counters, flat, offsets)
+            status = (local_colony if specialised else generic_colony)(
+                *unsigned_lists(problem, engine.indices, adjacency), None, problem.horizontal_offsets, rules.turn, x,
+                scale, trail.lo, trail.hi, trail.on_nodes, rules.tau_exp, rules.q0, rules.local_keep, rules.local_add,
+                rules.pre_add, powers, power_stamp, colony, problem.start, problem.goal, rules.backtrack,
+                rules.max_steps, allowance, False, base, stamps, stacks, prevs, engine.cand_w, cur, depth, prev, steps,
+                flags, counters, flat, offsets)
             if status == DONE:
                 break
             assert counters[3] == 1  # only ``flat`` ever runs out of room
@@ -179,14 +171,12 @@ def test_the_engine_dispatches_colonies_with_a_local_update_to_the_specialised_k
 
     Two colonies on one engine: the powers kept in the first must not be taken for the second's.
     """
-    import pathzoo_aco.engine.walk as walk_module
-
     problem = ColonyProblem(walled_grid())
     rules = _rules(problem, 3.0)
     trail = _trail(problem, True, (0.05, 1.2))
     want = _run(False, problem, rules, trail, 12, 3, 2**62, 1024, 2)
     calls = []
-    monkeypatch.setattr(walk_module, "local_colony", lambda *args: calls.append(1) or local_colony(*args))
+    monkeypatch.setitem(walk_kernel.KERNELS, (True, False), lambda *args: calls.append(1) or local_colony(*args))
     engine = WalkEngine(problem)
     for colony, seed in ((1, 3), (2, 4)):
         trail.evaporate(EVAPORATION)

@@ -1,6 +1,7 @@
-"""The sequential weighted kernel (walk_sequential.py) against the generic kernel on the same colonies.
+"""The weighted kernel (walk_kernel.py) against the generic kernel on the same weights and colonies.
 
-Both kernels are called directly with fresh buffers, as ``WalkEngine.walk``
+Both kernels (the walk body compiled for ants one after another, and for racing ants and pre-choice additions)
+are called directly with fresh buffers, as ``WalkEngine.walk``
 calls them, and must leave every output the same: outcomes, steps, depths,
 counters, offsets, the walks' edges, how often they asked for room, and
 numba's random stream after the colony.
@@ -20,8 +21,8 @@ from pathzoo_aco.engine import ABORTED, EXHAUSTED, REACHED, STEP_CAP, STUCK, Col
 from pathzoo_aco.engine import WalkRules
 from pathzoo_aco.engine.outcomes import DONE, FRESH
 from pathzoo_aco.engine.walk import _seed
-from pathzoo_aco.engine.walk_generic import generic_colony
-from pathzoo_aco.engine.walk_sequential import unsigned_lists, weighted_colony
+from pathzoo_aco.engine import walk_kernel
+from pathzoo_aco.engine.walk_kernel import generic_weighted_colony, unsigned_lists, weighted_colony
 
 from aco_maps import hill, open_grid, walled_grid
 
@@ -49,21 +50,12 @@ def _run(specialised: bool, problem: ColonyProblem, rules: WalkRules, trail: Phe
     _seed(seed)
     while True:
         calls += 1
-        if specialised:
-            status = weighted_colony(*unsigned_lists(problem, engine.indices, adjacency), weights,
-                                     problem.horizontal_offsets, rules.turn, trail.x, trail.scale, trail.lo,
-                                     trail.hi, trail.on_nodes, rules.tau_exp, rules.q0, rules.local_keep,
-                                     rules.local_add, engine.powers, engine.power_stamp, 0,
-                                     problem.start, problem.goal, rules.backtrack, rules.max_steps,
-                                     allowance, 1, stamps[0], stacks[0], prevs[0], engine.cand_w,
-                                     depth, steps, flags, counters, flat, offsets)
-        else:
-            status = generic_colony(engine.indices, engine.offset_id, *adjacency, weights,
-                                    problem.horizontal_offsets, rules.turn, trail.x, trail.scale, trail.lo, trail.hi,
-                                    trail.on_nodes, rules.tau_exp, rules.q0, rules.local_keep, rules.local_add,
-                                    rules.pre_add, problem.start, problem.goal, rules.backtrack, rules.max_steps,
-                                    allowance, False, 1, stamps, stacks, prevs, engine.cand_q, engine.cand_w, cur,
-                                    depth, prev, steps, flags, counters, flat, offsets)
+        status = (weighted_colony if specialised else generic_weighted_colony)(
+            *unsigned_lists(problem, engine.indices, adjacency), weights, problem.horizontal_offsets, rules.turn,
+            trail.x, trail.scale, trail.lo, trail.hi, trail.on_nodes, rules.tau_exp, rules.q0, rules.local_keep,
+            rules.local_add, rules.pre_add, engine.powers, engine.power_stamp, 0, problem.start, problem.goal,
+            rules.backtrack, rules.max_steps, allowance, False, 1, stamps, stacks, prevs, engine.cand_w, cur, depth,
+            prev, steps, flags, counters, flat, offsets)
         if status == DONE:
             break
         assert counters[3] == 1  # only ``flat`` ever runs out of room
@@ -153,17 +145,15 @@ def test_same_walks_when_they_wait_for_room_in_flat():
 
 def test_the_engine_dispatches_weighted_colonies_to_the_specialised_kernel(monkeypatch):
     """``WalkEngine.walk`` gives the walks of the generic kernel, through the specialised one when it applies."""
-    import pathzoo_aco.engine.walk as walk_module
-
     problem = ColonyProblem(walled_grid())
     rules, trail = _product(problem), _trail(problem, "random")
     fast = WalkEngine(problem).walk(rules, trail, 12, seed=3)
     calls = []
-    monkeypatch.setattr(walk_module, "weighted_colony", lambda *args: calls.append(1) or weighted_colony(*args))
+    monkeypatch.setitem(walk_kernel.KERNELS, (False, False), lambda *args: calls.append(1) or weighted_colony(*args))
     WalkEngine(problem).walk(rules, trail, 12, seed=3)
     WalkEngine(problem).walk(replace(rules, race=True), trail, 12, seed=3)
     assert len(calls) == 1  # racing ants stay with the generic kernel
     monkeypatch.setattr(WalkEngine, "colony_weights", lambda self, rules, trail: None)
-    slow = WalkEngine(problem).walk(rules, trail, 12, seed=3)  # per-step weights: the generic kernel
+    slow = WalkEngine(problem).walk(rules, trail, 12, seed=3)  # per-step weights: the local kernel
     for name in ("flat", "offsets", "flags", "steps"):
         np.testing.assert_array_equal(getattr(fast, name), getattr(slow, name))

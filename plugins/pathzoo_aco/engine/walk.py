@@ -1,10 +1,8 @@
 """The colony's walks: :class:`WalkEngine` sends a colony of ants from the start and returns their walks.
 
-It picks the compiled kernel a colony needs (:func:`~pathzoo_aco.engine.walk_sequential.weighted_colony` when
-the weights stay fixed while the ants walk one after another,
-:func:`~pathzoo_aco.engine.walk_sequential.local_colony` when they mark the trail as they go, else
-:func:`~pathzoo_aco.engine.walk_generic.generic_colony`), keeps their buffers between colonies and grows them
-when a kernel asks.
+It picks the compiled kernel a colony needs (:func:`~pathzoo_aco.engine.walk_kernel.colony_kernel`: weights
+fixed before the colony or read from the trail at each step, ants one after another or racing and pre-choice
+additions), keeps their buffers between colonies and grows them when a kernel asks.
 
 Random numbers come from numba's generator, seeded from the planner's
 ``rng`` at every iteration, so one seed gives one path.
@@ -19,9 +17,8 @@ from pathzoo_aco.engine.outcomes import ABORTED, DONE, EXHAUSTED, FRESH, OUTRUN,
 from pathzoo_aco.engine.pheromone import Pheromone
 from pathzoo_aco.engine.problem import ColonyProblem
 from pathzoo_aco.engine.rules import WalkRules
-from pathzoo_aco.engine.walk_generic import fill_weights, generic_colony
+from pathzoo_aco.engine.walk_kernel import KERNELS, Adjacency, fill_weights, unsigned_lists
 from pathzoo_aco.engine.walk_result import Walks
-from pathzoo_aco.engine.walk_sequential import Adjacency, local_colony, unsigned_lists, weighted_colony
 
 __all__ = ["WalkEngine", "REACHED", "STUCK", "STEP_CAP", "EXHAUSTED", "ABORTED", "OUTRUN"]
 
@@ -64,16 +61,15 @@ class WalkEngine:
         self.stack_e = np.zeros((1, problem.n_free + 1), dtype=np.int64)
         self.stack_prev = np.zeros((1, problem.n_free + 1), dtype=np.int64)
         kmax = int(g.degree.max()) if g.n_nodes else 0
-        self.cand_q = np.zeros(max(kmax, 1), dtype=np.int64)
         self.cand_w = np.zeros(max(kmax, 1))
         self.flat = np.zeros(1024, dtype=np.int64)
         self.offset_id = problem.offset_id_small  # moves: compact
         self.indices = problem.indices32  # half the memory traffic of the int64 CSR arrays
         self.weights = np.zeros(0)  # per-colony weights of the listed edges (see :meth:`colony_weights`)
-        self.powers = np.zeros(0)  # trail powers kept by :func:`local_colony`, valid where stamped with the colony
+        self.powers = np.zeros(0)  # trail powers kept by the local kernel, valid where stamped with the colony
         self.power_stamp = np.zeros(0, dtype=np.int32)
         self.colony = 0
-        self.lists: tuple = (None, ())  # an adjacency and its lists as the specialised kernels read them
+        self.lists: tuple = (None, ())  # an adjacency and its lists as the kernels read them
         self.total_steps = 0
 
     def adjacency(self, rules: WalkRules) -> Adjacency:
@@ -119,7 +115,7 @@ class WalkEngine:
 
         Only when no ant changes the trail while it walks (no ``pre_add``, no
         local update): then each edge's weight is the same at every step of
-        the colony, and :func:`~pathzoo_aco.engine.walk_generic.fill_weights` computes it once, with the
+        the colony, and :func:`~pathzoo_aco.engine.walk_kernel.fill_weights` computes it once, with the
         kernel's own expression, into a buffer kept between colonies (one
         float64 per listed edge).
         """
@@ -133,7 +129,8 @@ class WalkEngine:
         return self.weights
 
     def _number_colony(self, entries: int) -> None:
-        """A new number for the coming colony of :func:`local_colony`, so the powers it keeps start invalid."""
+        """A new number for the coming colony of :func:`~pathzoo_aco.engine.walk_kernel.local_colony`, so the
+        powers it keeps start invalid."""
         if self.power_stamp.size != entries or self.colony >= 2**31 - 1:
             self.powers = np.zeros(entries)
             self.power_stamp = np.zeros(entries, dtype=np.int32)
@@ -183,38 +180,24 @@ class WalkEngine:
         offsets = np.zeros(n_ants + 1, dtype=np.int64)
         adjacency = self.adjacency(rules)
         weights = self.colony_weights(rules, trail)
-        weighted = weights is not None and not rules.race  # the common case (walk_sequential.py)
-        local = weights is None and not rules.race and rules.pre_add.size == 0  # local updates (walk_sequential.py)
-        if weighted or local:
-            if self.lists[0] is not adjacency:  # the same lists serve every colony of a run
-                self.lists = (adjacency, unsigned_lists(p, self.indices, adjacency))
-            lists = self.lists[1]
-        else:  # the generic kernel keeps each ant's node and heading between calls
-            cur = np.zeros(n_ants, dtype=np.int64)
-            prev = np.zeros(n_ants, dtype=np.int64)
-        if local and rules.tau_exp != 1.0:  # powers are kept only for another exponent than 1
+        general = rules.race or rules.pre_add.size > 0  # racing ants or pre-choice additions
+        if self.lists[0] is not adjacency:  # the same lists serve every colony of a run
+            self.lists = (adjacency, unsigned_lists(p, self.indices, adjacency))
+        cur = np.zeros(n_ants, dtype=np.int64)
+        prev = np.zeros(n_ants, dtype=np.int64)
+        if weights is None and not general and rules.tau_exp != 1.0:  # powers are kept only for another exponent
             self._number_colony(trail.x.size)
+        kernel = KERNELS[weights is None, general]
         _seed(seed)
         while True:
-            if weighted or local:
-                status = (weighted_colony if weighted else local_colony)(
-                    *lists, weights, p.horizontal_offsets, rules.turn, trail.x, trail.scale, trail.lo, trail.hi,
-                    trail.on_nodes, rules.tau_exp, rules.q0, rules.local_keep, rules.local_add,
-                    self.powers, self.power_stamp, self.colony,
-                    p.start, p.goal, rules.backtrack, rules.max_steps, allowance, self.walk_base,
-                    self.stamps[0], stacks[0], prevs[0], self.cand_w, depth, steps, flags, counters,
-                    self.flat, offsets,
-                )
-            else:
-                status = generic_colony(
-                    self.indices, self.offset_id, *adjacency, weights, p.horizontal_offsets, rules.turn,
-                    trail.x, trail.scale, trail.lo, trail.hi, trail.on_nodes,
-                    rules.tau_exp, rules.q0, rules.local_keep, rules.local_add,
-                    rules.pre_add, p.start, p.goal, rules.backtrack, rules.max_steps, allowance, rules.race,
-                    self.race_colony if rules.race else self.walk_base, self.race_stamps if rules.race else self.stamps,
-                    stacks, prevs, self.cand_q, self.cand_w,
-                    cur, depth, prev, steps, flags, counters, self.flat, offsets,
-                )
+            status = kernel(
+                *self.lists[1], weights, p.horizontal_offsets, rules.turn, trail.x, trail.scale, trail.lo, trail.hi,
+                trail.on_nodes, rules.tau_exp, rules.q0, rules.local_keep, rules.local_add, rules.pre_add,
+                self.powers, self.power_stamp, self.colony, p.start, p.goal, rules.backtrack, rules.max_steps,
+                allowance, rules.race, self.race_colony if rules.race else self.walk_base,
+                self.race_stamps if rules.race else self.stamps, stacks, prevs, self.cand_w,
+                cur, depth, prev, steps, flags, counters, self.flat, offsets,
+            )
             if status == DONE:
                 break
             if counters[3]:  # a finished walk needs room in ``flat``

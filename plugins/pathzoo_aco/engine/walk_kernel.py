@@ -1,0 +1,382 @@
+"""The ant walk of every colony of the engine: one body, compiled once per kind of colony.
+
+Each ant keeps a tabu list (a per-walk stamp on every node it has entered),
+so its walk is a simple path and never needs loop removal. At a dead end (no
+allowed neighbour) it either steps back along its walk, the dead end staying
+tabu, or is dropped (:attr:`WalkRules.backtrack <pathzoo_aco.engine.rules.WalkRules.backtrack>`). A walk that
+backtracks to the start with nothing left has searched the start's whole
+component: without a turn rule that proves the goal unreachable. The step
+rules (trail weight, heuristic fallback, draw, local update) are those of
+:mod:`pathzoo_aco.engine.steps`, inlined.
+
+The body is written once (:func:`colony_kernel`) and compiled as four
+kernels, by two constants of its closure:
+
+- :func:`weighted_colony`, the common case: ants go one after another and
+  none changes the trail while the colony walks (AS, MMAS, G-Ant; IACA with
+  ``decr = 0``), so every edge's weight is computed once before the colony
+  (:func:`fill_weights`) and a step reads one array per edge.
+- :func:`local_colony`: ants go one after another and each changes the trail
+  of every entry it crosses (``τ <- keep τ + add``: ACS, IACA), so the next
+  ant, and the same ant later in its walk, weigh edges by the trail as it is
+  at that step. With a trail exponent other than 1, the power ``τ **
+  tau_exp`` of an entry is computed once and kept (``powers``, valid where
+  ``power_stamp`` holds this colony's number) until a local update writes
+  the entry: a node trail (IACA) is read by every edge into the node, so a
+  step needs about one call of ``pow`` instead of up to eight. The kept
+  value is the same double.
+- :func:`generic_colony`: GGACO's colonies, whose ants may race in lock step
+  (one step each per round, until the first reaches the goal; the others are
+  then marked ``OUTRUN``) and add a pre-choice gain to the trail of every
+  edge leaving their node before they choose.
+- :func:`generic_weighted_colony`: racing ants on weights fixed before the
+  colony.
+
+Numba drops the branches of the other kinds before it compiles, so each
+kernel is the loop written out for its case, with nothing called per step (a
+step shared through compiled helpers costs a call or reference counts per
+step).
+
+The kernels fetch ahead: once an ant knows its candidate edges, and before
+it draws, it asks the cache for the edge lists (and weights, or trail entries
+and factors) of every node it may step to next. On a large map those lists
+are mostly outside the core's own caches, and a step would wait for them.
+"""
+
+from __future__ import annotations
+
+from typing import Callable
+
+import numba
+import numpy as np
+
+from pathzoo_aco.engine.outcomes import (ABORTED, DONE, EXHAUSTED, FRESH, NEED_SPACE, OUTRUN, REACHED, RUNNING,
+                                         STUCK, stop_before_step)
+from pathzoo_aco.engine.prefetch import prefetch
+from pathzoo_aco.engine.problem import ColonyProblem
+from pathzoo_aco.engine.steps import (choose, heaviest, heuristic_candidates, local_update, read_trail, roulette,
+                                      trail_power)
+
+__all__ = ["colony_kernel", "weighted_colony", "local_colony", "generic_colony", "generic_weighted_colony",
+           "KERNELS", "fill_weights", "unsigned_lists", "Adjacency", "FETCH_AHEAD_FROM"]
+
+Adjacency = tuple[np.ndarray, np.ndarray, "np.ndarray | None", np.ndarray, np.ndarray, np.ndarray]
+"""``(adj_ptr, adj_node, adj_edge, adj_offset, weight_mul, weight_add)`` of
+:meth:`WalkEngine.adjacency <pathzoo_aco.engine.walk.WalkEngine.adjacency>`; ``adj_edge`` is None when the
+lists are the whole graph."""
+
+FETCH_AHEAD_FROM = 1 << 17
+"""Listed edges above which :func:`local_colony` fetches ahead; smaller lists stay in the core's caches, where it
+only costs."""
+
+
+def unsigned_lists(problem: ColonyProblem, indices: np.ndarray, adjacency: Adjacency) -> tuple[np.ndarray | None, ...]:
+    """``indices`` and ``adjacency`` (:meth:`WalkEngine.adjacency <pathzoo_aco.engine.walk.WalkEngine.adjacency>`)
+    as the kernels of this module read them: node ids (int32 arrays) viewed as uint32, and the list pointers as
+    uint32 (:attr:`ColonyProblem.indptr32`) when the lists are the graph's own. An unsigned index needs no
+    fix-up for negative values at every read, and 32-bit pointers take half the cache lines of 64-bit ones.
+    """
+    adj_ptr, adj_node = adjacency[:2]
+    if adj_ptr is problem.graph.indptr and problem.indptr32.dtype == np.int32:
+        adj_ptr = problem.indptr32.view(np.uint32)
+    return (indices.view(np.uint32), adj_ptr, adj_node.view(np.uint32), *adjacency[2:])
+
+
+def colony_kernel(local: bool, general: bool) -> Callable[..., int]:
+    """The walk body compiled for one kind of colony (see the module docstring for the four kernels).
+
+    ``local``: ants weigh each edge from the trail ``x`` at the step they
+    read it and may mark it as they go; otherwise every edge's weight before
+    the turn factor was computed before the colony (``weights``,
+    :func:`fill_weights`). ``general``: racing ants and pre-choice additions
+    are possible; otherwise ants go one after another and nothing but the
+    local update writes the trail. Each flag is a constant of the closure, so
+    numba drops the branches of the other kinds before it compiles.
+
+    The kernel returns ``DONE`` or ``NEED_SPACE`` (grow ``flat``, or a
+    racing ant's stacks, and call again). ``indices``, ``adj_ptr`` and
+    ``adj_node`` are as :func:`unsigned_lists` gives them, the other lists as
+    :meth:`WalkEngine.adjacency <pathzoo_aco.engine.walk.WalkEngine.adjacency>` (list position ``q`` is graph
+    edge ``adj_edge[q]``, or edge ``q`` when ``adj_edge`` is None: numba then
+    compiles the kernel without the lookup). ``weights`` is None for a
+    ``local`` kernel. ``pre_add`` (read by a ``general`` kernel) is added to
+    the trail of every edge leaving the ant's node, tabu or not, before it
+    chooses. ``powers`` and ``power_stamp`` have one entry per trail entry;
+    an entry whose stamp equals ``colony`` (a number no earlier call used
+    with these arrays) holds the power of its trail value (kept by
+    :func:`local_colony` for a trail exponent other than 1).
+
+    Ants walk one after another (``race`` False: row 0 of ``stamps``,
+    ``stacks`` and ``prevs`` serves them all, and an ant walks until it
+    stops; the stacks have room for the longest simple walk), or, in a
+    ``general`` kernel with ``race``, in lock step: one step per ant per
+    round, a row per ant, every ant stamping with ``walk_base``, until the
+    first reaches the goal (the others end ``OUTRUN``). ``cur``, ``depth``,
+    ``prev`` and ``steps`` hold each ant's node, walk length, heading and
+    steps, ``flags`` its state (``FRESH`` before it starts); ``counters``
+    holds (next ant, ants started, steps taken, a finished walk waiting for
+    room in ``flat``), so a call resumes where the previous one stopped.
+    """
+
+    def kernel(indices, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, w_add, weights, horizontal, turn,
+               x, scale, lo, hi, on_nodes, tau_exp, q0, local_keep, local_add, pre_add, powers, power_stamp, colony,
+               start, goal, backtrack, max_steps, allowance, race, walk_base,
+               stamps, stacks, prevs, cand_w, cur, depth, prev, steps, flags, counters, flat, offsets):
+        n_ants = flags.size
+        use_turn = turn.shape[0] > 0
+        no_prev = turn.shape[0] - 1
+        has_add = w_add.size > 0
+        if local:
+            do_local = local_keep != 1.0 or local_add != 0.0
+            bounded = lo > 0.0 or hi < np.inf
+            keep_powers = tau_exp != 1.0 and not general  # pre-choice additions write the trail at every step
+            lo_pow = lo**tau_exp
+            fetch_ahead = adj_node.size > FETCH_AHEAD_FROM
+            if general:
+                has_pre = pre_add.size > 0
+        cand_q = np.empty(cand_w.size, dtype=adj_ptr.dtype)  # the candidates' list positions, typed as the pointers
+        stamp = stamps[0]
+        stack_e = stacks[0]
+        stack_prev = prevs[0]
+        a = counters[0]
+        total = counters[2]
+        if counters[3] > 0:  # copy the walk that waited for room in ``flat``
+            base = offsets[a]
+            for p in range(depth[a]):
+                flat[base + p] = stack_e[p]
+            offsets[a + 1] = base + depth[a]
+            counters[3] = 0
+            a += 1
+        while True:
+            if a >= n_ants:
+                if not general or not race:
+                    break
+                a = 0  # the next round of a race
+                running = False
+                for b in range(n_ants):
+                    running = running or flags[b] == RUNNING
+                if not running:
+                    break
+            if general:
+                if flags[a] >= 0:  # a race walk that has stopped
+                    a += 1
+                    continue
+                if race:  # racing ants have a stamp row and stack each, and all stamp with ``walk_base``
+                    stamp = stamps[a]
+                    stack_e = stacks[a]
+                    stack_prev = prevs[a]
+            wid = walk_base if general and race else walk_base + a
+            if flags[a] == FRESH:
+                flags[a] = RUNNING
+                counters[1] += 1
+                stamp[start] = wid
+                if general:  # only a general kernel's ants stop mid-walk and resume
+                    cur[a] = start
+                    depth[a] = 0
+                    prev[a] = no_prev
+                    steps[a] = 0
+            c = np.uint32(cur[a] if general else start)  # node ids are uint32, so ``c`` keeps one type
+            d = depth[a] if general else 0
+            pv = prev[a] if general else no_prev
+            n = steps[a] if general else 0
+            flag = RUNNING
+            full = False  # stopped before a step for want of room on the stack (not after a race step that filled it)
+            while True:
+                flag = stop_before_step(c, goal, n, max_steps, total, allowance)
+                if flag != RUNNING:
+                    break
+                if general and d >= stack_e.size:  # no room on a racing ant's stack: the caller grows it
+                    full = True
+                    break
+                # ------------------------------------------------------ one step
+                e0 = adj_ptr[c]
+                e1 = adj_ptr[c + 1]
+                nc = 0
+                n_open = 0  # allowed neighbours, whatever their weight
+                total_w = 0.0
+                best_w = -1.0
+                best_i = 0
+                for q in range(e0, e1):
+                    j = adj_node[q]
+                    if local and general and has_pre:  # added to every edge leaving the node, tabu or not
+                        k = np.int64(j) if on_nodes else np.int64(q) if adj_edge is None else np.int64(adj_edge[q])
+                        t = min(max(read_trail(scale, x[k], lo, hi, True) + pre_add[q], lo), hi)
+                        x[k] = t / scale
+                    if stamp[j] == wid:  # most neighbours on a long walk: test before touching the trail
+                        continue
+                    f = 1.0
+                    if use_turn:
+                        f = turn[pv, adj_offset[q]]
+                        if f <= 0.0:
+                            continue
+                    n_open += 1
+                    if not local:
+                        w = weights[q] * f if use_turn else weights[q]
+                    else:
+                        if not general or not has_pre:  # the entry of the trail the edge reads
+                            k = (np.int64(j) if on_nodes else np.int64(q) if adj_edge is None
+                                 else np.int64(adj_edge[q]))
+                        if keep_powers:  # the trail's power, kept per entry
+                            if power_stamp[k] != colony:
+                                powers[k] = trail_power(read_trail(scale, x[k], lo, hi, bounded), tau_exp, lo, lo_pow)
+                                power_stamp[k] = colony
+                            w = powers[k] * w_mul[q]
+                        else:
+                            if not general or not has_pre:
+                                t = read_trail(scale, x[k], lo, hi, bounded)
+                            # without kept powers the exponent of ants one after another is 1
+                            w = (trail_power(t, tau_exp, lo, lo_pow) if general else t) * w_mul[q]
+                        if has_add:
+                            w += w_add[q]
+                        if use_turn:
+                            w *= f
+                    if w > 0.0:
+                        if local:
+                            heavier = w > best_w  # the first of the heaviest, kept without a branch for the q0 rule
+                            best_w = w if heavier else best_w
+                            best_i = nc if heavier else best_i
+                        cand_q[nc] = q
+                        cand_w[nc] = w
+                        total_w += w
+                        nc += 1
+                if nc == 0 and n_open > 0:  # maybe every trail is 0: weigh the allowed edges by the heuristic alone
+                    nc, total_w = heuristic_candidates(e0, e1, adj_node, w_mul, w_add, adj_offset, turn, pv, stamp,
+                                                       wid, cand_q, cand_w, 0)
+                    if local:
+                        best_i = heaviest(cand_w, 0, nc)
+                if nc == 0:  # dead end
+                    if not backtrack:
+                        flag = STUCK
+                        break
+                    if d == 0:
+                        flag = EXHAUSTED
+                        break
+                    d -= 1
+                    c = indices[stack_e[d - 1]] if d > 0 else np.uint32(start)
+                    if use_turn:
+                        pv = stack_prev[d - 1] if d > 0 else no_prev
+                else:
+                    if not local:
+                        for i in range(nc):  # the next node is one of these: fetch its list while the choice is made
+                            ahead = adj_ptr[adj_node[cand_q[i]]]
+                            prefetch(weights, ahead)
+                            prefetch(weights, ahead + 7)  # its first eight weights span one or two lines
+                            prefetch(adj_node, ahead)
+                        pick = cand_q[choose(cand_w, nc, total_w, q0)]
+                    else:
+                        for i in range(nc if fetch_ahead else 0):
+                            ahead = adj_ptr[adj_node[cand_q[i]]]
+                            prefetch(adj_node, ahead)
+                            prefetch(w_mul, ahead)
+                            if not on_nodes and adj_edge is None:  # the edge trail in list order
+                                prefetch(x, ahead)
+                                prefetch(x, ahead + 7)  # its first eight entries span one or two lines
+                        if q0 > 0.0 and np.random.random() < q0:  # ``choose``'s draws, its heaviest found above
+                            pick = cand_q[best_i]
+                        else:
+                            pick = cand_q[roulette(cand_w, 0, nc, total_w)]
+                    c = adj_node[pick]
+                    stamp[c] = wid
+                    sel = pick if adj_edge is None else adj_edge[pick]
+                    stack_e[d] = sel
+                    if use_turn:
+                        o = adj_offset[pick]
+                        if horizontal[o]:
+                            pv = o
+                        stack_prev[d] = pv
+                    d += 1
+                    if local and do_local:
+                        k = np.int64(c) if on_nodes else np.int64(sel)
+                        local_update(x, k, scale, lo, hi, local_keep, local_add)
+                        if keep_powers:
+                            power_stamp[k] = 0  # its power is computed again when next read
+                n += 1
+                total += 1
+                if general and race:  # one step per ant and round
+                    if c == goal:
+                        flag = REACHED
+                    break
+            depth[a] = d
+            steps[a] = n
+            if general:
+                cur[a] = c
+                prev[a] = pv
+            counters[2] = total
+            if general:
+                if full:  # resume with this ant, which has not stepped yet (a racing ant's step waits until then)
+                    counters[0] = a
+                    return NEED_SPACE
+                if flag == RUNNING:  # a racing ant that took its step
+                    a += 1
+                    continue
+            flags[a] = flag
+            if not general or not race:
+                if flag == REACHED:
+                    if offsets[a] + d > flat.size:
+                        counters[0] = a
+                        counters[3] = 1
+                        return NEED_SPACE
+                    for p in range(d):
+                        flat[offsets[a] + p] = stack_e[p]
+                offsets[a + 1] = offsets[a] + (d if flag == REACHED else 0)
+            if flag == ABORTED or (flag == EXHAUSTED and not use_turn) or (general and race and flag == REACHED):
+                for b in range(n_ants):  # the others: never started, stopped, or outrun in a race
+                    if flags[b] == FRESH or (flags[b] == RUNNING and flag != REACHED):
+                        flags[b] = ABORTED
+                    elif flags[b] == RUNNING:
+                        flags[b] = OUTRUN
+                    if b > a and (not general or not race):
+                        offsets[b + 1] = offsets[a + 1]
+                break
+            a += 1
+        counters[0] = a
+        return DONE
+
+    kernel.__qualname__ = kernel.__name__ = NAMES[local, general]  # names its cache files
+    kernel.__doc__ = f"The kernel of :func:`colony_kernel` for {WHAT[local, general]}."
+    return numba.njit(cache=True)(kernel)
+
+
+NAMES = {(False, False): "weighted_colony", (True, False): "local_colony", (True, True): "generic_colony",
+         (False, True): "generic_weighted_colony"}
+"""The name of each kernel of :func:`colony_kernel`, by ``(local, general)``."""
+
+WHAT = {(False, False): "ants going one after another on weights fixed while they walk",
+        (True, False): "ants going one after another that mark the trail as they go",
+        (True, True): "racing ants or pre-choice additions, weighing the trail at each step",
+        (False, True): "racing ants on weights fixed while they walk"}
+"""What each kernel of :func:`colony_kernel` walks, by ``(local, general)``."""
+
+weighted_colony = colony_kernel(False, False)
+local_colony = colony_kernel(True, False)
+generic_colony = colony_kernel(True, True)
+generic_weighted_colony = colony_kernel(False, True)
+
+KERNELS = {(False, False): weighted_colony, (True, False): local_colony, (True, True): generic_colony,
+           (False, True): generic_weighted_colony}
+"""The kernels of :func:`colony_kernel` by ``(local, general)``."""
+
+
+@numba.njit(cache=True)
+def fill_weights(out, adj_node, adj_edge, w_mul, w_add, x, scale, lo, hi, on_nodes, tau_exp):
+    """Each listed edge's weight ``τ ** tau_exp * w_mul (+ w_add)`` into ``out``, as a ``local`` kernel of
+    :func:`colony_kernel` has it.
+
+    The same operations in the same order, so the doubles are identical; the
+    walks of a colony whose trail does not change while it walks (no
+    ``pre_add``, no local update) then read one array per edge instead of the
+    trail, both factors and a power.
+    """
+    has_add = w_add.size > 0
+    bounded = lo > 0.0 or hi < np.inf
+    lo_pow = lo**tau_exp
+    for q in range(out.size):
+        if adj_edge is None:
+            e = q
+        else:
+            e = adj_edge[q]
+        k = adj_node[q] if on_nodes else e
+        w = trail_power(read_trail(scale, x[k], lo, hi, bounded), tau_exp, lo, lo_pow) * w_mul[q]
+        if has_add:
+            w += w_add[q]
+        out[q] = w
