@@ -19,17 +19,25 @@ import numpy as np
 
 from pathzoo.grid.segments import first_blocked_cell_2d
 
-__all__ = ["segment_free", "route_free", "pull_string_free", "bridge_corners_free", "via_route"]
+__all__ = ["clearance_samples", "segment_free", "route_free", "pull_string_free", "bridge_corners_free", "via_route"]
 
 
 @numba.njit(cache=True)
 def segment_free(blocked: np.ndarray, cs: float, u: int, v: int) -> bool:
-    """Whether the segment between the centres of cells ``u`` and ``v`` (flat ids) touches no blocked cell."""
+    """Whether the segment between the centres of cells ``u`` and ``v`` (flat ids) touches no blocked cell.
+
+    Between neighbours the answer is read off the cells: a straight step
+    touches its two cells only, a diagonal one also the two cells sharing
+    the corner it passes through (the closed-cell rule); longer segments are
+    walked by :func:`~pathzoo.grid.segments.first_blocked_cell_2d`.
+    """
     w = blocked.shape[1]
     ru, cu = u // w, u % w
     rv, cv = v // w, v % w
     if u == v or blocked[ru, cu] or blocked[rv, cv]:
         return False
+    if abs(ru - rv) <= 1 and abs(cu - cv) <= 1:  # neighbours: a diagonal touches the two cells at its corner
+        return not (blocked[ru, cv] or blocked[rv, cu])
     x0 = ((cu + 0.5) * cs) / cs
     y0 = ((ru + 0.5) * cs) / cs
     x1 = ((cv + 0.5) * cs) / cs
@@ -134,3 +142,25 @@ def via_route(from_start: np.ndarray, to_goal: np.ndarray, via: int, goal: int, 
     for j in range(k):
         seen[out[j]] = -1
     return out[:k].copy()
+
+
+@numba.njit(cache=True)
+def clearance_samples(clearance: np.ndarray, pts: np.ndarray, steps: np.ndarray, cs: float) -> np.ndarray:
+    """Clearances of the cells under ``pts[i] + (k / steps[i]) (pts[i + 1] - pts[i])``, ``k < steps[i]``, then ``pts[-1]``.
+
+    The points of :meth:`RouteProblem.mean_clearance`, computed by the same
+    float operations one point at a time; cells are clipped to the map.
+    """
+    h, w = clearance.shape
+    out = np.empty(steps.sum() + 1)
+    n = 0
+    for i in range(len(steps)):
+        dx = pts[i + 1, 0] - pts[i, 0]
+        dy = pts[i + 1, 1] - pts[i, 1]
+        for k in range(steps[i]):
+            frac = k / steps[i]
+            out[n] = clearance[min(max(int((pts[i, 1] + frac * dy) / cs), 0), h - 1),
+                               min(max(int((pts[i, 0] + frac * dx) / cs), 0), w - 1)]
+            n += 1
+    out[n] = clearance[min(max(int(pts[-1, 1] / cs), 0), h - 1), min(max(int(pts[-1, 0] / cs), 0), w - 1)]
+    return out

@@ -52,7 +52,7 @@ from pathzoo_exact.problem import H_OCTILE, H_ZERO, search_problem
 from pathzoo_exact.search_loop import astar_batch
 from pathzoo_exact.search_state import FOUND, HEAP_FULL, RUNNING, SearchState, run_batch
 from pathzoo_exact.waypoints import trace_path
-from pathzoo_rivals.route_kernels import pull_string_free, route_free, segment_free, via_route
+from pathzoo_rivals.route_kernels import clearance_samples, pull_string_free, route_free, segment_free, via_route
 
 __all__ = ["RouteProblem", "SLOPE_MARGIN_DEG", "N_OBJECTIVES", "OBJECTIVES", "DETOUR", "SEGMENT_CACHE_SIZE"]
 
@@ -267,12 +267,8 @@ class RouteProblem:
         cs = self.scenario.cell_size
         seg = np.diff(pts, axis=0)
         steps = np.maximum(1, np.ceil(np.hypot(seg[:, 0], seg[:, 1]) / (0.5 * cs)).astype(np.int64))
-        which = np.repeat(np.arange(len(seg)), steps)
-        frac = (np.arange(len(which)) - np.repeat(np.cumsum(steps) - steps, steps)) / steps[which]
-        samples = np.vstack([pts[:-1][which] + frac[:, None] * seg[which], pts[-1:]])
-        cols = np.clip((samples[:, 0] / cs).astype(np.int64), 0, self.shape[1] - 1)
-        rows = np.clip((samples[:, 1] / cs).astype(np.int64), 0, self.shape[0] - 1)
-        return float(self.clearance[rows, cols].mean())
+        samples = clearance_samples(self.clearance, np.ascontiguousarray(pts, dtype=np.float64), steps, float(cs))
+        return float(samples.mean())
 
     def world_path(self, route: np.ndarray) -> np.ndarray:
         """The route as a world path from exactly ``scenario.start`` to exactly ``scenario.goal``."""

@@ -212,3 +212,28 @@ def test_random_route_is_the_shortest_route_through_its_via_cell(ggaco_problem):
     route = problem.random_route(rng)
     assert route is not None and problem.route_ok(route)
     assert validate_path(problem.scenario, problem.world_path(route)).valid
+
+
+def test_compiled_neighbour_steps_agree_with_the_walk():
+    # every step between neighbouring cells of ggaco.frontrange: the cell rule of segment_free equals the walk
+    import pathzoo
+    from pathzoo.grid.segments import first_blocked_cell_2d
+    from pathzoo_rivals.route_kernels import segment_free
+
+    problem = RouteProblem(pathzoo.load_scenario("ggaco.frontrange"))
+    blocked, cs = problem.blocked, problem.cell_size
+    h, w = blocked.shape
+    free = np.flatnonzero(~blocked.ravel())
+    diagonal_refused = 0
+    for u in free[::3]:
+        r, c = divmod(int(u), w)
+        for dr, dc in ((-1, -1), (-1, 0), (-1, 1), (0, 1), (1, -1), (1, 0), (1, 1), (0, -1)):
+            if not (0 <= r + dr < h and 0 <= c + dc < w):
+                continue
+            v = (r + dr) * w + c + dc
+            walk = (not blocked[r + dr, c + dc]) and first_blocked_cell_2d(
+                blocked, ((c + 0.5) * cs) / cs, ((r + 0.5) * cs) / cs,
+                ((c + dc + 0.5) * cs) / cs, ((r + dr + 0.5) * cs) / cs)[0] == -2
+            assert segment_free(blocked, cs, int(u), v) == walk
+            diagonal_refused += dr != 0 and dc != 0 and not walk and not blocked[r + dr, c + dc]
+    assert diagonal_refused > 0  # the corner rule is exercised
