@@ -32,7 +32,8 @@ from pathzoo.analysis.stats import pairwise_tests
 from pathzoo.analysis.summary import summarize
 from pathzoo.core.errors import InvalidParameterError
 
-__all__ = ["PaperTable", "paper_table", "format_paper_table", "MARKS", "NOT_TESTABLE"]
+__all__ = ["PaperTable", "PaperPart", "paper_table", "paper_part", "combine_paper_tables", "format_paper_table",
+           "MARKS", "NOT_TESTABLE"]
 
 MARKS = {"a": "↑", "b": "↓", "tie": "≈"}
 """Winner of a reference-vs-other test (reference is side ``a``) to the mark shown."""
@@ -104,10 +105,38 @@ def paper_table(
     if not metrics:
         raise InvalidParameterError("metrics must name at least one metric")
     infos = tuple(m if isinstance(m, MetricInfo) else metric_info(m) for m in metrics)
+    return combine_paper_tables([paper_part(runs, reference, infos, alpha=alpha, paired=paired)], reference, infos,
+                                alpha=alpha)
+
+
+PaperPart = tuple[pd.DataFrame, pd.DataFrame]
+"""The rows of a :class:`PaperTable`'s ``table`` and ``wtl`` for some whole scenarios (:func:`paper_part`)."""
+
+
+def paper_part(runs: pd.DataFrame, reference: str | None, infos: Sequence[MetricInfo], *, alpha: float = 0.05,
+               paired: bool | str = "auto") -> PaperPart:
+    """The rows of the paper-style table for the scenarios of ``runs`` (combined by :func:`combine_paper_tables`).
+
+    Parameters
+    ----------
+    runs : DataFrame
+        The runs of some whole scenarios.
+    reference : str, optional
+        The reference configuration; None when it ran on none of these
+        scenarios (then no row has a mark and no w/t/l is counted).
+    infos : sequence of MetricInfo
+        The metrics, in column order.
+    alpha, paired
+        As for :func:`paper_table`.
+    """
     table = None
     wtl_rows = []
     for info in infos:
-        tests = pairwise_tests(runs, info.id, direction=info.direction, reference=reference, alpha=alpha, paired=paired)
+        if reference is None:
+            tests = pd.DataFrame(columns=["scenario", "b", "winner", "testable"])
+        else:
+            tests = pairwise_tests(runs, info.id, direction=info.direction, reference=reference, alpha=alpha,
+                                   paired=paired)
         summ = summarize(runs, info.id, direction=info.direction)[["scenario", "config", "success_rate", "median", "sd"]]
         marks = tests.assign(mark=tests["winner"].map(MARKS).where(tests["testable"].astype(bool), NOT_TESTABLE))
         marks = marks[["scenario", "b", "mark"]]
@@ -122,13 +151,41 @@ def paper_table(
                                  ties=int(counts.get("tie", 0)), losses=int(counts.get("b", 0)),
                                  untestable=len(g) - len(decided)))
     assert table is not None
+    return table, pd.DataFrame(wtl_rows, columns=list(_WTL_COLUMNS))
+
+
+_WTL_COLUMNS = ("metric", "config", "wins", "ties", "losses", "untestable")
+
+
+def combine_paper_tables(parts: Sequence[PaperPart], reference: str, infos: Sequence[MetricInfo], *,
+                         alpha: float = 0.05) -> PaperTable:
+    """The :class:`PaperTable` of :func:`paper_part` results of disjoint sets of whole scenarios.
+
+    Parameters
+    ----------
+    parts : sequence of (DataFrame, DataFrame)
+        At least one :func:`paper_part`; the scenarios of the parts do not overlap.
+    reference : str
+        The reference configuration.
+    infos : sequence of MetricInfo
+        The metrics the parts were built with.
+    alpha : float
+        Their level.
+    """
+    table = pd.concat([t for t, _ in parts], ignore_index=True)
     order = table["config"].ne(reference).astype(int)
     table = (
         table.assign(_o=order).sort_values(["scenario", "_o", "config"], kind="stable").drop(columns="_o")
         .reset_index(drop=True)
     )
-    wtl = pd.DataFrame(wtl_rows, columns=["metric", "config", "wins", "ties", "losses", "untestable"])
-    return PaperTable(table=table, wtl=wtl, reference=reference, metrics=infos, alpha=alpha)
+    rows = pd.concat([w for _, w in parts if len(w)] or [parts[0][1]], ignore_index=True)
+    if len(parts) > 1 and len(rows):  # counts over every part, metrics in column order, then configurations
+        rank = {info.id: i for i, info in enumerate(infos)}
+        rows = rows.groupby(["metric", "config"], sort=True, as_index=False)[list(_WTL_COLUMNS[2:])].sum()
+        rows = rows.sort_values(["metric", "config"], key=lambda c: c.map(rank) if c.name == "metric" else c,
+                                kind="stable").reset_index(drop=True)
+    wtl = pd.DataFrame({c: rows[c] for c in _WTL_COLUMNS}, columns=list(_WTL_COLUMNS))
+    return PaperTable(table=table, wtl=wtl, reference=reference, metrics=tuple(infos), alpha=alpha)
 
 
 def format_paper_table(pt: PaperTable, fmt: str = "text") -> str:

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 from pathlib import Path
 from typing import Any, Mapping
 
@@ -10,12 +10,12 @@ import pandas as pd
 
 from pathzoo.core.errors import InvalidParameterError
 
-__all__ = ["StoredExperiment", "load_experiment"]
+__all__ = ["ExperimentInfo", "StoredExperiment", "experiment_info", "load_experiment"]
 
 
 @dataclass(frozen=True)
-class StoredExperiment:
-    """One experiment as stored by the harness.
+class ExperimentInfo:
+    """One stored experiment's settings (not its runs).
 
     Attributes
     ----------
@@ -23,10 +23,6 @@ class StoredExperiment:
         The results database.
     name : str
         Experiment name.
-    runs : DataFrame
-        ``read_runs`` of this experiment.
-    history : DataFrame
-        ``read_history`` of this experiment.
     seed : int
         Experiment seed.
     budget : mapping
@@ -41,8 +37,6 @@ class StoredExperiment:
 
     db: Path
     name: str
-    runs: pd.DataFrame
-    history: pd.DataFrame
     seed: int
     budget: Mapping[str, Any]
     timeout_s: float
@@ -55,8 +49,24 @@ class StoredExperiment:
         return ", ".join(f"{k}={v}" for k, v in self.budget.items() if v is not None) or "default"
 
 
-def load_experiment(db: str | Path, experiment: str | None = None) -> StoredExperiment:
-    """Read one experiment of a results database.
+@dataclass(frozen=True)
+class StoredExperiment(ExperimentInfo):
+    """One experiment as stored by the harness: its settings, runs and history.
+
+    Attributes
+    ----------
+    runs : DataFrame
+        ``read_runs`` of this experiment.
+    history : DataFrame
+        ``read_history`` of this experiment.
+    """
+
+    runs: pd.DataFrame
+    history: pd.DataFrame
+
+
+def experiment_info(db: str | Path, experiment: str | None = None) -> ExperimentInfo:
+    """The settings of one experiment of a results database (its runs are not read).
 
     Parameters
     ----------
@@ -72,7 +82,8 @@ def load_experiment(db: str | Path, experiment: str | None = None) -> StoredExpe
     pathzoo.harness.store_file.ResultsDatabaseError
         ``db`` is missing or not a results database, or has no such experiment.
     """
-    from pathzoo.harness.store import read_experiments, read_history, read_runs
+    from pathzoo.harness.store import read_experiments
+    from pathzoo.harness.store_file import ResultsDatabaseError
 
     exps = read_experiments(db)
     names = [str(n) for n in exps["name"]]
@@ -83,10 +94,22 @@ def load_experiment(db: str | Path, experiment: str | None = None) -> StoredExpe
                 "(experiment= in Python, --experiment on the command line)"
             )
         experiment = names[0]
-    runs = read_runs(db, experiment)  # raises for an unknown experiment
+    if experiment not in names:
+        stored = ", ".join(sorted(names)) or "none"
+        raise ResultsDatabaseError(f"{db}: no experiment named '{experiment}' (stored: {stored})")
     row = exps[exps["name"] == experiment].iloc[0]
-    return StoredExperiment(
-        db=Path(db), name=experiment, runs=runs, history=read_history(db, experiment), seed=int(row["seed"]),
-        budget=dict(row["budget"]), timeout_s=float(row["timeout_s"]), created=str(row["created"]),
-        config=dict(row["config"]),
-    )
+    return ExperimentInfo(db=Path(db), name=experiment, seed=int(row["seed"]), budget=dict(row["budget"]),
+                          timeout_s=float(row["timeout_s"]), created=str(row["created"]), config=dict(row["config"]))
+
+
+def load_experiment(db: str | Path, experiment: str | None = None) -> StoredExperiment:
+    """Read one experiment of a results database: :func:`experiment_info` (same parameters and errors), runs, history.
+
+    Every run is read into one frame; :func:`pathzoo.analysis.report_data.gather_from_db`
+    and :func:`pathzoo.analysis.leaderboard.leaderboard_from_db` read a large database in bounded memory.
+    """
+    from pathzoo.harness.store import read_history, read_runs
+
+    info = experiment_info(db, experiment)
+    settings = {f.name: getattr(info, f.name) for f in fields(info)}
+    return StoredExperiment(**settings, runs=read_runs(db, info.name), history=read_history(db, info.name))

@@ -42,12 +42,13 @@ IQR and SD columns describe successful runs only.
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Sequence
 
 import numpy as np
 import pandas as pd
 
 from pathzoo.analysis.formatting import format_number, format_percent, render_table
-from pathzoo.analysis.frame import Direction, config_labels, with_config
+from pathzoo.analysis.frame import Direction, with_config
 from pathzoo.analysis.hybrid import HYBRID_MARK, HYBRID_NOTE, hybrid_planners
 from pathzoo.analysis.path_models import (MODEL_COLUMN, MODEL_RATIO, REFERENCE_COLUMN, SOURCE_COLUMNS, path_models,
                                           with_model_ratio)
@@ -55,7 +56,8 @@ from pathzoo.analysis.summary import summarize
 from pathzoo.core.budget import CLOCK_STOPS
 from pathzoo.core.errors import InvalidParameterError
 
-__all__ = ["leaderboard", "leaderboard_from_db", "format_leaderboard", "clock_stops", "work_done", "cpu_spread_warning",
+__all__ = ["leaderboard", "leaderboard_from_db", "combine_leaderboards", "format_leaderboard", "clock_stops",
+           "work_done", "cpu_spread_warning",
            "power_note", "RANKING_RULE", "MODEL_RATIO_NOTE", "PATH_MODEL_NOTE", "CLOCK_MARK", "CLOCK_NOTE", "CPU_SPREAD_LIMIT"]
 
 RANKING_RULE = (
@@ -295,23 +297,40 @@ def leaderboard_from_db(
     InvalidParameterError
         ``reference`` is not a configuration of the experiment.
     """
-    from pathzoo.harness.store_scan import CHUNK_COLUMNS, configurations, scenario_chunks
+    from pathzoo.analysis.chunks import config_names, named_chunks
+    from pathzoo.harness.store_scan import CHUNK_COLUMNS
 
-    configs = configurations(db, experiment)
-    names = config_labels(configs)
-    name_of = dict(zip(zip(configs["planner"], configs["params_hash"], configs["label"]), names))
-    if reference is not None and reference not in set(names):
+    name_of = config_names(db, experiment)
+    names = set(name_of.values())
+    if reference is not None and reference not in names:
         raise InvalidParameterError(
-            f"reference '{reference}' is not among the planners: {', '.join(sorted(set(names)))}")
+            f"reference '{reference}' is not among the planners: {', '.join(sorted(names))}")
     needed = [metric] if metric != MODEL_RATIO else list(SOURCE_COLUMNS)
     parts = []
-    for chunk in scenario_chunks(db, experiment, needed, chunk_runs=chunk_runs):
-        chunk["label"] = [name_of[k] for k in zip(chunk["planner"], chunk["params_hash"], chunk["label"])]
+    for chunk in named_chunks(db, experiment, needed, name_of, chunk_runs=chunk_runs):
         here = reference if reference in set(chunk["label"]) else None  # scenarios without it: no test, as in memory
         parts.append(leaderboard(chunk, metric, direction=direction, reference=here, alpha=alpha, paired=paired))
     if not parts:
         empty = pd.DataFrame(columns=[*CHUNK_COLUMNS, *needed])
         parts.append(leaderboard(empty, metric, direction=direction, alpha=alpha, paired=paired))
+    return combine_leaderboards(parts, reference)
+
+
+def combine_leaderboards(parts: Sequence[pd.DataFrame], reference: str | None) -> pd.DataFrame:
+    """One :func:`leaderboard` table from the tables of disjoint sets of whole scenarios.
+
+    Parameters
+    ----------
+    parts : sequence of DataFrame
+        At least one :func:`leaderboard` table; their scenarios do not overlap.
+    reference : str, optional
+        The reference configuration (a part whose scenarios lack it was built without one).
+
+    Returns
+    -------
+    DataFrame
+        The table :func:`leaderboard` gives for the union of the parts' runs.
+    """
     attrs = {str(k): v for k, v in parts[0].attrs.items()}
     table = pd.concat(parts, ignore_index=True)
     if "runs_needed" in table.columns:

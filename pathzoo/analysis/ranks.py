@@ -22,7 +22,7 @@ from pathzoo.analysis.frame import Direction
 from pathzoo.analysis.summary import summarize
 from pathzoo.core.errors import InvalidParameterError
 
-__all__ = ["FriedmanResult", "friedman", "friedman_statistic", "nemenyi_q", "nemenyi_cd"]
+__all__ = ["FriedmanResult", "friedman", "friedman_of_summary", "friedman_statistic", "nemenyi_q", "nemenyi_cd"]
 
 
 @dataclass(frozen=True)
@@ -169,8 +169,29 @@ def friedman(
     """
     if not 0.0 < alpha < 1.0:
         raise InvalidParameterError(f"alpha must be in (0, 1), got {alpha!r}")
-    summary = summarize(runs, metric, direction=direction)
+    return friedman_of_summary(summarize(runs, metric, direction=direction), alpha=alpha)
+
+
+def friedman_of_summary(summary: pd.DataFrame, *, alpha: float = 0.05) -> FriedmanResult:
+    """:func:`friedman` of the runs whose :func:`~pathzoo.analysis.summary.summarize` table is ``summary``.
+
+    Parameters
+    ----------
+    summary : DataFrame
+        A :func:`~pathzoo.analysis.summary.summarize` table (its
+        ``penalized_median`` column and ``attrs["metric"]`` are used).
+    alpha : float
+        Level of the critical difference.
+
+    Raises
+    ------
+    InvalidParameterError
+        ``alpha`` out of (0, 1), fewer than two configurations, or no scenario on which all ran.
+    """
+    if not 0.0 < alpha < 1.0:
+        raise InvalidParameterError(f"alpha must be in (0, 1), got {alpha!r}")
     info = summary.attrs["metric"]
+    metric = info.id
     sign = 1.0 if info.direction == "min" else -1.0
     table = summary.pivot(index="scenario", columns="config", values="penalized_median") * sign
     k = table.shape[1]

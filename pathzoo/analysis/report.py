@@ -28,35 +28,24 @@ import pandas as pd
 
 from pathzoo.analysis.formatting import format_number, render_table
 from pathzoo.analysis.frame import metric_info, with_config
-from pathzoo.analysis.leaderboard import format_leaderboard, leaderboard
-from pathzoo.analysis.path_models import MODEL_RATIO, with_model_ratio
+from pathzoo.analysis.leaderboard import format_leaderboard
+from pathzoo.analysis.path_models import MODEL_RATIO
+from pathzoo.analysis.report_data import (BOX_METRICS, PAPER_METRICS, TABLE_METRICS, ReportData, ReportGatherer,
+                                          gather_from_db, shown_scenarios, summarised_metrics)
 from pathzoo.analysis.report_page import VECTOR_FORMATS, ReportPage
-from pathzoo.core.budget import CLOCK_STOPS
 from pathzoo.core.errors import InvalidParameterError, PathzooError
 from pathzoo.core.scenario import Scenario
-from pathzoo.core.status import RunStatus
 
 __all__ = ["write_report", "render_report", "ReportPage", "BOX_METRICS", "TABLE_METRICS", "VECTOR_FORMATS"]
-
-BOX_METRICS: tuple[str, ...] = ("length_ratio", "planning_time", "energy", "turns")
-"""Metrics shown as box plots besides the ranked metric (when present and not all NaN)."""
-
-TABLE_METRICS: tuple[str, ...] = (
-    "length", "length_ratio", "length_ratio_anyangle", "planning_time", "cpu_time", "travel_time", "energy", "turns",
-    "turning_angle", "smoothness", "clearance_min", "clearance_mean",
-)  # fmt: skip
-"""Metrics summarised (median and IQR) in the report's metric tables."""
 
 def _present(runs: pd.DataFrame, metric: str) -> bool:
     return metric in runs.columns and bool(pd.to_numeric(runs[metric], errors="coerce").notna().any())
 
 
-def _metric_tables(page: ReportPage, runs: pd.DataFrame, metrics: Sequence[str]) -> None:
+def _metric_tables(page: ReportPage, data: ReportData, metrics: Sequence[str]) -> None:
     """Add one median [IQR] table per metric, with planners or scenarios as columns, whichever are fewer."""
-    from pathzoo.analysis.summary import summarize
-
     for m in metrics:
-        s = summarize(runs, m)
+        s = data.summaries[m].copy()
         info = s.attrs["metric"]
         s["cell"] = [f"{format_number(a)} [{format_number(b)}]" for a, b in zip(s["median"], s["iqr"])]
         rows, cols = ("scenario", "config")
@@ -67,27 +56,6 @@ def _metric_tables(page: ReportPage, runs: pd.DataFrame, metrics: Sequence[str])
         wide = wide.rename(columns={"config": "planner"})
         page.table(render_table(wide, "html", title=f"{info.label}: median [IQR] over successful runs, "
                                 f"{info.better}"))
-
-
-def _outcomes(df: pd.DataFrame) -> pd.DataFrame:
-    counts = df.pivot_table(index="config", columns="status", values="run_key", aggfunc="count", fill_value=0)
-    counts.columns.name = None
-    order = [s.value for s in RunStatus]
-    counts = counts[sorted(counts.columns, key=lambda c: order.index(c) if c in order else len(order))].astype(int)
-    counts["runs"] = counts.sum(axis=1)
-    counts["success"] = df.groupby("config")["success"].mean().map(lambda x: f"{100 * x:.0f}%")
-    return counts.reset_index().rename(columns={"config": "planner"})
-
-
-def _failures(df: pd.DataFrame, limit: int = 60) -> tuple[pd.DataFrame, int]:
-    bad = df[~df["success"]].sort_values(["scenario", "config", "seed_index"])
-    reason = [r if isinstance(r, str) and r else m for r, m in zip(bad["invalid_reason"], bad["message"])]
-    table = pd.DataFrame({
-        "scenario": bad["scenario"].astype(str), "planner": bad["config"].astype(str),
-        "seed": bad["seed_index"].astype(str), "status": bad["status"].astype(str),
-        "reason": [str(r)[:140] for r in reason],
-    })
-    return table.head(limit), len(table)
 
 
 def render_report(
@@ -144,9 +112,30 @@ def render_report(
     ReportPage
         Call ``.html(title)`` for the document.
     """
-    from pathzoo.analysis.comparison_table import format_paper_table, paper_table
-    from pathzoo.analysis.ranks import friedman
-    from pathzoo.analysis.summary import median_runs
+    with_config(runs.iloc[:0], metric)  # the columns, checked first
+    if runs.empty:
+        raise InvalidParameterError("runs is empty: nothing to report")
+    scenario_ids = sorted(runs["scenario"].unique())
+    shown_ids = shown_scenarios(scenario_ids, detail, max_scenarios)
+    has_history = history is not None and len(history) > 0
+    gatherer = ReportGatherer(
+        metric, summarised_metrics(metric), reference=reference, alpha=alpha, shown=shown_ids, drawn=BOX_METRICS,
+        paper_metrics=[m for m in dict.fromkeys((metric, *PAPER_METRICS)) if _present(runs, m)],
+        typical=path_of is not None,
+        ecdf=has_history and _present(runs, "length"))
+    gatherer.add(runs, history if has_history else None)
+    return _render(gatherer.result(), metric=metric, reference=reference, alpha=alpha, scenarios=scenarios,
+                   path_of=path_of, title=title, meta=meta, embed=embed, max_scenarios=max_scenarios,
+                   shown_ids=shown_ids, has_history=has_history)
+
+
+def _render(data: ReportData, *, metric: str, reference: str | None, alpha: float,
+            scenarios: Mapping[str, Scenario] | None, path_of: Callable[[str], np.ndarray | None] | None, title: str,
+            meta: Mapping[str, str] | None, embed: bool, max_scenarios: int, shown_ids: Sequence[str],
+            has_history: bool) -> ReportPage:
+    """The page of :func:`render_report` from the gathered tables."""
+    from pathzoo.analysis.comparison_table import format_paper_table
+    from pathzoo.analysis.ranks import friedman_of_summary
     from pathzoo.plotting.boxplots import plot_metric_panels, plot_relative_medians
     from pathzoo.plotting.cd_diagram import plot_cd_diagram
     from pathzoo.plotting.convergence import plot_convergence
@@ -155,22 +144,13 @@ def render_report(
     from pathzoo.plotting.paths import plot_paths
 
     info = metric_info(metric)
-    df = with_config(runs, metric)
-    if df.empty:
-        raise InvalidParameterError("runs is empty: nothing to report")
-    scenario_ids = sorted(df["scenario"].unique())
-    unknown = [s for s in detail if s not in set(scenario_ids)]
-    if unknown:
-        raise InvalidParameterError(f"scenario '{unknown[0]}' has no runs in this experiment")
-    shown_ids = _detailed(scenario_ids, detail, max_scenarios)
-    configs = sorted(df["config"].unique())
-    has_history = history is not None and len(history) > 0
+    scenario_ids, configs, n_runs = data.scenario_ids, data.configs, data.n_runs
     palette = planner_colors(configs)
     page = ReportPage(embed=embed)
 
     page.heading(1, title)
     lines = dict(meta or {})
-    lines.update({"planners": str(len(configs)), "scenarios": str(len(scenario_ids)), "runs": str(len(df)),
+    lines.update({"planners": str(len(configs)), "scenarios": str(len(scenario_ids)), "runs": str(n_runs),
                   "ranked by": f"{info.label}, {info.better}"})
     if reference:
         lines["reference"] = reference
@@ -186,24 +166,22 @@ def render_report(
     page.nav(sections)
 
     page.heading(2, "Runs", "outcomes")
-    if "isolated" in df.columns and not df["isolated"].astype(bool).all():
-        n = int((~df["isolated"].astype(bool)).sum())
-        page.note(f"{n} of {len(df)} runs ran inline, in the harness's own process: not isolated from each other "
-                  "or from the harness (for debugging only); rerun with the process or Dask executor for results.",
-                  "warn")
-    if "sandboxed" in df.columns:
-        n = int((~df["sandboxed"].astype(bool)).sum())
-        page.note(f"{len(df) - n} of {len(df)} runs ran in the OS sandbox" + (
+    if data.not_isolated:
+        page.note(f"{data.not_isolated} of {n_runs} runs ran inline, in the harness's own process: not isolated from "
+                  "each other or from the harness (for debugging only); rerun with the process or Dask executor for "
+                  "results.", "warn")
+    if data.not_sandboxed is not None:
+        n = data.not_sandboxed
+        page.note(f"{n_runs - n} of {n_runs} runs ran in the OS sandbox" + (
             f"; {n} did not, so those planners could have reached other runs' results (see docs/sandbox.md)."
             if n else "."), "warn" if n else "pz-note")
-    clocked = df["stopped_by"].isin(CLOCK_STOPS) if "stopped_by" in df.columns else pd.Series(False, index=df.index)
-    if clocked.any():
-        names = ", ".join(sorted(df.loc[clocked, "config"].astype(str).unique()))
-        page.note(f"{int(clocked.sum())} of {len(df)} runs were ended by a clock limit (cpu_s or time_s), so their "
+    if data.clocked:
+        names = ", ".join(data.clocked_configs)
+        page.note(f"{data.clocked} of {n_runs} runs were ended by a clock limit (cpu_s or time_s), so their "
                   f"results depend on the machine and its load ({names}; marked '(clock)' in the leaderboards; "
                   "see docs/timing.md).", "warn")
-    page.table(render_table(_outcomes(df), "html", title="Run outcomes per planner"))
-    planners = df.drop_duplicates("config")[["config", "planner", "planner_version", "params"]].sort_values("config")
+    page.table(render_table(data.outcomes, "html", title="Run outcomes per planner"))
+    planners = data.planners
     page.begin("details", "Planner parameters")
     page.table(render_table(pd.DataFrame({
         "planner": planners["config"], "id": planners["planner"], "version": planners["planner_version"].astype(str),
@@ -211,21 +189,18 @@ def render_report(
     page.end()
 
     page.heading(2, "Leaderboard", "leaderboard")
-    lb = leaderboard(runs, metric, reference=reference, alpha=alpha)
-    page.table(format_leaderboard(lb, "html"))
-    own = with_model_ratio(runs)
-    if metric != MODEL_RATIO and own[MODEL_RATIO].notna().any():
+    page.table(format_leaderboard(data.leaderboard, "html"))
+    if metric != MODEL_RATIO and data.own_leaderboard is not None:
         page.heading(3, "Against each planner's own optimum", "optimum")
-        page.table(format_leaderboard(leaderboard(own, MODEL_RATIO), "html"))
+        page.table(format_leaderboard(data.own_leaderboard, "html"))
 
-    if reference:
+    if reference and data.paper is not None:
         page.heading(2, f"Comparison with {reference}", "comparison")
-        shown = [m for m in dict.fromkeys((metric, "planning_time", "energy")) if _present(runs, m)]
-        page.table(format_paper_table(paper_table(runs, reference, shown, alpha=alpha), "html"))
+        page.table(format_paper_table(data.paper, "html"))
 
     page.heading(2, "Across scenarios", "ranks")
     try:
-        fr = friedman(runs, metric, alpha=alpha)
+        fr = friedman_of_summary(data.summaries[metric], alpha=alpha)
     except PathzooError as exc:
         page.note(f"No Friedman test: {exc}.")
     else:
@@ -244,17 +219,18 @@ def render_report(
                         "not differ significantly (Nemenyi).")
 
     page.heading(2, "Distributions", "boxes")
-    box_metrics = [m for m in dict.fromkeys((metric, *BOX_METRICS)) if _present(runs, m)]
+    box_metrics = [m for m in dict.fromkeys((metric, *BOX_METRICS)) if data.present(m)]
     summarised = len(scenario_ids) > max_scenarios
+    runs = data.shown_runs
     for m in box_metrics:
         mi = metric_info(m)
         if summarised:
-            page.figure(plot_relative_medians(runs, m, palette=palette), f"box-{m}",
+            page.figure(plot_relative_medians(None, m, palette=palette, summary=data.summaries[m]), f"box-{m}",
                         f"Across {len(scenario_ids)} scenarios: each planner's median {mi.label} on a scenario over "
                         "the best planner's median there (one value per scenario); red numbers are the share of "
                         "scenarios with a successful run, when below 100%.")
         if shown_ids:
-            page.figure(plot_metric_panels(runs, m, scenarios=shown_ids, palette=palette),
+            page.figure(plot_metric_panels(runs, m, scenarios=shown_ids, palette=palette, configs=configs),
                         f"box-{m}" + ("-named" if summarised else ""),
                         f"{mi.label} over successful runs, one panel (and axis) per scenario; red numbers are "
                         "success rates below 100%.")
@@ -264,29 +240,31 @@ def render_report(
         page.note(f"{len(scenario_ids)} scenarios: figures of their own for "
                   + (", ".join(shown_ids) if shown_ids else "none")
                   + " (name scenarios with --scenario on the command line, detail= in Python).")
-    typical = median_runs(runs, metric) if path_of is not None else None
+    typical = data.typical
     missing = [s for s in shown_ids if not scenarios or s not in scenarios]
     if path_of is not None and missing:
         page.note("No map for " + ", ".join(missing) + ": the scenario could not be rebuilt from the "
                   "experiment (Scenario objects passed to pathzoo.run are not stored); pass scenarios=.")
+    history = data.shown_history
+    df = with_config(runs) if len(runs) else runs
     for sid in shown_ids:
         page.heading(3, sid)
         page.begin("grid")
-        if scenarios and sid in scenarios and typical is not None:
+        if scenarios and sid in scenarios and typical is not None and path_of is not None:
             picks = typical[typical["scenario"] == sid]
             paths, colors = {}, {}
             row: Any  # a DataFrame row: its fields are whatever the columns hold
             for row in picks.itertuples(index=False):
-                p = path_of(row.run_key)  # type: ignore[misc]
+                p = path_of(row.run_key)
                 if p is not None and len(p):
                     label = f"{row.config} (seed {row.seed_index})"
                     paths[label], colors[label] = p, palette[row.config]
             caption = (f"Each planner's successful run whose {metric} is closest to its median." if paths
                        else "No successful run to draw on this map.")
             page.figure(plot_paths(scenarios[sid], paths, colors=colors), f"paths-{sid}", caption)
-        if has_history:
+        if has_history and history is not None:
             sub_keys = set(df.loc[df["scenario"] == sid, "run_key"])
-            sub_hist = history[history["run_key"].isin(sub_keys)]  # type: ignore[index]
+            sub_hist = history[history["run_key"].isin(sub_keys)]
             if len(sub_hist) and df.loc[df["scenario"] == sid, "success"].any():
                 fig = new_figure((5.6, 7.0))
                 ax1, ax2 = fig.subplots(2, 1)
@@ -302,9 +280,8 @@ def render_report(
 
     if has_history:
         page.heading(2, "Time to target", "anytime")
-        if _present(runs, "length"):
-            page.figure(plot_time_to_target_ecdf(history, runs, eps=0.05, palette=palette),  # type: ignore[arg-type]
-                        "ecdf",
+        if data.hits is not None:
+            page.figure(plot_time_to_target_ecdf(None, None, eps=0.05, palette=palette, hits=data.hits), "ecdf",
                         "Share of runs whose best cost came within 5% of the best known length, against time. "
                         "Only runs whose reported best cost equals their measured length count (planners "
                         "optimising other objectives are 'not comparable'); unsuccessful runs never arrive.")
@@ -313,25 +290,19 @@ def render_report(
 
     page.heading(2, "All metrics", "metrics")
     page.begin("details", "Median [IQR] of every metric")
-    _metric_tables(page, runs, [m for m in TABLE_METRICS if _present(runs, m)])
+    _metric_tables(page, data, [m for m in TABLE_METRICS if data.present(m)])
     page.end()
 
     page.heading(2, "Unsuccessful runs", "failures")
-    fails, n_fail = _failures(df)
-    if n_fail == 0:
+    if data.n_failures == 0:
         page.note("Every run succeeded.")
     else:
-        if n_fail > len(fails):
-            page.note(f"First {len(fails)} of {n_fail}.")
-        page.table(render_table(fails, "html"))
+        if data.n_failures > len(data.failures):
+            page.note(f"First {len(data.failures)} of {data.n_failures}.")
+        page.table(render_table(data.failures, "html"))
     page.note("Statistics: docs/statistics.md in the pathzoo sources (ranking rule, tests, pairing, Holm, A12, "
               "Friedman/Nemenyi).")
     return page
-
-
-def _detailed(scenario_ids: Sequence[str], detail: Sequence[str], max_scenarios: int) -> list[str]:
-    """The scenarios drawn on figures of their own: all up to ``max_scenarios``, else those of ``detail``."""
-    return list(scenario_ids) if len(scenario_ids) <= max_scenarios else sorted(set(detail))
 
 
 def _load_experiment_scenarios(config: Mapping[str, Any], wanted: set[str]) -> dict[str, Scenario]:
@@ -398,23 +369,25 @@ def write_report(
     InvalidParameterError
         ``db`` holds several experiments and none was chosen, or none at all.
     """
-    from pathzoo.analysis.database import load_experiment
+    from pathzoo.analysis.database import experiment_info
     from pathzoo.analysis.tuning_report import add_tuning_section
     from pathzoo.harness.store import read_path
 
-    exp = load_experiment(db, experiment)
-    known = _load_experiment_scenarios(exp.config, set(_detailed(sorted(exp.runs["scenario"].unique()), detail,
-                                                                 max_scenarios)))
+    exp = experiment_info(db, experiment)
+    gathered = gather_from_db(db, exp.name, metric, reference=reference, alpha=alpha, detail=detail,
+                              max_scenarios=max_scenarios)
+    known = _load_experiment_scenarios(exp.config, set(gathered.shown_ids))
     if scenarios is not None:
         known.update(scenarios if isinstance(scenarios, Mapping) else {s.id: s for s in scenarios})
     meta = {"database": str(Path(db).resolve()), "experiment": exp.name, "budget per run": exp.budget_text,
             "seeds": str(len(exp.config.get("seeds", []))), "created": exp.created}
-    page = render_report(
-        exp.runs, exp.history, metric=metric, reference=reference, alpha=alpha, scenarios=known,
+    page = _render(
+        gathered.data, metric=metric, reference=reference, alpha=alpha, scenarios=known,
         path_of=lambda key: read_path(db, exp.name, key)[0], title=f"pathzoo report: {exp.name}", meta=meta,
-        embed=embed, max_scenarios=max_scenarios, detail=detail,
+        embed=embed, max_scenarios=max_scenarios, shown_ids=gathered.shown_ids, has_history=gathered.has_history,
     )
-    add_tuning_section(page, db, exp.name, exp.runs, metric=metric, alpha=alpha)  # only for 'pathzoo tune' results
+    add_tuning_section(page, db, exp.name, gathered.chunks([metric]), metric=metric,  # only 'pathzoo tune' results
+                       alpha=alpha)
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     if page.files:

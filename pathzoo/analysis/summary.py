@@ -9,7 +9,8 @@ import pandas as pd
 
 from pathzoo.analysis.frame import Direction, loss_values, metric_info, with_config
 
-__all__ = ["summarize", "summarize_metrics", "median_runs", "relative_medians", "SUMMARY_COLUMNS"]
+__all__ = ["summarize", "summarize_metrics", "median_runs", "relative_medians", "relative_to_best",
+           "SUMMARY_COLUMNS"]
 
 SUMMARY_COLUMNS: tuple[str, ...] = (
     "scenario",
@@ -159,7 +160,11 @@ def relative_medians(runs: pd.DataFrame, metric: str = "length") -> pd.DataFrame
     DataFrame
         ``scenario, config, median, ratio``; ``attrs["metric"]`` as in :func:`summarize`.
     """
-    table = summarize(runs, metric)
+    return relative_to_best(summarize(runs, metric))
+
+
+def relative_to_best(table: pd.DataFrame) -> pd.DataFrame:
+    """:func:`relative_medians` of the runs whose :func:`summarize` table is ``table``."""
     info = table.attrs["metric"]
     median = table["median"].astype(float)
     best = median.groupby(table["scenario"]).transform("min" if info.direction == "min" else "max")

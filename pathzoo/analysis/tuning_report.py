@@ -10,7 +10,7 @@ when those studies exist, and does nothing otherwise.
 from __future__ import annotations
 
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Iterable
 
 import numpy as np
 import pandas as pd
@@ -100,21 +100,31 @@ def importance_table(studies: dict[str, "optuna.Study"]) -> tuple[pd.DataFrame, 
     return pd.DataFrame(rows, columns=["planner", "parameter", "importance"]), notes
 
 
-def default_vs_tuned(runs: pd.DataFrame, metric: str, alpha: float) -> pd.DataFrame:
-    """Per planner and test scenario: the ``<name> default`` against ``<name> tuned`` test (pairwise_tests, Holm per scenario)."""
+def default_vs_tuned(runs: pd.DataFrame | Iterable[pd.DataFrame], metric: str, alpha: float) -> pd.DataFrame:
+    """Per planner and test scenario: ``<name> default`` against ``<name> tuned`` (pairwise_tests, Holm per scenario).
+
+    ``runs`` is one runs frame, or frames of disjoint sets of whole scenarios
+    whose runs are named as in the whole experiment
+    (:func:`pathzoo.analysis.chunks.named_chunks`); rows are ordered by the
+    default configuration, then by scenario.
+    """
     from pathzoo.analysis.stats import pairwise_tests
 
-    config = with_config(runs)["config"]
-    configs = set(config)
     parts = []
-    for default in sorted(c for c in configs if c.endswith(" default")):
-        tuned = default[: -len(" default")] + " tuned"
-        if tuned not in configs:
-            continue
-        sub = runs[config.isin([default, tuned]).to_numpy()]
-        parts.append(pairwise_tests(sub, metric, reference=default, alpha=alpha))
+    for chunk in [runs] if isinstance(runs, pd.DataFrame) else runs:
+        config = with_config(chunk)["config"]
+        configs = set(config)
+        for default in sorted(c for c in configs if c.endswith(" default")):
+            tuned = default[: -len(" default")] + " tuned"
+            if tuned not in configs:
+                continue
+            sub = chunk[config.isin([default, tuned]).to_numpy()]
+            parts.append(pairwise_tests(sub, metric, reference=default, alpha=alpha))
     cols = ["scenario", "a", "b", "n_a", "n_b", "test", "p_holm", "a12", "magnitude", "winner"]
-    return pd.concat(parts, ignore_index=True)[cols] if parts else pd.DataFrame(columns=cols)
+    if not parts:
+        return pd.DataFrame(columns=cols)
+    out = pd.concat(parts, ignore_index=True)[cols]
+    return out.sort_values(["a", "scenario"], kind="stable").reset_index(drop=True)
 
 
 def _plot_best(studies: dict[str, "optuna.Study"]) -> Any:
@@ -136,9 +146,13 @@ def _plot_best(studies: dict[str, "optuna.Study"]) -> Any:
     return fig
 
 
-def add_tuning_section(page: "ReportPage", db: str | Path, experiment: str, runs: pd.DataFrame, *,
-                       metric: str, alpha: float) -> None:
-    """Append the tuning section to ``page`` when ``experiment`` comes from ``pathzoo tune``."""
+def add_tuning_section(page: "ReportPage", db: str | Path, experiment: str,
+                       runs: pd.DataFrame | Iterable[pd.DataFrame], *, metric: str, alpha: float) -> None:
+    """Append the tuning section to ``page`` when ``experiment`` comes from ``pathzoo tune``.
+
+    ``runs`` is the experiment's runs frame, or its frames of whole scenarios
+    (as for :func:`default_vs_tuned`; an iterator is read only for a test experiment).
+    """
     studies = load_studies(db, experiment)
     if not studies:
         return

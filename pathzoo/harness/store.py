@@ -123,6 +123,14 @@ def _run_columns(cursor: sqlite3.Cursor, batch: int = 10_000) -> tuple[dict[str,
     return columns, metrics
 
 
+def _only_keys(where: str, args: tuple[Any, ...], run_keys: "Collection[str] | None") -> tuple[str, tuple[Any, ...]]:
+    """``where`` and ``args`` narrowed to ``run_keys`` (sent as one JSON array: no row outside them is read)."""
+    if run_keys is None:
+        return where, args
+    return where + (" AND" if where else " WHERE") + " run_key IN (SELECT value FROM json_each(?))", (
+        *args, json.dumps(list(run_keys)))
+
+
 def read_runs(db: str | Path, experiment: str | None = None, run_keys: "Collection[str] | None" = None
               ) -> "pd.DataFrame":
     """One row per run, in the order they were stored (only ``run_keys``, when given).
@@ -141,9 +149,7 @@ def read_runs(db: str | Path, experiment: str | None = None, run_keys: "Collecti
 
     with reading(db, experiment) as (conn, where, args):
         base = ", ".join(column_sql(RUN_COLUMNS, present_columns(conn)))
-        if run_keys is not None:  # the keys go to SQLite as one JSON array: no row outside them is read
-            where += (" AND" if where else " WHERE") + " run_key IN (SELECT value FROM json_each(?))"
-            args = (*args, json.dumps(list(run_keys)))
+        where, args = _only_keys(where, args, run_keys)
         columns, metrics = _run_columns(conn.execute(f"SELECT {base}, metrics FROM runs{where} ORDER BY id", args))
     frame = decode_runs(pd.DataFrame(columns))
     for mid, values in metrics.items():
@@ -152,11 +158,17 @@ def read_runs(db: str | Path, experiment: str | None = None, run_keys: "Collecti
     return frame
 
 
-def read_history(db: str | Path, experiment: str | None = None) -> "pd.DataFrame":
-    """Convergence points: experiment, run_key, iteration, evaluations, best_cost, time_s."""
+def read_history(db: str | Path, experiment: str | None = None, run_keys: "Collection[str] | None" = None
+                 ) -> "pd.DataFrame":
+    """Convergence points: experiment, run_key, iteration, evaluations, best_cost, time_s (of ``run_keys``, when given).
+
+    Rows are in the order they were stored.
+    """
     import pandas as pd
 
-    rows = _select(db, experiment, "SELECT * FROM history{where} ORDER BY rowid")
+    with reading(db, experiment) as (conn, where, args):
+        where, args = _only_keys(where, args, run_keys)
+        rows = conn.execute(f"SELECT * FROM history{where} ORDER BY rowid", args).fetchall()
     frame = pd.DataFrame(rows, columns=["experiment", "run_key", "iteration", "evaluations", "best_cost", "time_s"])
     frame["best_cost"] = pd.to_numeric(frame["best_cost"], errors="coerce").astype(float)
     return frame

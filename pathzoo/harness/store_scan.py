@@ -24,7 +24,8 @@ from pathzoo.harness.store_file import present_columns, reading
 if TYPE_CHECKING:
     import pandas as pd
 
-__all__ = ["CHUNK_COLUMNS", "scenario_chunks", "configurations", "library_versions", "isolation_counts"]
+__all__ = ["CHUNK_COLUMNS", "scenario_chunks", "configurations", "first_runs", "scenario_ids", "has_metric",
+           "metrics_with_values", "has_history", "library_versions", "isolation_counts"]
 
 CHUNK_COLUMNS: tuple[str, ...] = (
     "run_key", "experiment", "planner", "planner_version", "params_hash", "scenario", "seed_index", "seed",
@@ -41,7 +42,7 @@ def _metric_expression(metric: str, present: set[str]) -> str:
 
 
 def scenario_chunks(db: str | Path, experiment: str, metrics: Sequence[str], *,
-                    chunk_runs: int = 20_000) -> "Iterator[pd.DataFrame]":
+                    chunk_runs: int = 20_000, columns: Sequence[str] = ()) -> "Iterator[pd.DataFrame]":
     """The runs of one experiment as frames of whole scenarios, in scenario order.
 
     Parameters
@@ -55,12 +56,16 @@ def scenario_chunks(db: str | Path, experiment: str, metrics: Sequence[str], *,
     chunk_runs : int
         A frame is handed out once it holds at least this many runs and the
         next run is of another scenario; a scenario is never split.
+    columns : sequence of str
+        Further columns of :data:`~pathzoo.harness.store.RUN_COLUMNS` (as
+        stored: ``params`` as JSON text), e.g. ``invalid_reason``, ``message``.
 
     Yields
     ------
     DataFrame
-        :data:`CHUNK_COLUMNS` (``valid``, ``isolated``, ``sandboxed`` as bool)
-        and one column per metric, rows ordered by scenario, then as stored.
+        :data:`CHUNK_COLUMNS` (``valid``, ``isolated``, ``sandboxed`` as bool),
+        ``columns``, and one column per metric, rows ordered by scenario, then
+        as stored.
 
     Raises
     ------
@@ -71,7 +76,8 @@ def scenario_chunks(db: str | Path, experiment: str, metrics: Sequence[str], *,
 
     with reading(db, experiment) as (conn, where, args):
         present = present_columns(conn)
-        wanted = [m for m in dict.fromkeys(metrics) if m not in CHUNK_COLUMNS]
+        extra = [c for c in dict.fromkeys(columns) if c not in CHUNK_COLUMNS]
+        wanted = [m for m in dict.fromkeys(metrics) if m not in CHUNK_COLUMNS and m not in extra]
         exprs: list[str] = []
         metric_args: list[str] = []
         for m in wanted:
@@ -79,12 +85,12 @@ def scenario_chunks(db: str | Path, experiment: str, metrics: Sequence[str], *,
             exprs.append(f"{expr} AS \"m:{len(exprs)}\"")
             if "?" in expr:
                 metric_args.append(m)
-        base = column_sql(CHUNK_COLUMNS, present)
+        base = column_sql((*CHUNK_COLUMNS, *extra), present)
         cursor = conn.execute(f"SELECT {', '.join(base + exprs)} FROM runs{where} ORDER BY scenario, id",
                               (*metric_args, *args))
 
         def frame(rows: list[tuple[Any, ...]]) -> pd.DataFrame:
-            return decode_runs(pd.DataFrame(rows, columns=[*CHUNK_COLUMNS, *wanted]), (*RUN_NUMBERS, *wanted))
+            return decode_runs(pd.DataFrame(rows, columns=[*CHUNK_COLUMNS, *extra, *wanted]), (*RUN_NUMBERS, *wanted))
 
         scenario_at = CHUNK_COLUMNS.index("scenario")
         buffer: list[tuple[Any, ...]] = []
@@ -107,6 +113,57 @@ def configurations(db: str | Path, experiment: str) -> "pd.DataFrame":
         rows = conn.execute(f"SELECT DISTINCT planner, params_hash, {label}, planner_version FROM runs{where} "
                             "ORDER BY planner, params_hash, label, planner_version", args).fetchall()
     return pd.DataFrame(rows, columns=["planner", "params_hash", "label", "planner_version"])
+
+
+def first_runs(db: str | Path, experiment: str) -> "pd.DataFrame":
+    """``planner, params_hash, label, planner_version, params``: the first stored run of each configuration.
+
+    A configuration is a distinct ``(planner, params_hash, label)``; ``params``
+    is the stored JSON text. Rows are in the order the runs were stored.
+    """
+    import pandas as pd
+
+    with reading(db, experiment) as (conn, where, args):
+        label = column_sql(["label"], present_columns(conn))[0]
+        rows = conn.execute(
+            f"SELECT planner, params_hash, {label}, planner_version, params FROM runs WHERE id IN "
+            f"(SELECT MIN(id) FROM runs{where} GROUP BY planner, params_hash, {label}) ORDER BY id", args).fetchall()
+    return pd.DataFrame(rows, columns=["planner", "params_hash", "label", "planner_version", "params"])
+
+
+def scenario_ids(db: str | Path, experiment: str) -> list[str]:
+    """The distinct scenarios of one experiment's runs, sorted."""
+    with reading(db, experiment) as (conn, where, args):
+        rows = conn.execute(f"SELECT DISTINCT scenario FROM runs{where} ORDER BY scenario", args).fetchall()
+    return [str(s) for (s,) in rows]
+
+
+def has_metric(db: str | Path, experiment: str, metric: str) -> bool:
+    """Whether a run of the experiment stored ``metric`` (its value may be NaN); the scan ends at the first."""
+    with reading(db, experiment) as (conn, where, args):
+        cond = (" AND " if where else " WHERE ") + "json_type(metrics, '$.' || json_quote(?)) IS NOT NULL"
+        row = conn.execute(f"SELECT 1 FROM runs{where}{cond} LIMIT 1", (*args, metric)).fetchone()
+    return row is not None
+
+
+def metrics_with_values(db: str | Path, experiment: str, metrics: Sequence[str]) -> set[str]:
+    """The ids of ``metrics`` of which some run of the experiment has a value (not NaN), in one scan."""
+    wanted = list(dict.fromkeys(metrics))
+    if not wanted:
+        return set()
+    with reading(db, experiment) as (conn, where, args):
+        present = present_columns(conn)
+        exprs = [_metric_expression(m, present) for m in wanted]
+        metric_args = [m for m, e in zip(wanted, exprs) if "?" in e]
+        found = conn.execute(f"SELECT {', '.join(f'MAX({e} IS NOT NULL)' for e in exprs)} FROM runs{where}",
+                             (*metric_args, *args)).fetchone()
+    return {m for m, hit in zip(wanted, found) if hit}
+
+
+def has_history(db: str | Path, experiment: str) -> bool:
+    """Whether a run of the experiment stored convergence points."""
+    with reading(db, experiment) as (conn, where, args):
+        return conn.execute(f"SELECT 1 FROM history{where} LIMIT 1", args).fetchone() is not None
 
 
 def library_versions(db: str | Path, experiment: str, skip: Sequence[str] = ()) -> dict[str, list[str]]:

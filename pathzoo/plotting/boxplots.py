@@ -15,6 +15,7 @@ from matplotlib.figure import Figure
 
 from pathzoo.analysis.frame import Direction, MetricInfo, metric_info, with_config
 from pathzoo.analysis.formatting import format_number, format_percent
+from pathzoo.core.errors import InvalidParameterError
 from pathzoo.plotting.figure import new_axes, new_figure, palette_for
 
 __all__ = ["plot_metric_boxes", "plot_metric_panels", "plot_relative_medians", "clip_outliers", "SQUASH_FACTOR"]
@@ -113,6 +114,7 @@ def plot_metric_panels(
     palette: Mapping[str, Any] | None = None,
     ncols: int = 3,
     log: bool | None = None,
+    configs: Sequence[str] | None = None,
 ) -> Figure:
     """One box-plot panel per scenario, each with its own y axis, planners named on its x axis.
 
@@ -137,11 +139,15 @@ def plot_metric_panels(
         Panels per row.
     log : bool, optional
         As in :func:`plot_metric_boxes`, decided per panel (a log axis is not clipped).
+    configs : sequence of str, optional
+        The configurations the figure makes room for and colours (default:
+        those of ``runs``), e.g. every configuration of an experiment when
+        ``runs`` holds only the scenarios shown.
     """
     info = metric_info(metric)
     df = with_config(runs, metric)
     order = sorted(df["scenario"].unique()) if scenarios is None else list(scenarios)
-    configs = sorted(df["config"].unique())
+    configs = sorted(df["config"].unique()) if configs is None else sorted(configs)
     palette = palette_for(configs, palette)
     ncols = max(1, min(ncols, len(order)))
     nrows = max(1, math.ceil(len(order) / ncols))
@@ -157,8 +163,8 @@ def plot_metric_panels(
     return fig
 
 
-def plot_relative_medians(runs: pd.DataFrame, metric: str = "length", *,
-                          palette: Mapping[str, Any] | None = None) -> Figure:
+def plot_relative_medians(runs: pd.DataFrame | None, metric: str = "length", *,
+                          palette: Mapping[str, Any] | None = None, summary: pd.DataFrame | None = None) -> Figure:
     """One panel for all scenarios: each planner's median on a scenario over the best planner's median there.
 
     A box per configuration holds one value per scenario, its
@@ -167,10 +173,27 @@ def plot_relative_medians(runs: pd.DataFrame, metric: str = "length", *,
     the share of scenarios on which the configuration had a successful run,
     when below 100 %. The figure's cost does not grow with the number of
     scenarios beyond its one table of medians.
-    """
-    from pathzoo.analysis.summary import relative_medians
 
-    table = relative_medians(runs, metric)
+    Parameters
+    ----------
+    runs : DataFrame or None
+        One row per run (not read when ``summary`` is given).
+    metric : str
+        Metric id.
+    palette : mapping, optional
+        Colour per configuration.
+    summary : DataFrame, optional
+        The :func:`~pathzoo.analysis.summary.summarize` table of ``runs`` and
+        ``metric``, when already at hand (e.g. gathered a chunk of scenarios
+        at a time).
+    """
+    from pathzoo.analysis.summary import relative_to_best, summarize
+
+    if summary is None:
+        if runs is None:
+            raise InvalidParameterError("plot_relative_medians needs runs or their summary")
+        summary = summarize(runs, metric)
+    table = relative_to_best(summary)
     info = table.attrs["metric"]
     frame = pd.DataFrame({"config": table["config"], metric: table["ratio"], "success": table["median"].notna()})
     configs = sorted(frame["config"].unique())

@@ -10,6 +10,7 @@ from matplotlib.axes import Axes
 from matplotlib.ticker import NullFormatter
 
 from pathzoo.analysis.anytime import AnytimeAxis, time_to_target
+from pathzoo.core.errors import InvalidParameterError
 from pathzoo.plotting.convergence import AXIS_LABELS
 from pathzoo.plotting.figure import legend_below, new_axes, palette_for
 
@@ -17,8 +18,8 @@ __all__ = ["plot_time_to_target_ecdf"]
 
 
 def plot_time_to_target_ecdf(
-    history: pd.DataFrame,
-    runs: pd.DataFrame,
+    history: pd.DataFrame | None,
+    runs: pd.DataFrame | None,
     *,
     eps: float = 0.05,
     optimum: Mapping[str, float] | pd.Series | None = None,
@@ -28,6 +29,7 @@ def plot_time_to_target_ecdf(
     log: bool = True,
     rtol: float = 1e-3,
     palette: Mapping[str, Any] | None = None,
+    hits: pd.DataFrame | None = None,
 ) -> Axes:
     """Fraction of runs that reached ``(1 + eps) * optimum`` by each ``x``, per configuration, pooled over scenarios.
 
@@ -58,8 +60,16 @@ def plot_time_to_target_ecdf(
         Tolerance deciding whether a run's objective is ``metric``.
     palette : mapping, optional
         Colour per configuration (default: :func:`~pathzoo.plotting.figure.planner_colors` of those shown).
+    hits : DataFrame, optional
+        The :func:`~pathzoo.analysis.anytime.time_to_target` rows (at least
+        ``config, comparable, hit``) of ``history`` and ``runs`` with these
+        settings, when already at hand (e.g. gathered a chunk of scenarios at
+        a time); then ``history`` and ``runs`` are not read.
     """
-    hits = time_to_target(history, runs, eps=eps, optimum=optimum, metric=metric, x=x, rtol=rtol)
+    if hits is None:
+        if history is None or runs is None:
+            raise InvalidParameterError("plot_time_to_target_ecdf needs history and runs, or their hits")
+        hits = time_to_target(history, runs, eps=eps, optimum=optimum, metric=metric, x=x, rtol=rtol)
     ax = new_axes(ax, (6.0, 4.0))
     configs = sorted(hits["config"].unique())
     colors = palette_for(configs, palette)
