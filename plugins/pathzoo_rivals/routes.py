@@ -198,10 +198,10 @@ class RouteProblem:
             if status == HEAP_FULL:
                 state.grow_heap()
             status = run_batch(astar_batch, args, len(self.scenario.graph.offsets), state, 1 << 22)
-        reached = state.closed
-        parent = np.where(reached, state.parent, -1)
-        dist = np.where(reached, state.g, np.inf)
-        return parent, dist
+        unreached = ~state.closed
+        np.putmask(state.parent, unreached, -1)  # in place: no second pair of node-sized arrays
+        np.putmask(state.g, unreached, np.inf)
+        return state.parent, state.g
 
     def random_route(self, rng: np.random.Generator, detour: float = DETOUR) -> np.ndarray | None:
         """A feasible route: the shortest route through a random *via* cell, string-pulled.
