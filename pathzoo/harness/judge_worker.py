@@ -354,6 +354,12 @@ class JudgePool:
     (no planner code ever ran in it); every record is the same whichever
     judge made it.
 
+    Each scenario has a home judge, dealt in turn as scenarios are prepared:
+    only that judge loads it ahead (:meth:`prepare`), and its runs go there
+    while it is free, else to any free judge (which then loads the scenario
+    itself). So a study of many scenarios loads each about once, not once per
+    judge, and one of few scenarios still keeps every judge busy.
+
     Parameters
     ----------
     size : int
@@ -363,13 +369,12 @@ class JudgePool:
     """
 
     def __init__(self, size: int, judge_timeout_s: float = JUDGE_TIMEOUT_S) -> None:
-        import queue
         from concurrent.futures import ThreadPoolExecutor
 
         self.judges = [JudgeWorker(judge_timeout_s) for _ in range(max(1, int(size)))]
-        self._free: queue.SimpleQueue[JudgeWorker] = queue.SimpleQueue()
-        for judge in self.judges:
-            self._free.put(judge)
+        self._free = list(self.judges)
+        self._freed = threading.Condition()
+        self._home: dict[Any, JudgeWorker] = {}  # scenario cache key -> the judge that loads it ahead
         self._threads = ThreadPoolExecutor(len(self.judges), thread_name_prefix="pathzoo-judge")
 
     def __enter__(self) -> "JudgePool":
@@ -381,20 +386,28 @@ class JudgePool:
         self.close()
 
     def prepare(self, task: "RunTask") -> None:
-        """Let every judge process load the task's scenario and warm up on it now (:meth:`JudgeWorker.prepare`)."""
-        for judge in self.judges:
-            judge.prepare(task)
+        """Let the scenario's home judge (the next in turn) load the task's scenario and warm up on it now
+        (:meth:`JudgeWorker.prepare`)."""
+        judge = self._home.setdefault(task.scenario.cache_key, self.judges[len(self._home) % len(self.judges)])
+        judge.prepare(task)
 
     def submit(self, task: "RunTask", outcome: "RunOutcome", *, isolated: bool = True) -> "Future[RunRecord]":
-        """The future record of one run (:meth:`JudgeWorker.judge` in the first judge process free)."""
+        """The future record of one run (:meth:`JudgeWorker.judge` in its scenario's home judge if free, else in
+        the first judge free)."""
         return self._threads.submit(self._judge, task, outcome, isolated)
 
     def _judge(self, task: "RunTask", outcome: "RunOutcome", isolated: bool) -> "RunRecord":
-        judge = self._free.get()
+        home = self._home.get(task.scenario.cache_key)
+        with self._freed:
+            self._freed.wait_for(lambda: bool(self._free))
+            judge = home if home in self._free else self._free[0]
+            self._free.remove(judge)
         try:
             return judge.judge(task, outcome, isolated=isolated)
         finally:
-            self._free.put(judge)
+            with self._freed:
+                self._free.append(judge)
+                self._freed.notify()
 
     def close(self) -> None:
         """Stop the judge processes (a verdict being awaited ends as the process dies) and their threads."""

@@ -5,46 +5,14 @@ thread in the harness process hands tasks to idle workers and waits on the
 pipes and on the process sentinels at the same time. Workers run planner
 code, so nothing they send is unpickled: they send short tagged byte strings
 (read with a size limit) and the outcome in the format of
-:mod:`pathzoo.harness.wire`:
-
-- ``R`` (ready) once started, ``I`` (idle) after each run when the process
-  is still clean, ``T`` (tainted) when the run rebound module attributes
-  (:mod:`pathzoo.harness.tamper`) or the warm-up left planner code running
-  (:class:`~pathzoo.harness.zygote.Residue`): that worker is retired and a
-  fresh one started, so no planner's patch reaches another run;
-- a new worker is first sent a :class:`~pathzoo.harness.zygote.WarmUp`
-  (the configuration and the scenario kind, nothing of any run): ``U``
-  once it has built the planner (the warm-up has the run's hard limit
-  ``timeout_s`` from there), ``W`` when its warm-up is done: the worker's
-  CPU is charged to its runs from then on, and the run is sent;
-- ``S`` (started: scenario loaded and its graph built): the hard limit
-  ``timeout_s`` counts from the *first* ``S``; later ones are ignored. The
-  setup before it has its own limit,
-  :data:`~pathzoo.harness.worker.SETUP_TIMEOUT_S`, and is recorded as ``crash``;
-- ``P`` (hand-over, just before the worker forks the run's child): the wall
-  clock starts;
-- ``D`` + the child's CPU seconds (``wait4``) + the outcome, sent once the
-  child has exited and been reaped: the run ends. Wall time is the
-  harness's ``time.perf_counter`` from ``P`` to ``D``; CPU time is the
-  larger of the worker's process tree and cgroup
-  (:class:`~pathzoo.harness.cpu_clock.ChargedCpu`: for a sandboxed worker,
-  the tree under its ``bwrap`` process) from the end of the previous run
-  (or ``W``) to ``D``, and of the child's figure from ``D`` (which can only
-  raise it), all read from the kernel, so a planner cannot change its own
-  timings (``docs/sandbox.md``, "What a run is charged"). While a run with
-  a clock limit plans, the monitor reads these clocks (for ``cpu_s``: see
-  :data:`~pathzoo.harness.executors.run_clocks.CLOCK_POLL_S`) and sets the worker's shared stop byte
-  (:class:`~pathzoo.harness.clock_stop.SharedClockStop`) when a limit is
-  spent; the run is stored with the stop the harness set (``stopped_by``),
-  whatever the planner did with the byte. A ``D`` before ``P`` (a failed
-  setup) is a ``crash`` whatever it says; any other frame while a run is
-  out (a repeated one, or one the planner's warm-up wrote on the control
-  socket) is ignored;
-- a worker past its hard limit gets ``SIGKILL`` (``Process.kill``), the run
-  resolves as ``timed_out`` and a fresh worker replaces it; one that dies
-  (``os._exit``, segfault, out of memory) gives a ``crash`` with the exit code
-  or signal; one that sends anything else, or more than
-  :data:`~pathzoo.harness.wire.MAX_OUTCOME_BYTES`, is killed and its run is a ``crash``.
+:mod:`pathzoo.harness.wire`. The frames, and the clocks they start and stop,
+are listed in :mod:`~pathzoo.harness.executors.worker_loop`. A worker past
+its hard limit gets ``SIGKILL`` (``Process.kill``): the run resolves as
+``timed_out`` and a fresh worker replaces it; one that dies (``os._exit``,
+segfault, out of memory) gives a ``crash`` with the exit code or signal; one
+that sends anything else, or more than
+:data:`~pathzoo.harness.wire.MAX_OUTCOME_BYTES`, is killed and its run is a
+``crash``.
 
 Each worker runs one planner configuration (planner id, parameter hash and
 scenario kind, :func:`~pathzoo.harness.executors.worker_handle.configuration`)
@@ -53,9 +21,11 @@ a queued run goes to an idle worker of its configuration, else to a new
 worker, so no interpreter state (a recursion limit, a replaced cached
 scenario) passes from one planner to another. At most ``jobs`` workers have
 a run at once, but up to :attr:`~ProcessExecutor.kept_workers` (twice as
-many) stay alive, idle ones waiting for their configuration's next run, and
-no configuration gets more workers than ``jobs``: a sweep that alternates
-configurations keeps its workers instead of starting one per switch. Only
+many) stay alive, idle ones waiting for their configuration's next run: a
+sweep that alternates configurations keeps its workers instead of starting
+one per switch. No configuration gets more workers than ``jobs``, and one
+that has a worker gets another only when its share of the slots, by the work
+it has left, says so (:mod:`~pathzoo.harness.executors.slot_shares`). Only
 when that many are alive is an idle worker that no queued run can use
 retired to make room.
 
@@ -101,6 +71,7 @@ from pathzoo.core.errors import PathzooError
 from pathzoo.harness.cpu_clock import process_cpu_time
 from pathzoo.harness.executors.base import RunExecutor
 from pathzoo.harness.executors.run_clocks import cpu_since, timed, watch_clocks
+from pathzoo.harness.executors.slot_shares import SlotShares
 from pathzoo.harness.executors.visibility import Visibility, sees
 from pathzoo.harness.executors.worker_handle import (Worker, any_configuration, configuration, describe_exit,
                                                      launch_worker, wrote_to_exit_pipe)
@@ -183,6 +154,7 @@ class ProcessExecutor(RunExecutor):
         self.kept_workers = 2 * self.capacity
         """Worker processes kept, idle ones included: at most :attr:`capacity` run at once, and an idle worker of
         another configuration waits for its next run instead of being replaced at every switch of configuration."""
+        self._shares = SlotShares(self.capacity)
         self._thread = threading.Thread(target=self._monitor, name="pathzoo-process-executor", daemon=True)
         self._thread.start()
 
@@ -214,8 +186,10 @@ class ProcessExecutor(RunExecutor):
         self._wake_w.send(None)
 
     def prepare(self, tasks: "list[RunTask]") -> None:
-        """Note where the experiment's scenario files are (a sandboxed worker sees only those directories)."""
+        """Note where the experiment's scenario files are (a sandboxed worker sees only those directories) and how
+        many runs each configuration has (:class:`~pathzoo.harness.executors.slot_shares.SlotShares`)."""
         self._visibility.see_files(tasks)
+        self._shares.expect(tasks)
 
     def shutdown(self) -> None:
         """Stop the monitor, ask idle workers to exit, kill busy ones, cancel queued runs."""
@@ -251,6 +225,7 @@ class ProcessExecutor(RunExecutor):
         """A new worker, for ``config`` (:func:`~pathzoo.harness.executors.worker_handle.launch_worker`)."""
         worker = launch_worker(self._ctx, config, sandboxed=self.sandboxed, limits=self.limits,
                                scratch_root=self._scratch_root, dirs=self._visibility.dirs())
+        worker.launched_at = _clock()
         self._workers.append(worker)
         return worker
 
@@ -285,9 +260,9 @@ class ProcessExecutor(RunExecutor):
             if starting[None] > 0 and not self.sandboxed:
                 starting[None] -= 1
                 continue
-            if sum(w.config in (config, any_configuration(config[0])) and sees(w, task)
-                   for w in self._workers) >= self.capacity:
-                continue  # as many of its configuration as can run at once: one of them takes it
+            alive = sum(w.config in (config, any_configuration(config[0])) and sees(w, task) for w in self._workers)
+            if alive >= self.capacity or not self._shares.worth_another(config, alive):
+                continue  # one of its workers takes it: another would cost more than it saves, or could not run
             if taken >= self.capacity:
                 return
             if len(self._workers) >= self.kept_workers:  # retire an idle worker that no queued run can use
@@ -314,6 +289,7 @@ class ProcessExecutor(RunExecutor):
                 if worker is not None:
                     del self._pending[i]
                     worker.config = config
+                    self._shares.taken(config)
                     return worker, task, future
         return None
 
@@ -331,6 +307,7 @@ class ProcessExecutor(RunExecutor):
                 continue
             worker.task, worker.future, worker.idle, worker.started_once = task, future, False, False
             worker.sent_at, worker.started_at = _clock(), utc_now()
+            worker.taken_at = worker.sent_at if worker.warm else math.nan  # a new worker's warm-up is not a run's
             worker.plan_t0 = worker.plan_t1 = math.nan
             worker.stopped_by = None
             worker.stop.clear()  # the worker is idle: it reads the byte only once it plans this task
@@ -358,6 +335,8 @@ class ProcessExecutor(RunExecutor):
 
     def _finish(self, worker: Worker, outcome: RunOutcome) -> None:
         self._first_alone = False
+        if worker.config is not None:
+            self._shares.ran(worker.config, _clock() - worker.taken_at)
         if worker.group is not None and worker.group.out_of_memory() and outcome.crash:
             outcome = replace(outcome, message=f"{outcome.message} (out of memory: over the sandbox's limit of "
                                                f"{self.limits.memory_bytes / 2**20:.0f} MiB)")
@@ -406,6 +385,7 @@ class ProcessExecutor(RunExecutor):
                 if worker.group is not None:  # processes the warm-up left behind: none outlives it
                     worker.group.kill(spare=worker.baseline)
                 worker.warm, worker.in_setup, worker.sent_at = True, True, _clock()
+                self._shares.started(worker.sent_at - worker.launched_at)
                 worker.deadline = worker.sent_at + max(worker.task.timeout_s, SETUP_TIMEOUT_S)
                 worker.cpu.start()
                 self._send(worker, worker.task, worker.future)

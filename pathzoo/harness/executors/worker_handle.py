@@ -110,6 +110,10 @@ class Worker:
     scratch: str = ""
     baseline: frozenset[int] = frozenset()
     visible: frozenset[str] = frozenset()
+    launched_at: float = math.nan
+    """When the harness launched it (``time.perf_counter``)."""
+    taken_at: float = math.nan
+    """When its current run was handed to it, warm (NaN for a run that waits for the warm-up)."""
 
     @property
     def listening(self) -> bool:

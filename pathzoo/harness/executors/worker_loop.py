@@ -6,6 +6,42 @@ fresh child (:class:`~pathzoo.harness.zygote.Zygote`) and answers with short
 tagged byte strings; the harness never unpickles what a worker sends
 (:mod:`pathzoo.harness.executors.process` reads the frames, and
 :mod:`pathzoo.harness.wire` the outcome).
+
+The frames, and what the harness does with each:
+
+- ``R`` (ready) once started, ``I`` (idle) after each run when the process
+  is still clean, ``T`` (tainted) when the run rebound module attributes
+  (:mod:`pathzoo.harness.tamper`) or the warm-up left planner code running
+  (:class:`~pathzoo.harness.zygote.Residue`): that worker is retired and a
+  fresh one started, so no planner's patch reaches another run;
+- a new worker is first sent a :class:`~pathzoo.harness.zygote.WarmUp`
+  (the configuration and the scenario kind, nothing of any run): ``U``
+  once it has built the planner (the warm-up has the run's hard limit
+  ``timeout_s`` from there), ``W`` when its warm-up is done: the worker's
+  CPU is charged to its runs from then on, and the run is sent;
+- ``S`` (started: scenario loaded and its graph built): the hard limit
+  ``timeout_s`` counts from the *first* ``S``; later ones are ignored. The
+  setup before it has its own limit,
+  :data:`~pathzoo.harness.worker.SETUP_TIMEOUT_S`, and is recorded as ``crash``;
+- ``P`` (hand-over, just before the worker forks the run's child): the wall
+  clock starts;
+- ``D`` + the child's CPU seconds (``wait4``) + the outcome, sent once the
+  child has exited and been reaped: the run ends. Wall time is the
+  harness's ``time.perf_counter`` from ``P`` to ``D``; CPU time is the
+  larger of the worker's process tree and cgroup
+  (:class:`~pathzoo.harness.cpu_clock.ChargedCpu`: for a sandboxed worker,
+  the tree under its ``bwrap`` process) from the end of the previous run
+  (or ``W``) to ``D``, and of the child's figure from ``D`` (which can only
+  raise it), all read from the kernel, so a planner cannot change its own
+  timings (``docs/sandbox.md``, "What a run is charged"). While a run with
+  a clock limit plans, the monitor reads these clocks (for ``cpu_s``: see
+  :data:`~pathzoo.harness.executors.run_clocks.CLOCK_POLL_S`) and sets the worker's shared stop byte
+  (:class:`~pathzoo.harness.clock_stop.SharedClockStop`) when a limit is
+  spent; the run is stored with the stop the harness set (``stopped_by``),
+  whatever the planner did with the byte. A ``D`` before ``P`` (a failed
+  setup) is a ``crash`` whatever it says; any other frame while a run is
+  out (a repeated one, or one the planner's warm-up wrote on the control
+  socket) is ignored.
 """
 
 from __future__ import annotations
