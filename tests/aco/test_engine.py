@@ -29,6 +29,7 @@ from pathzoo_aco.engine import (
     Walks,
     deposit_walks,
 )
+from pathzoo_aco.engine.walk import FILL_STEPS_PER_NODE
 
 from aco_maps import hill, open_grid, walled_grid
 
@@ -379,6 +380,35 @@ def test_precomputed_colony_weights_give_the_walks_of_the_per_step_weights(monke
     assert want.reached.any() and got.steps.sum() > 20
     for name in ("flat", "offsets", "flags", "steps"):
         np.testing.assert_array_equal(getattr(got, name), getattr(want, name))
+
+
+def test_weights_are_filled_only_when_the_last_colony_took_enough_steps(monkeypatch):
+    """The first colony fills; later ones fill only from FILL_STEPS_PER_NODE steps per node; the walks are the
+    same whichever is chosen."""
+    problem = ColonyProblem(walled_grid())
+    g = problem.graph
+    eta = 1.0 / (g.length + problem.goal_distance[g.indices])
+    rules = WalkRules.product(2.0, eta, 2.0, None, max_steps=10**9)  # a power: 2.5 steps per node
+    trail = Pheromone(g.n_edges, np.random.default_rng(3).uniform(0.1, 1.0, g.n_edges))
+    engine = WalkEngine(problem)
+    assert engine.weights_pay(rules, 1)
+    engine.steps_per_ant = FILL_STEPS_PER_NODE[False] * g.n_nodes / 4
+    assert engine.weights_pay(rules, 4) and not engine.weights_pay(rules, 3)
+    assert engine.weights_pay(replace(rules, tau_exp=1.0), 1)  # 0.25 steps per node
+    engine = WalkEngine(problem)
+    filled: list[bool] = []
+    choose = WalkEngine.weights_pay
+    monkeypatch.setattr(WalkEngine, "weights_pay", lambda self, r, n: filled.append(choose(self, r, n)) or filled[-1])
+    ants = (1, 2, 6, 1)
+    chosen = [engine.walk(rules, trail, n, seed=n) for n in ants]
+    assert filled == [True, False, True, False]  # 100 nodes; walks of 45-100 steps each
+    monkeypatch.setattr(WalkEngine, "weights_pay", lambda self, r, n: True)
+    always = WalkEngine(problem)
+    for got, n in zip(chosen, ants):
+        want = always.walk(rules, trail, n, seed=n)
+        assert want.reached.any()
+        for name in ("flat", "offsets", "flags", "steps"):
+            np.testing.assert_array_equal(getattr(got, name), getattr(want, name))
 
 
 def test_colonies_that_change_the_trail_while_walking_compute_weights_per_step():

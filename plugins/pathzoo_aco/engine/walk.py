@@ -2,7 +2,9 @@
 
 It picks the compiled kernel a colony needs (:func:`~pathzoo_aco.engine.walk_kernel.colony_kernel`: weights
 fixed before the colony or read from the trail at each step, ants one after another or racing and pre-choice
-additions), keeps their buffers between colonies and grows them when a kernel asks.
+additions), keeps their buffers between colonies and grows them when a kernel asks. Weights are fixed before a
+colony only when no ant changes the trail as it walks and the colony is expected to take enough steps to repay
+the pass over every listed edge (:meth:`WalkEngine.weights_pay`).
 
 Random numbers come from numba's generator, seeded from the planner's
 ``rng`` at every iteration, so one seed gives one path.
@@ -20,7 +22,21 @@ from pathzoo_aco.engine.rules import WalkRules
 from pathzoo_aco.engine.walk_kernel import KERNELS, Adjacency, fill_weights, unsigned_lists
 from pathzoo_aco.engine.walk_result import Walks
 
-__all__ = ["WalkEngine", "REACHED", "STUCK", "STEP_CAP", "EXHAUSTED", "ABORTED", "OUTRUN"]
+__all__ = ["WalkEngine", "FILL_STEPS_PER_NODE", "REACHED", "STUCK", "STEP_CAP", "EXHAUSTED", "ABORTED", "OUTRUN"]
+
+FILL_STEPS_PER_NODE = {True: 0.25, False: 2.5}
+"""Steps per graph node a colony must be expected to take for filling its weights first to pay, by whether the
+trail exponent is 1.
+
+Filling costs one weight per listed edge; a step then saves, on each
+candidate it reads, the trail read, the factors (and with another exponent
+the kept power) of the kernel that weighs edges at each step. A step reads
+about a node's degree of candidates, so the fill pays once the steps exceed
+``fill cost per edge / saving per read`` times the nodes. Measured on
+``dsaco.complex`` and ``gant.complex.1``: a fill costs 0.6-0.8 ns per edge
+and saves 2-6 ns per read with an exponent of 1; 22-30 ns per edge (a
+``pow``) against about 10 ns saved per read with another exponent.
+"""
 
 
 @numba.njit(cache=True)
@@ -71,6 +87,7 @@ class WalkEngine:
         self.colony = 0
         self.lists: tuple = (None, ())  # an adjacency and its lists as the kernels read them
         self.total_steps = 0
+        self.steps_per_ant = -1.0  # of the last colony (-1 before the first)
 
     def adjacency(self, rules: WalkRules) -> Adjacency:
         """The edges an ant may take under ``rules``, per node, as the kernel reads them.
@@ -128,6 +145,21 @@ class WalkEngine:
                       trail.on_nodes, rules.tau_exp)
         return self.weights
 
+    def weights_pay(self, rules: WalkRules, n_ants: int) -> bool:
+        """Whether filling the coming colony's weights first (:meth:`colony_weights`) is expected to cost less than
+        weighing edges at each step.
+
+        The expected steps are the last colony's steps per ant times
+        ``n_ants``; the fill pays from :data:`FILL_STEPS_PER_NODE` steps per
+        graph node. Before the first colony nothing is known, and the
+        weights are filled (at most one pass over the listed edges). Either
+        way the walks are the same: the choice only changes their cost.
+        """
+        if self.steps_per_ant < 0.0:
+            return True
+        per_node = FILL_STEPS_PER_NODE[rules.tau_exp == 1.0]
+        return self.steps_per_ant * n_ants >= per_node * self.problem.graph.n_nodes
+
     def _number_colony(self, entries: int) -> None:
         """A new number for the coming colony of :func:`~pathzoo_aco.engine.walk_kernel.local_colony`, so the
         powers it keeps start invalid."""
@@ -179,7 +211,7 @@ class WalkEngine:
         counters = np.zeros(4, dtype=np.int64)
         offsets = np.zeros(n_ants + 1, dtype=np.int64)
         adjacency = self.adjacency(rules)
-        weights = self.colony_weights(rules, trail)
+        weights = self.colony_weights(rules, trail) if self.weights_pay(rules, n_ants) else None
         general = rules.race or rules.pre_add.size > 0  # racing ants or pre-choice additions
         if self.lists[0] is not adjacency:  # the same lists serve every colony of a run
             self.lists = (adjacency, unsigned_lists(p, self.indices, adjacency))
@@ -215,6 +247,7 @@ class WalkEngine:
         else:
             self.walk_base += n_ants
         self.total_steps += int(counters[2])
+        self.steps_per_ant = int(counters[2]) / n_ants if n_ants else self.steps_per_ant
         if rules.race:
             lengths = np.where(flags == REACHED, depth, 0)
             offsets = np.concatenate([[0], np.cumsum(lengths)])
