@@ -129,9 +129,10 @@ def scenarios_from_scen(path: str | Path) -> list[Scenario]:
     - Cells are 1 m; start and goal are cell centres (``x`` = column + 0.5,
       ``y`` = row + 0.5) and ``reference_length`` is the file's optimal
       length times the cell size.
-    - All problems on one map share one read-only map array and one
-      neighbourhood graph: the first problem's Scenario is built (graph
-      included) and the others are :meth:`Scenario.with_endpoints` copies.
+    - All problems on one map share one read-only map array, one
+      neighbourhood graph and one clearance map: the first problem's
+      Scenario is built (graph and clearance included) and the others are
+      :meth:`Scenario.with_endpoints` copies.
 
     Raises
     ------
@@ -191,7 +192,8 @@ def scenarios_from_scen(path: str | Path) -> list[Scenario]:
                     description=f"MovingAI {stem}, problem {p.index} (bucket {p.bucket})",
                     metadata=metadata,
                 )
-                scenario.graph  # build it now so every copy shares it
+                scenario.graph  # build them now so every copy shares them
+                scenario.clearance
                 first[name] = scenario
         except InvalidScenarioError as exc:
             from pathzoo.generators.checks import relocated  # not at the top: the generators import scipy

@@ -40,7 +40,7 @@ def test_malformed_maps_name_file_and_field(tmp_path, body, field):
         read_map(path)
 
 
-def test_scen_gives_one_scenario_per_line_sharing_one_map_and_graph(arena):
+def test_scen_gives_one_scenario_per_line_sharing_one_map_graph_and_clearance(arena):
     scen = arena / "arena.map.scen"
     problems = read_scen(scen)
     scenarios = load_scenario_files(scen)
@@ -55,6 +55,7 @@ def test_scen_gives_one_scenario_per_line_sharing_one_map_and_graph(arena):
     assert last.metadata["problem_index"] == len(problems) - 1 and last.metadata["bucket"] == p.bucket
     assert all(s.occupancy is first.occupancy for s in scenarios)
     assert all(s.graph is first.graph for s in scenarios)
+    assert all(s.__dict__["clearance"] is first.clearance for s in scenarios)  # computed once, with the graph
     assert pathzoo.load_scenarios(scen)[3].id == "arena.3"
 
 
