@@ -86,6 +86,12 @@ class WalkEngine:
         self.power_stamp = np.zeros(0, dtype=np.int32)
         self.colony = 0
         self.lists: tuple = (None, ())  # an adjacency and its lists as the kernels read them
+        self.both_kernels = False
+        """Whether the kernel this engine's colonies did not take has been called once (for no ant) with their
+        argument types. A colony takes the filled-weights kernel or the other one (:meth:`weights_pay`), so a
+        process's walks can need either; numba loads a kernel for a new set of types from its disk cache at the
+        first call (tens of milliseconds). Called so in a worker's warm-up, both are loaded before any run's
+        process is forked from it, instead of in the runs that take the other one (and charged to them)."""
         self.total_steps = 0
         self.steps_per_ant = -1.0  # of the last colony (-1 before the first)
 
@@ -220,16 +226,19 @@ class WalkEngine:
         if weights is None and not general and rules.tau_exp != 1.0:  # powers are kept only for another exponent
             self._number_colony(trail.x.size)
         kernel = KERNELS[weights is None, general]
+        rest = (p.horizontal_offsets, rules.turn, trail.x, trail.scale, trail.lo, trail.hi, trail.on_nodes,
+                rules.tau_exp, rules.q0, rules.local_keep, rules.local_add, rules.pre_add, self.powers,
+                self.power_stamp, self.colony, p.start, p.goal, rules.backtrack, rules.max_steps, allowance, rules.race,
+                self.race_colony if rules.race else self.walk_base, self.race_stamps if rules.race else self.stamps)
+        if not self.both_kernels:  # see :attr:`both_kernels`: the other kernel, for no ant, with these types
+            KERNELS[weights is not None, general](*self.lists[1], None if weights is not None else self.weights,
+                                                  *rest, stacks, prevs, self.cand_w, cur, depth, prev, steps,
+                                                  flags[:0], np.zeros(4, dtype=np.int64), self.flat, offsets)
+            self.both_kernels = True
         _seed(seed)
-        while True:
-            status = kernel(
-                *self.lists[1], weights, p.horizontal_offsets, rules.turn, trail.x, trail.scale, trail.lo, trail.hi,
-                trail.on_nodes, rules.tau_exp, rules.q0, rules.local_keep, rules.local_add, rules.pre_add,
-                self.powers, self.power_stamp, self.colony, p.start, p.goal, rules.backtrack, rules.max_steps,
-                allowance, rules.race, self.race_colony if rules.race else self.walk_base,
-                self.race_stamps if rules.race else self.stamps, stacks, prevs, self.cand_w,
-                cur, depth, prev, steps, flags, counters, self.flat, offsets,
-            )
+        while True:  # the stacks are grown below: passed anew each time
+            status = kernel(*self.lists[1], weights, *rest, stacks, prevs, self.cand_w, cur, depth, prev, steps,
+                            flags, counters, self.flat, offsets)
             if status == DONE:
                 break
             if counters[3]:  # a finished walk needs room in ``flat``
