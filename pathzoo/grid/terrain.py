@@ -29,6 +29,7 @@ if TYPE_CHECKING:
 __all__ = [
     "bilinear_elevation",
     "path_profile",
+    "segments_profile",
     "segment_profile",
     "segment_slope_range",
     "path_slope_ranges",
@@ -83,6 +84,8 @@ def path_profile(
     heights come from :func:`bilinear_elevation`. Without elevation every
     segment is one flat piece. Vectorised over the whole path. Slope *limits*
     are judged on the exact ground slope instead (:func:`segment_slope_range`).
+    The pieces of a segment depend on that segment alone: they are
+    :func:`segments_profile`'s for it.
 
     Returns
     -------
@@ -92,19 +95,37 @@ def path_profile(
         Index of the segment each piece belongs to.
     """
     pts = np.asarray(path, dtype=np.float64)[:, :2]
-    d = np.diff(pts, axis=0)
+    return segments_profile(elevation, pts[:-1], pts[1:], cell_size)
+
+
+def segments_profile(
+    elevation: np.ndarray | None, starts: np.ndarray, ends: np.ndarray, cell_size: float
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The pieces of :func:`path_profile` of the separate segments ``starts[i]`` to ``ends[i]`` (world ``x, y``).
+
+    Every operation is element by element, so a segment's pieces are the
+    same to the last bit whichever other segments come with it. Heights are
+    read once at each of the ``n + 1`` points ``start + (j / n) (end - start)``
+    of a segment of ``n`` pieces (a piece ends where the next one starts).
+
+    Returns
+    -------
+    lengths, slopes, segment : ndarray
+        As :func:`path_profile`'s, ``segment`` indexing ``starts``.
+    """
+    starts = np.asarray(starts, dtype=np.float64)[:, :2]
+    d = np.asarray(ends, dtype=np.float64)[:, :2] - starts
     horiz = np.hypot(d[:, 0], d[:, 1])
     if elevation is None:
         return horiz, np.zeros(len(horiz)), np.arange(len(horiz))
     n = np.maximum(1, np.ceil(horiz / cell_size / MAX_PIECE_CELLS - 1e-12)).astype(np.int64)
     segment = np.repeat(np.arange(len(horiz)), n)
-    first = np.repeat(np.cumsum(n) - n, n)
-    k = np.arange(len(segment)) - first
-    nn = n[segment]
-    a = pts[segment] + (k / nn)[:, None] * d[segment]
-    b = pts[segment] + ((k + 1) / nn)[:, None] * d[segment]
-    dz = bilinear_elevation(elevation, b / cell_size) - bilinear_elevation(elevation, a / cell_size)
-    dh = horiz[segment] / nn
+    on = np.repeat(np.arange(len(horiz)), n + 1)  # the segment of each of the n + 1 points
+    j = np.arange(len(on)) - np.repeat(np.cumsum(n + 1) - (n + 1), n + 1)
+    z = bilinear_elevation(elevation, (starts[on] + (j / n[on])[:, None] * d[on]) / cell_size)
+    a = np.arange(len(segment)) + segment  # piece i of segment s starts at point i + s
+    dz = z[a + 1] - z[a]
+    dh = horiz[segment] / n[segment]
     flat = dh == 0.0  # a repeated waypoint: no length, no slope
     dz = np.where(flat, 0.0, dz)
     return np.sqrt(dh * dh + dz * dz), np.arctan2(dz, dh), segment

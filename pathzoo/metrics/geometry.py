@@ -17,8 +17,11 @@ from pathzoo.metrics.path_memo import last_call
 
 if TYPE_CHECKING:
     from pathzoo.core.scenario import Scenario
+    from pathzoo.core.vehicle import VehicleModel
 
-__all__ = ["TURN_EPS_RAD", "driven_pieces", "turn_angles", "clearance_samples", "travel_time_energy"]
+__all__ = [
+    "TURN_EPS_RAD", "driven_pieces", "turn_angles", "clearance_samples", "travel_time_energy", "drive_time_energy",
+]
 
 TURN_EPS_RAD = 1e-6
 """Heading changes at or below this many radians are not turns."""
@@ -98,10 +101,22 @@ def travel_time_energy(
     ``E = Σ (P(θ) - b) L / v + Σ_turns ½ m (v² - v_t²) + b T`` (the onboard load
     ``b`` is drawn for the whole mission). See ``docs/energy.md``.
     """
-    vehicle = scenario.vehicle
     pts = np.asarray(path, dtype=np.float64)
     lengths, slopes = driven_pieces(scenario, pts)
-    extra_t, extra_e = vehicle.turn_penalty(turn_angles(pts))
+    return drive_time_energy(scenario.vehicle, lengths, slopes, turn_angles(pts), times)
+
+
+def drive_time_energy(
+    vehicle: "VehicleModel", lengths: np.ndarray, slopes: np.ndarray, turns: np.ndarray,
+    times: np.ndarray | None = None,
+) -> tuple[float, float]:
+    """:func:`travel_time_energy` of a path given by its driven pieces and heading changes.
+
+    ``lengths`` and ``slopes`` are :func:`driven_pieces`' of the path, ``turns``
+    :func:`turn_angles`'; a caller that has them (a planner costing many
+    paths) gets the same figures to the last bit without the path.
+    """
+    extra_t, extra_e = vehicle.turn_penalty(turns)
     drive_t = float(lengths.sum()) / vehicle.cruise_speed
     drive_e = float(vehicle.segment_energy(lengths, slopes).sum())
     if times is None:

@@ -77,9 +77,8 @@ class RouteRun:
         if self.exhausted():
             return None
         self.evaluations += 1
-        f = self.problem.objectives(route)
+        f, cost = self.problem.measure(route, self.rule)
         self.archive.add(route, f)
-        cost = float(f[0]) if self.rule == "length" else self.problem.criterion(route, self.rule)
         if cost < self.best_cost:
             self.best, self.best_cost = route, cost
             if self.progress is not None:

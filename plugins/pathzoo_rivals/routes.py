@@ -47,12 +47,13 @@ from pathzoo.core import Scenario
 from pathzoo.grid.paths import centre_path
 from pathzoo.grid.terrain import segment_profile
 from pathzoo.rules import segment_problem
-from pathzoo.metrics.geometry import driven_pieces, travel_time_energy, turn_angles
+from pathzoo.metrics.geometry import drive_time_energy, turn_angles
 from pathzoo_exact.problem import H_OCTILE, H_ZERO, search_problem
 from pathzoo_exact.search_loop import astar_batch
 from pathzoo_exact.search_state import FOUND, HEAP_FULL, RUNNING, SearchState, run_batch
 from pathzoo_exact.waypoints import trace_path
-from pathzoo_rivals.route_kernels import clearance_samples, pull_string_free, route_free, segment_free, via_route
+from pathzoo_rivals.route_kernels import pull_string_free, route_free, segment_free, via_route
+from pathzoo_rivals.route_segments import SegmentCache
 
 __all__ = ["RouteProblem", "SLOPE_MARGIN_DEG", "N_OBJECTIVES", "OBJECTIVES", "DETOUR", "SEGMENT_CACHE_SIZE"]
 
@@ -87,7 +88,7 @@ class RouteProblem:
         self.goal = int(scenario.goal_node)
         self.shape = scenario.shape
         self.free = ~scenario.blocked
-        self.clearance = scenario.clearance
+        self._segments = SegmentCache(scenario)
         self._segment_ok: dict[tuple[int, int], bool] = {}
         self._via: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None = None  # random_route's trees
         self._candidates: tuple[float, np.ndarray, np.ndarray] | None = None  # its via cells and scratch array
@@ -251,31 +252,30 @@ class RouteProblem:
         return self.scenario.point_of(route)
 
     def objectives(self, route: np.ndarray) -> np.ndarray:
-        """``(length, risk, turning)`` of a route's world path, all to be minimised (see module).
+        """``(length, risk, turning)`` of a route's world path, all to be minimised (see module)."""
+        return self.measure(route, "length")[0]
 
-        The pieces and turns are the harness's memoised ones
-        (:func:`~pathzoo.metrics.geometry.driven_pieces`,
-        :func:`~pathzoo.metrics.geometry.turn_angles`), so the energy of the
-        same route (:meth:`criterion`) reuses them.
+    def measure(self, route: np.ndarray, rule: str) -> tuple[np.ndarray, float]:
+        """The objectives of a route (:meth:`objectives`) and its selection criterion under ``rule``.
+
+        The criterion is the route's 3-D length (m, ``rule="length"``) or the
+        harness's energy metric (J, ``"energy"``). Both come from the same
+        driven pieces, the harness's (:func:`~pathzoo.metrics.geometry.driven_pieces`)
+        kept per segment (:class:`~pathzoo_rivals.route_segments.SegmentCache`),
+        and heading changes (:func:`~pathzoo.metrics.geometry.turn_angles`).
         """
         pts = self.world_path(route)
-        lengths, _ = driven_pieces(self.scenario, pts)
-        return np.array([float(lengths.sum()), -self.mean_clearance(pts), float(turn_angles(pts).sum())])
+        lengths, slopes = self._segments.pieces(pts)
+        turns = turn_angles(pts)
+        f = np.array([float(lengths.sum()), -self.mean_clearance(pts), float(turns.sum())])
+        if rule == "length":
+            return f, float(f[0])
+        return f, drive_time_energy(self.scenario.vehicle, lengths, slopes, turns)[1]
 
     def mean_clearance(self, pts: np.ndarray) -> float:
-        """Mean clearance (m) of the cells under points sampled every half cell along a polyline."""
-        cs = self.scenario.cell_size
-        seg = np.diff(pts, axis=0)
-        steps = np.maximum(1, np.ceil(np.hypot(seg[:, 0], seg[:, 1]) / (0.5 * cs)).astype(np.int64))
-        samples = clearance_samples(self.clearance, np.ascontiguousarray(pts, dtype=np.float64), steps, float(cs))
-        return float(samples.mean())
+        """Mean clearance (m) of the cells under points sampled every half cell along a polyline (kept per segment)."""
+        return float(self._segments.clearances(np.asarray(pts, dtype=np.float64)).mean())
 
     def world_path(self, route: np.ndarray) -> np.ndarray:
         """The route as a world path from exactly ``scenario.start`` to exactly ``scenario.goal``."""
         return centre_path(self.scenario, route)
-
-    def criterion(self, route: np.ndarray, rule: str) -> float:
-        """Selection criterion of a route: its 3-D length (m) or the harness's energy metric (J)."""
-        if rule == "length":
-            return float(self.objectives(route)[0])
-        return travel_time_energy(self.scenario, self.world_path(route))[1]
