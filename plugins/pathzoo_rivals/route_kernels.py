@@ -9,17 +9,25 @@ the same float operations as ``Scenario.point_of`` followed by
 Python one. String-pulling and corner bridging are the loops of
 :meth:`RouteProblem.pull_string` and :func:`pathzoo_rivals.route_moves.leap`
 over that test; :func:`via_route` joins the two shortest-path trees of a
-route problem through one cell.
+route problem through one cell; :func:`blend_cells` is the geometry of the
+SFLA leap (:func:`pathzoo_rivals.route_moves.leap`): two polylines resampled
+by arc length as NumPy's ``cumsum``, ``linspace`` and ``interp`` do (the same
+float operations in the same order), blended and snapped to cells.
 """
 
 from __future__ import annotations
+
+import math
 
 import numba
 import numpy as np
 
 from pathzoo.grid.segments import first_blocked_cell_2d
 
-__all__ = ["clearance_samples", "segment_free", "route_free", "pull_string_free", "bridge_corners_free", "via_route"]
+__all__ = [
+    "clearance_samples", "segment_free", "route_free", "pull_string_free", "bridge_corners_free", "via_route", "resample",
+    "blend_cells",
+]
 
 
 @numba.njit(cache=True)
@@ -164,3 +172,77 @@ def clearance_samples(clearance: np.ndarray, pts: np.ndarray, steps: np.ndarray,
             n += 1
     out[n] = clearance[min(max(int(pts[-1, 1] / cs), 0), h - 1), min(max(int(pts[-1, 0] / cs), 0), w - 1)]
     return out
+
+
+@numba.njit(cache=True)
+def _interp(t: np.ndarray, s: np.ndarray, f: np.ndarray) -> np.ndarray:
+    """``np.interp(t, s, f)`` for ``t`` ascending within ``[s[0], s[-1]]`` and ``s`` strictly ascending.
+
+    NumPy's formula: slopes ``(f[j + 1] - f[j]) / (s[j + 1] - s[j])``, then
+    ``slope (t - s[j]) + f[j]`` on the interval holding ``t``, ``f[j]`` where
+    ``t`` is a knot ``s[j]`` or the last one.
+    """
+    m = len(s)
+    slopes = np.empty(m - 1)
+    for i in range(m - 1):
+        slopes[i] = (f[i + 1] - f[i]) / (s[i + 1] - s[i])
+    out = np.empty(len(t))
+    j = 0
+    for i in range(len(t)):
+        x = t[i]
+        while j + 1 < m and s[j + 1] <= x:
+            j += 1
+        out[i] = f[j] if j == m - 1 or s[j] == x else slopes[j] * (x - s[j]) + f[j]
+    return out
+
+
+@numba.njit(cache=True)
+def resample(points: np.ndarray, n: int) -> np.ndarray:
+    """``n`` points equally spaced by arc length along a polyline of distinct consecutive points (ends kept).
+
+    The arc lengths are ``concatenate([0], cumsum(hypot(diff)))``, the
+    parameters ``linspace(0, total, n)`` (``i * (total / (n - 1))``, the last
+    one ``total``), the coordinates ``np.interp`` of them.
+    """
+    m = len(points)
+    s = np.empty(m)
+    s[0] = 0.0
+    for i in range(1, m):
+        piece = math.hypot(points[i, 0] - points[i - 1, 0], points[i, 1] - points[i - 1, 1])
+        s[i] = piece if i == 1 else s[i - 1] + piece
+    step = s[m - 1] / (n - 1)
+    t = np.empty(n)
+    for i in range(n):
+        t[i] = float(i) * step + 0.0
+    t[n - 1] = s[m - 1]
+    out = np.empty((n, 2))
+    out[:, 0] = _interp(t, s, np.ascontiguousarray(points[:, 0]))
+    out[:, 1] = _interp(t, s, np.ascontiguousarray(points[:, 1]))
+    return out
+
+
+@numba.njit(cache=True)
+def blend_cells(pa: np.ndarray, pb: np.ndarray, n: int, r: float, cs: float, h: int, w: int, start: int,
+                goal: int) -> np.ndarray:
+    """Cells under ``a + r (b - a)``, ``a`` and ``b`` the polylines ``pa`` and ``pb`` resampled to ``n`` points.
+
+    A point goes to the cell ``(int(y / cs), int(x / cs))`` clipped to the
+    map; the first cell is ``start``, the last ``goal``, and a cell equal to
+    the one before it is left out.
+    """
+    a = resample(pa, n)
+    b = resample(pb, n)
+    cells = np.empty(n, dtype=np.int64)
+    k = 0
+    for i in range(n):
+        x = a[i, 0] + r * (b[i, 0] - a[i, 0])
+        y = a[i, 1] + r * (b[i, 1] - a[i, 1])
+        cell = min(max(int(y / cs), 0), h - 1) * w + min(max(int(x / cs), 0), w - 1)
+        if i == 0:
+            cell = start
+        elif i == n - 1:
+            cell = goal
+        if k == 0 or cell != cells[k - 1]:
+            cells[k] = cell
+            k += 1
+    return cells[:k].copy()

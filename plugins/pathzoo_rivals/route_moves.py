@@ -10,10 +10,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from pathzoo_rivals.route_kernels import bridge_corners_free
+from pathzoo_rivals.route_kernels import blend_cells, bridge_corners_free
 from pathzoo_rivals.routes import RouteProblem
 
-__all__ = ["relocate", "insert", "remove", "leap", "resample"]
+__all__ = ["relocate", "insert", "remove", "leap"]
 
 
 def _cell_near(problem: RouteProblem, node: int, radius: int, rng: np.random.Generator) -> int | None:
@@ -70,14 +70,6 @@ def remove(problem: RouteProblem, route: np.ndarray, rng: np.random.Generator, t
     return None
 
 
-def resample(points: np.ndarray, n: int) -> np.ndarray:
-    """``n`` points equally spaced by arc length along a polyline (first and last points kept)."""
-    seg = np.hypot(*np.diff(points, axis=0).T)
-    s = np.concatenate([[0.0], np.cumsum(seg)])
-    t = np.linspace(0.0, s[-1], n)
-    return np.stack([np.interp(t, s, points[:, 0]), np.interp(t, s, points[:, 1])], axis=1)
-
-
 def leap(problem: RouteProblem, worst: np.ndarray, best: np.ndarray, rng: np.random.Generator) -> np.ndarray | None:
     """SFLA's leap ``X_w + r (X_b - X_w)``, ``r ~ U(0, 1)``, on routes resampled to a common number of points.
 
@@ -90,16 +82,9 @@ def leap(problem: RouteProblem, worst: np.ndarray, best: np.ndarray, rng: np.ran
     pa, pb = problem.polyline(worst), problem.polyline(best)
     longest = max(float(np.hypot(*np.diff(p, axis=0).T).sum()) for p in (pa, pb))
     n = max(len(worst), len(best), int(np.ceil(longest / problem.scenario.cell_size)) + 1)
-    a = resample(pa, n)
-    b = resample(pb, n)
-    blend = a + rng.uniform() * (b - a)
-    cs = problem.scenario.cell_size
     h, w = problem.shape
-    cols = np.clip((blend[:, 0] / cs).astype(np.int64), 0, w - 1)
-    rows = np.clip((blend[:, 1] / cs).astype(np.int64), 0, h - 1)
-    cells = rows * w + cols
-    cells[0], cells[-1] = problem.start, problem.goal
-    cells = _bridge_corners(problem, cells[np.concatenate([[True], cells[1:] != cells[:-1]])])
+    cells = blend_cells(pa, pb, n, rng.uniform(), problem.scenario.cell_size, h, w, problem.start, problem.goal)
+    cells = _bridge_corners(problem, cells)
     return problem.pull_string(cells) if problem.route_ok(cells) else None
 
 
