@@ -119,12 +119,18 @@ def _judge_main(conn: Connection, alive: Connection) -> None:
             conn.send(("error", describe_exception(exc).splitlines()[0]))
 
 
+_WARMED_KINDS: set[str] = set()
+"""The scenario kinds whose validation and metrics this judge process has run once (:func:`_warm`)."""
+
+
 def _warm(task: "RunTask") -> None:
-    """Load the task's scenario and judge its reference path once, discarding the record; never raises.
+    """Load the task's scenario and its reference path; on the first scenario of a kind, also judge that path
+    once, discarding the record; never raises.
 
     Loading, hashing and the first validation and metrics on a scenario kind
     (numba code loaded or compiled) then happen while the first runs of the
-    scenario execute, not after them.
+    scenario execute, not after them. Later scenarios of the kind are only
+    loaded: judging their reference path would repeat work no run needs.
     """
     import numpy as np
 
@@ -138,7 +144,8 @@ def _warm(task: "RunTask") -> None:
         ensure_plugins(task.plugin_modules, missing_ok=True)
         scenario, _ = load_cached(task.scenario)
         ref = reference_path(scenario)
-        if ref is not None:
+        if ref is not None and scenario.kind not in _WARMED_KINDS:
+            _WARMED_KINDS.add(scenario.kind)
             outcome = RunOutcome(task.run_key, status=Status.SOLVED, path=np.array(ref.path, dtype=np.float64))
             metrics = [entry.obj() for entry in quiet_registry().metrics.values()]
             with warnings.catch_warnings():

@@ -222,3 +222,23 @@ def test_a_judge_pool_judges_runs_side_by_side_in_its_own_processes():
         return {k: repr(v) for k, v in metrics.items()}
 
     assert all(r.status.value == "solved" and r.valid and shown(r.metrics) == shown(alone.metrics) for r in records)
+
+
+def test_a_judge_judges_a_reference_path_ahead_once_per_scenario_kind(monkeypatch):
+    from pathzoo.harness import judge as judge_module
+    from pathzoo.harness import judge_worker
+
+    judged: list[str] = []
+    real = judge_module.judge
+
+    def counted(task, outcome, scenario, metrics, **kwargs):  # type: ignore[no-untyped-def]
+        judged.append(scenario.id)
+        return real(task, outcome, scenario, metrics, **kwargs)
+
+    monkeypatch.setattr(judge_module, "judge", counted)
+    monkeypatch.setattr(judge_worker, "_WARMED_KINDS", set(), raising=False)
+    tasks = Experiment.build(planners=["exact.astar"], scenarios=["gant.fig7", "movingai.random-32-32-20.b10.13"], seeds=1,
+                             budget=pathzoo.Budget(iterations=1)).tasks()
+    for task in tasks:  # two grid2d scenarios: loaded both, the reference judged on the first only
+        judge_worker._warm(task)
+    assert [t.scenario.kind for t in tasks] == ["grid2d", "grid2d"] and judged == [tasks[0].scenario.id]
