@@ -16,8 +16,10 @@ per step, the least any ant walk must do. A colony's ns per step is
 the CPU time spent in the compiled walks (timed around them by this script)
 over the ant-steps they made, so set-up (tables, trails, the path) does not
 count. IACA and DSACO's step rule run on their papers' maps (on 8room_000 the
-first fails and the second stops after one colony), with the floor timed on
-that map's graph. Each figure is the minimum of ``--repeats`` runs of
+first fails and the second stops after one colony), and so do the timed walks
+of FGDACO and ACS (``fgdaco.scenario3``: on 8room_000, which has no moving
+obstacles, FGDACO walks the static kernels), with the floor timed on that
+map's graph. Each figure is the minimum of ``--repeats`` runs of
 ``--floor-colonies`` colonies, its floor the minimum of as many floor walks
 timed one before each run (so that both see the same load on a shared
 machine), printed beside its target (issue 26): at most 3x the floor for AS, MMAS, G-Ant and DSACO under
@@ -121,7 +123,9 @@ FLOOR_ROWS = (  # label, planner, scenario (None: 8room_000), parameters, target
     ("aco.acs", "aco.acs", None, {}, 5.0),
     ("aco.iaca", "aco.iaca", "iaca.offroad", {}, 5.0),
     ("aco.dsaco, paper's step rule", "aco.dsaco", "dsaco.complex", {"step_rule": "longitude"}, 5.0),
-    ("aco.fgdaco, timed walks", "aco.fgdaco", None, {}, 5.0),
+    ("aco.fgdaco, static map", "aco.fgdaco", None, {}, 5.0),
+    ("aco.fgdaco, timed walks", "aco.fgdaco", "fgdaco.scenario3", {}, 5.0),
+    ("aco.acs, timed walks", "aco.acs", "fgdaco.scenario3", {}, 5.0),
     ("aco.ggaco", "aco.ggaco", None, {}, None),
 )
 
@@ -165,14 +169,13 @@ def floor_ns(scenario: Scenario, n_steps: int, repeats: int, seed: int = 0) -> f
 def walk_cpu() -> Iterator[list[float]]:
     """Accumulate the CPU seconds spent in the compiled walks while the block runs.
 
-    The walks are the engine's ``walk`` (every colony but DSACO's, FGDACO's
-    timed walks included) and DSACO's ``run_colony`` (walks, fitness and
-    updates of a colony in one compiled call); the planners' own timers are
-    not used, so this does not depend on how a planner measures itself.
+    The walks are the engine's ``walk`` (every colony but DSACO's; FGDACO's
+    timed engine walks through it) and DSACO's ``run_colony`` (walks, fitness
+    and updates of a colony in one compiled call); the planners' own timers
+    are not used, so this does not depend on how a planner measures itself.
     """
     from pathzoo_aco import dsaco
     from pathzoo_aco.engine.walk import WalkEngine
-    from pathzoo_aco.fgdaco_walk import TimedWalkEngine
 
     spent = [0.0]
 
@@ -185,7 +188,7 @@ def walk_cpu() -> Iterator[list[float]]:
                 spent[0] += time.process_time() - started
         return wrapper
 
-    patched = [(WalkEngine, "walk"), (TimedWalkEngine, "walk"), (dsaco, "run_colony")]
+    patched = [(WalkEngine, "walk"), (dsaco, "run_colony")]
     originals = [getattr(owner, name) for owner, name in patched]
     for (owner, name), fn in zip(patched, originals):
         setattr(owner, name, timed(fn))

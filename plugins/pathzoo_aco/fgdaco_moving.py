@@ -30,8 +30,14 @@ from numba.extending import intrinsic
 
 from pathzoo.core.moving import MovingObstacle
 
-__all__ = ["ObstacleArrays", "pack_obstacles", "route_clearance", "obstacle_position", "obstacle_min_distance",
+__all__ = ["UNDER", "ObstacleArrays", "pack_obstacles", "route_clearance", "obstacle_position", "obstacle_min_distance",
            "floored_mod"]
+
+UNDER = 1.0 - 1e-12
+"""Shrinks a measured distance that only serves as a bound, so that ``sqrt`` (faster than ``hypot``) stays below it.
+
+The rounding of either is below 1e-15 of the distance; the bound only decides which exact checks run.
+"""
 
 
 @dataclass(frozen=True, eq=False)

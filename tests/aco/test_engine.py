@@ -455,15 +455,15 @@ def test_an_engine_calls_the_kernel_its_colonies_did_not_take_once_for_no_ant(mo
     """So a worker's warm-up loads both, and no run loads one from numba's disk cache on its own CPU."""
     from pathzoo_aco.engine import walk as walk_module
 
-    calls: list[tuple[tuple[bool, bool], int]] = []
+    calls: list[tuple[tuple[bool, bool, bool], int]] = []
     for key, kernel in list(walk_module.KERNELS.items()):
         def spy(*args, _key=key, _kernel=kernel):  # type: ignore[no-untyped-def]
-            calls.append((_key, args[-4].size))  # the ants: the size of ``flags``
+            calls.append((_key, args[-5].size))  # the ants: the size of ``flags`` (before four more arguments)
             return _kernel(*args)
 
         monkeypatch.setitem(walk_module.KERNELS, key, spy)
     pathzoo.make_planner("aco.as", n_ants=4).plan(open_grid(6), budget=Budget(iterations=3),
                                                    rng=np.random.default_rng(0))
     first = calls[1][0]  # the first colony fills its weights: the filled-weights kernel
-    assert calls[0] == ((not first[0], first[1]), 0) and first == (False, False)
+    assert calls[0] == ((not first[0], first[1], False), 0) and first == (False, False, False)
     assert all(n == 4 for _, n in calls[1:])  # once per engine, then only real colonies

@@ -61,7 +61,7 @@ def _run(specialised: bool, problem: ColonyProblem, rules: WalkRules, trail: Phe
                 scale, trail.lo, trail.hi, trail.on_nodes, rules.tau_exp, rules.q0, rules.local_keep, rules.local_add,
                 rules.pre_add, powers, power_stamp, colony, problem.start, problem.goal, rules.backtrack,
                 rules.max_steps, allowance, False, base, stamps, stacks, prevs, engine.cand_w, cur, depth, prev, steps,
-                flags, counters, flat, offsets)
+                flags, counters, flat, offsets, None)
             if status == DONE:
                 break
             assert counters[3] == 1  # only ``flat`` ever runs out of room
@@ -176,7 +176,7 @@ def test_the_engine_dispatches_colonies_with_a_local_update_to_the_specialised_k
     trail = _trail(problem, True, (0.05, 1.2))
     want = _run(False, problem, rules, trail, 12, 3, 2**62, 1024, 2)
     calls = []
-    monkeypatch.setitem(walk_kernel.KERNELS, (True, False), lambda *args: calls.append(1) or local_colony(*args))
+    monkeypatch.setitem(walk_kernel.KERNELS, (True, False, False), lambda *args: calls.append(1) or local_colony(*args))
     engine = WalkEngine(problem)
     for colony, seed in ((1, 3), (2, 4)):
         trail.evaporate(EVAPORATION)

@@ -55,7 +55,7 @@ def _run(specialised: bool, problem: ColonyProblem, rules: WalkRules, trail: Phe
             trail.x, trail.scale, trail.lo, trail.hi, trail.on_nodes, rules.tau_exp, rules.q0, rules.local_keep,
             rules.local_add, rules.pre_add, engine.powers, engine.power_stamp, 0, problem.start, problem.goal,
             rules.backtrack, rules.max_steps, allowance, False, 1, stamps, stacks, prevs, engine.cand_w, cur, depth,
-            prev, steps, flags, counters, flat, offsets)
+            prev, steps, flags, counters, flat, offsets, None)
         if status == DONE:
             break
         assert counters[3] == 1  # only ``flat`` ever runs out of room
@@ -149,7 +149,8 @@ def test_the_engine_dispatches_weighted_colonies_to_the_specialised_kernel(monke
     rules, trail = _product(problem), _trail(problem, "random")
     fast = WalkEngine(problem).walk(rules, trail, 12, seed=3)
     calls = []
-    monkeypatch.setitem(walk_kernel.KERNELS, (False, False), lambda *args: calls.append(1) or weighted_colony(*args))
+    monkeypatch.setitem(walk_kernel.KERNELS, (False, False, False),
+                        lambda *args: calls.append(1) or weighted_colony(*args))
     WalkEngine(problem).walk(rules, trail, 12, seed=3)
     WalkEngine(problem).walk(replace(rules, race=True), trail, 12, seed=3)
     assert len(calls) == 1  # racing ants stay with the generic kernel

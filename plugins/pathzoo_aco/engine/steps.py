@@ -1,8 +1,8 @@
 """The step rules every ant walk shares: weights, candidates, the draw, the local update.
 
 Every compiled walk of the family (the kernels of
-:func:`~pathzoo_aco.engine.walk_kernel.colony_kernel`, DSACO's colony and
-FGDACO's timed walks) lists an ant's candidate
+:func:`~pathzoo_aco.engine.walk_kernel.colony_kernel`, FGDACO's timed walks
+among them, and DSACO's colony) lists an ant's candidate
 edges, weighs them, falls back on the heuristic when every trail weight is 0,
 draws one by eq. 14's rule and, after a dead end, some take again the
 candidates kept from their first visit of the node. Each of those rules is

@@ -2,7 +2,8 @@
 
 It picks the compiled kernel a colony needs (:func:`~pathzoo_aco.engine.walk_kernel.colony_kernel`: weights
 fixed before the colony or read from the trail at each step, ants one after another or racing and pre-choice
-additions), keeps their buffers between colonies and grows them when a kernel asks. Weights are fixed before a
+additions, ants that keep time among moving obstacles when :meth:`WalkEngine.timing` gives their tables), keeps
+their buffers between colonies and grows them when a kernel asks. Weights are fixed before a
 colony only when no ant changes the trail as it walks and the colony is expected to take enough steps to repay
 the pass over every listed edge (:meth:`WalkEngine.weights_pay`).
 
@@ -166,6 +167,12 @@ class WalkEngine:
         per_node = FILL_STEPS_PER_NODE[rules.tau_exp == 1.0]
         return self.steps_per_ant * n_ants >= per_node * self.problem.graph.n_nodes
 
+    def timing(self) -> tuple | None:
+        """What a timed kernel of :func:`~pathzoo_aco.engine.walk_kernel.colony_kernel` reads besides the
+        walk's own arguments (its clock, the moving obstacles, the fuzzy priority and their buffers), or None for
+        walks that keep no time."""
+        return None
+
     def _number_colony(self, entries: int) -> None:
         """A new number for the coming colony of :func:`~pathzoo_aco.engine.walk_kernel.local_colony`, so the
         powers it keeps start invalid."""
@@ -225,20 +232,22 @@ class WalkEngine:
         prev = np.zeros(n_ants, dtype=np.int64)
         if weights is None and not general and rules.tau_exp != 1.0:  # powers are kept only for another exponent
             self._number_colony(trail.x.size)
-        kernel = KERNELS[weights is None, general]
+        timing = self.timing()
+        kernel = KERNELS[weights is None, general, timing is not None]
         rest = (p.horizontal_offsets, rules.turn, trail.x, trail.scale, trail.lo, trail.hi, trail.on_nodes,
                 rules.tau_exp, rules.q0, rules.local_keep, rules.local_add, rules.pre_add, self.powers,
                 self.power_stamp, self.colony, p.start, p.goal, rules.backtrack, rules.max_steps, allowance, rules.race,
                 self.race_colony if rules.race else self.walk_base, self.race_stamps if rules.race else self.stamps)
-        if not self.both_kernels:  # see :attr:`both_kernels`: the other kernel, for no ant, with these types
-            KERNELS[weights is not None, general](*self.lists[1], None if weights is not None else self.weights,
-                                                  *rest, stacks, prevs, self.cand_w, cur, depth, prev, steps,
-                                                  flags[:0], np.zeros(4, dtype=np.int64), self.flat, offsets)
+        if not self.both_kernels and timing is None:  # see :attr:`both_kernels` (timed walks have one kernel)
+            KERNELS[weights is not None, general, False](*self.lists[1], None if weights is not None else self.weights,
+                                                         *rest, stacks, prevs, self.cand_w, cur, depth, prev, steps,
+                                                         flags[:0], np.zeros(4, dtype=np.int64), self.flat, offsets,
+                                                         None)
             self.both_kernels = True
         _seed(seed)
         while True:  # the stacks are grown below: passed anew each time
             status = kernel(*self.lists[1], weights, *rest, stacks, prevs, self.cand_w, cur, depth, prev, steps,
-                            flags, counters, self.flat, offsets)
+                            flags, counters, self.flat, offsets, timing)
             if status == DONE:
                 break
             if counters[3]:  # a finished walk needs room in ``flat``

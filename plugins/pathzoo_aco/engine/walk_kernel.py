@@ -9,8 +9,8 @@ component: without a turn rule that proves the goal unreachable. The step
 rules (trail weight, heuristic fallback, draw, local update) are those of
 :mod:`pathzoo_aco.engine.steps`, inlined.
 
-The body is written once (:func:`colony_kernel`) and compiled as four
-kernels, by two constants of its closure:
+The body is written once (:func:`colony_kernel`) and compiled as five
+kernels, by three constants of its closure:
 
 - :func:`weighted_colony`, the common case: ants go one after another and
   none changes the trail while the colony walks (AS, MMAS, G-Ant; IACA with
@@ -31,6 +31,12 @@ kernels, by two constants of its closure:
   edge leaving their node before they choose.
 - :func:`generic_weighted_colony`: racing ants on weights fixed before the
   colony.
+- :func:`timed_colony`: :func:`local_colony` for ants that keep time among
+  moving obstacles (:class:`~pathzoo_aco.fgdaco_walk.TimedWalkEngine`):
+  at each node an ant measures the obstacles that may matter, the candidate
+  scan refuses an edge a moving obstacle would hit while it is driven and
+  re-weighs an edge near one by FGDACO's fuzzy priority, a step advances
+  the clock, and each depth's candidates are kept for the steps back.
 
 Numba drops the branches of the other kinds before it compiles, so each
 kernel is the loop written out for its case, with nothing called per step (a
@@ -45,6 +51,7 @@ are mostly outside the core's own caches, and a step would wait for them.
 
 from __future__ import annotations
 
+import math
 from typing import Callable
 
 import numba
@@ -54,11 +61,13 @@ from pathzoo_aco.engine.outcomes import (ABORTED, DONE, EXHAUSTED, FRESH, NEED_S
                                          STUCK, stop_before_step)
 from pathzoo_aco.engine.prefetch import prefetch
 from pathzoo_aco.engine.problem import ColonyProblem
-from pathzoo_aco.engine.steps import (choose, heaviest, heuristic_candidates, local_update, read_trail, roulette,
-                                      trail_power)
+from pathzoo_aco.engine.steps import (choose, heaviest, heuristic_candidates, kept_candidates, local_update,
+                                      read_trail, roulette, trail_power)
+from pathzoo_aco.fgdaco_fuzzy import clipped_centroid, fired_strengths, rule_ceilings
+from pathzoo_aco.fgdaco_moving import UNDER, obstacle_min_distance, obstacle_position
 
 __all__ = ["colony_kernel", "weighted_colony", "local_colony", "generic_colony", "generic_weighted_colony",
-           "KERNELS", "fill_weights", "unsigned_lists", "Adjacency", "FETCH_AHEAD_FROM"]
+           "timed_colony", "KERNELS", "fill_weights", "unsigned_lists", "Adjacency", "FETCH_AHEAD_FROM"]
 
 Adjacency = tuple[np.ndarray, np.ndarray, "np.ndarray | None", np.ndarray, np.ndarray, np.ndarray]
 """``(adj_ptr, adj_node, adj_edge, adj_offset, weight_mul, weight_add)`` of
@@ -82,8 +91,8 @@ def unsigned_lists(problem: ColonyProblem, indices: np.ndarray, adjacency: Adjac
     return (indices.view(np.uint32), adj_ptr, adj_node.view(np.uint32), *adjacency[2:])
 
 
-def colony_kernel(local: bool, general: bool) -> Callable[..., int]:
-    """The walk body compiled for one kind of colony (see the module docstring for the four kernels).
+def colony_kernel(local: bool, general: bool, timed: bool = False) -> Callable[..., int]:
+    """The walk body compiled for one kind of colony (see the module docstring for the five kernels).
 
     ``local``: ants weigh each edge from the trail ``x`` at the step they
     read it and may mark it as they go; otherwise every edge's weight before
@@ -92,6 +101,14 @@ def colony_kernel(local: bool, general: bool) -> Callable[..., int]:
     are possible; otherwise ants go one after another and nothing but the
     local update writes the trail. Each flag is a constant of the closure, so
     numba drops the branches of the other kinds before it compiles.
+    ``timed`` (with ``local`` and not ``general``): each ant keeps time among
+    moving obstacles, as :mod:`pathzoo_aco.fgdaco_walk` describes; the
+    kernel's last argument ``timing`` is then
+    :meth:`TimedWalkEngine.timing <pathzoo_aco.fgdaco_walk.TimedWalkEngine.timing>`
+    (None for the other kernels), the lists are the whole graph
+    (``adj_edge`` None), ``cand_w`` has a level of candidate slots per depth,
+    and a node whose open edges all weigh 0 is a dead end (no
+    heuristic-alone fallback).
 
     The kernel returns ``DONE`` or ``NEED_SPACE`` (grow ``flat``, or a
     racing ant's stacks, and call again). ``indices``, ``adj_ptr`` and
@@ -121,7 +138,7 @@ def colony_kernel(local: bool, general: bool) -> Callable[..., int]:
     def kernel(indices, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, w_add, weights, horizontal, turn,
                x, scale, lo, hi, on_nodes, tau_exp, q0, local_keep, local_add, pre_add, powers, power_stamp, colony,
                start, goal, backtrack, max_steps, allowance, race, walk_base,
-               stamps, stacks, prevs, cand_w, cur, depth, prev, steps, flags, counters, flat, offsets):
+               stamps, stacks, prevs, cand_w, cur, depth, prev, steps, flags, counters, flat, offsets, timing):
         n_ants = flags.size
         use_turn = turn.shape[0] > 0
         no_prev = turn.shape[0] - 1
@@ -134,6 +151,20 @@ def colony_kernel(local: bool, general: bool) -> Callable[..., int]:
             fetch_ahead = adj_node.size > FETCH_AHEAD_FROM
             if general:
                 has_pre = pre_add.size > 0
+        if timed:  # the clock, the moving obstacles and FGDACO's fuzzy priority (see :func:`colony_kernel`)
+            (length, speed, t_head, tail, node_xy, ob_points, ob_cum, ob_count, ob_speed, ob_phase, ob_radius,
+             route_gap, sensing, target_in, angle_in, clear_in, beta, vertices, rule_table, cons, area_w, moment_w,
+             stack_t, stack_gap, level_n, gap, near_ids, ob_ahead, fuzzy_memo) = timing
+            degree = cand_w.size // stacks.shape[1]  # candidate slots per depth
+            n_obs = ob_count.size
+            max_len = 0.0
+            for q in range(length.size):
+                max_len = max(max_len, length[q])
+            shrink = np.empty(n_obs)  # per metre the ant drives, a gap shrinks by at most this much
+            reach = np.empty(n_obs)  # a gap beyond this cannot matter for any move from here
+            for ob in range(n_obs):
+                shrink[ob] = 1.0 + ob_speed[ob] / speed
+                reach[ob] = max_len * shrink[ob] + sensing
         cand_q = np.empty(cand_w.size, dtype=adj_ptr.dtype)  # the candidates' list positions, typed as the pointers
         stamp = stamps[0]
         stack_e = stacks[0]
@@ -181,6 +212,11 @@ def colony_kernel(local: bool, general: bool) -> Callable[..., int]:
             n = steps[a] if general else 0
             flag = RUNNING
             full = False  # stopped before a step for want of room on the stack (not after a race step that filled it)
+            if timed:
+                t_cur = t_head  # the ant's clock at ``c``
+                timed_out = False  # some edge was refused because of a moving obstacle
+                returned = False  # just stepped back to ``c``: same node, same time, same weights as at the first visit
+                gap[:] = -np.inf  # lower bounds on each obstacle's distance (edge to centre of node) now: unknown
             while True:
                 flag = stop_before_step(c, goal, n, max_steps, total, allowance)
                 if flag != RUNNING:
@@ -191,70 +227,166 @@ def colony_kernel(local: bool, general: bool) -> Callable[..., int]:
                 # ------------------------------------------------------ one step
                 e0 = adj_ptr[c]
                 e1 = adj_ptr[c + 1]
+                if timed:
+                    lv = d * degree  # a timed ant keeps each depth's candidates, for its steps back
+                else:
+                    lv = 0
                 nc = 0
                 n_open = 0  # allowed neighbours, whatever their weight
                 total_w = 0.0
                 best_w = -1.0
-                best_i = 0
-                for q in range(e0, e1):
-                    j = adj_node[q]
-                    if local and general and has_pre:  # added to every edge leaving the node, tabu or not
-                        k = np.int64(j) if on_nodes else np.int64(q) if adj_edge is None else np.int64(adj_edge[q])
-                        t = min(max(read_trail(scale, x[k], lo, hi, True) + pre_add[q], lo), hi)
-                        x[k] = t / scale
-                    if stamp[j] == wid:  # most neighbours on a long walk: test before touching the trail
-                        continue
-                    f = 1.0
-                    if use_turn:
-                        f = turn[pv, adj_offset[q]]
-                        if f <= 0.0:
+                best_i = lv
+                if timed and returned:  # the candidates of the first visit, less the nodes stamped since
+                    nc, total_w, best_i = kept_candidates(cand_q, cand_w, lv, level_n[d], adj_node, stamp, wid)
+                else:
+                    if timed:  # the obstacles that may touch a move from here or come within sensing range of its end
+                        cx = node_xy[c, 0]
+                        cy = node_xy[c, 1]
+                        n_near = 0
+                        for ob in range(n_obs):
+                            if gap[ob] < reach[ob]:  # the bound says nothing: measure, unless the route is out of reach
+                                if route_gap[c, ob] >= reach[ob]:
+                                    gap[ob] = route_gap[c, ob]
+                                    continue
+                                ox, oy = obstacle_position(ob_points, ob_cum, ob_count, ob_speed, ob_phase, ob, t_cur)
+                                dx = cx - ox
+                                dy = cy - oy
+                                gap[ob] = math.sqrt(dx * dx + dy * dy) * UNDER - ob_radius[ob]
+                                if gap[ob] < reach[ob]:
+                                    near_ids[n_near] = ob
+                                    ob_ahead[n_near, 0, 0] = -1.0  # no arrival position of this obstacle computed yet
+                                    ob_ahead[n_near, 1, 0] = -1.0
+                                    n_near += 1
+                        for ob in range(n_obs):  # restored on a step back to here (a loop: a slice costs a count)
+                            stack_gap[d, ob] = gap[ob]
+                    for q in range(e0, e1):
+                        j = adj_node[q]
+                        if local and general and has_pre:  # added to every edge leaving the node, tabu or not
+                            k = np.int64(j) if on_nodes else np.int64(q) if adj_edge is None else np.int64(adj_edge[q])
+                            t = min(max(read_trail(scale, x[k], lo, hi, True) + pre_add[q], lo), hi)
+                            x[k] = t / scale
+                        if stamp[j] == wid:  # most neighbours on a long walk: test before touching the trail
                             continue
-                    n_open += 1
-                    if not local:
-                        w = weights[q] * f if use_turn else weights[q]
-                    else:
-                        if not general or not has_pre:  # the entry of the trail the edge reads
-                            k = (np.int64(j) if on_nodes else np.int64(q) if adj_edge is None
-                                 else np.int64(adj_edge[q]))
-                        if keep_powers:  # the trail's power, kept per entry
-                            if power_stamp[k] != colony:
-                                powers[k] = trail_power(read_trail(scale, x[k], lo, hi, bounded), tau_exp, lo, lo_pow)
-                                power_stamp[k] = colony
-                            w = powers[k] * w_mul[q]
-                        else:
-                            if not general or not has_pre:
-                                t = read_trail(scale, x[k], lo, hi, bounded)
-                            # without kept powers the exponent of ants one after another is 1
-                            w = (trail_power(t, tau_exp, lo, lo_pow) if general else t) * w_mul[q]
-                        if has_add:
-                            w += w_add[q]
+                        f = 1.0
                         if use_turn:
-                            w *= f
-                    if w > 0.0:
+                            f = turn[pv, adj_offset[q]]
+                            if f <= 0.0:
+                                continue
+                        if timed:  # refused if a moving obstacle comes within its radius while the ant drives it
+                            near = clear_in[j]  # the obstacle input of the fuzzy priority at ``j``
+                            free = True
+                            dt = 0.0
+                            t_next = t_cur
+                            if n_near > 0 or j == goal:  # the move's timing and end matter only near obstacles
+                                dt = length[q] / speed
+                                t_next = t_cur + dt
+                            jx = 0.0
+                            jy = 0.0
+                            if n_near > 0:
+                                jx = node_xy[j, 0]
+                                jy = node_xy[j, 1]
+                            for i in range(n_near):
+                                ob = near_ids[i]
+                                bound = gap[ob] - length[q] - ob_speed[ob] * dt  # least possible gap during the move
+                                if bound <= 0.0 and obstacle_min_distance(ob_points, ob_cum, ob_count, ob_speed,
+                                                                          ob_phase, ob, cx, cy, jx, jy, t_cur,
+                                                                          t_next) < ob_radius[ob]:
+                                    free = False
+                                    break
+                                if bound < near * sensing:  # moves of one length arrive together: reuse the position
+                                    slot = 0 if ob_ahead[i, 0, 0] == dt or ob_ahead[i, 0, 0] < 0.0 else 1
+                                    if ob_ahead[i, slot, 0] != dt:
+                                        ox, oy = obstacle_position(ob_points, ob_cum, ob_count, ob_speed, ob_phase, ob,
+                                                                   t_next)
+                                        ob_ahead[i, slot, 0] = dt
+                                        ob_ahead[i, slot, 1] = ox
+                                        ob_ahead[i, slot, 2] = oy
+                                    ox = ob_ahead[i, slot, 1]
+                                    oy = ob_ahead[i, slot, 2]
+                                    near = min(near, max(math.hypot(jx - ox, jy - oy) - ob_radius[ob], 0.0) / sensing)
+                            if free and j == goal and tail[4] > 0.0:  # and the last piece, to the exact goal
+                                for ob in range(n_obs):
+                                    if obstacle_min_distance(ob_points, ob_cum, ob_count, ob_speed, ob_phase, ob,
+                                                             tail[0], tail[1], tail[2], tail[3], t_next,
+                                                             t_next + tail[4]) < ob_radius[ob]:
+                                        free = False
+                                        break
+                            if not free:
+                                timed_out = True
+                                continue
+                        n_open += 1
+                        if not local:
+                            w = weights[q] * f if use_turn else weights[q]
+                        else:
+                            if not general or not has_pre:  # the entry of the trail the edge reads
+                                k = (np.int64(j) if on_nodes else np.int64(q) if adj_edge is None
+                                     else np.int64(adj_edge[q]))
+                            h = w_mul[q]  # the heuristic factor
+                            if timed and near < clear_in[j]:  # FGDACO's fuzzy priority_one, in two exact steps
+                                if fuzzy_memo[q, 0, 3] == 0.0:  # first time: the ceilings; no strengths seen yet
+                                    rule_ceilings(target_in[j], angle_in[q], vertices, rule_table, fuzzy_memo, q)
+                                    fuzzy_memo[q, 0, 3] = 1.0
+                                    fuzzy_memo[q, 3, 0] = np.nan
+                                    fuzzy_memo[q, 3, 1] = np.nan
+                                    fuzzy_memo[q, 3, 2] = np.nan
+                                s0, s1, s2 = fired_strengths(fuzzy_memo, q, near, vertices)
+                                if s0 != fuzzy_memo[q, 3, 0] or s1 != fuzzy_memo[q, 3, 1] or s2 != fuzzy_memo[q, 3, 2]:
+                                    fuzzy_memo[q, 3, 0] = s0
+                                    fuzzy_memo[q, 3, 1] = s1
+                                    fuzzy_memo[q, 3, 2] = s2
+                                    fuzzy_memo[q, 3, 3] = clipped_centroid(s0, s1, s2, cons, area_w, moment_w)**beta
+                                h = fuzzy_memo[q, 3, 3]
+                            if keep_powers:  # the trail's power, kept per entry
+                                if power_stamp[k] != colony:
+                                    powers[k] = trail_power(read_trail(scale, x[k], lo, hi, bounded), tau_exp, lo,
+                                                            lo_pow)
+                                    power_stamp[k] = colony
+                                w = powers[k] * h
+                            else:
+                                if not general or not has_pre:
+                                    t = read_trail(scale, x[k], lo, hi, bounded)
+                                # without kept powers the exponent of ants one after another is 1
+                                w = (trail_power(t, tau_exp, lo, lo_pow) if general else t) * h
+                            if has_add:
+                                w += w_add[q]
+                            if use_turn:
+                                w *= f
+                        if w > 0.0:
+                            if local:
+                                heavier = w > best_w  # the first of the heaviest, kept without a branch for the q0 rule
+                                best_w = w if heavier else best_w
+                                best_i = lv + nc if heavier else best_i
+                            cand_q[lv + nc] = q
+                            cand_w[lv + nc] = w
+                            total_w += w
+                            nc += 1
+                    # maybe every trail is 0: weigh the allowed edges by the heuristic alone (not a timed ant's rule)
+                    if not timed and nc == 0 and n_open > 0:
+                        nc, total_w = heuristic_candidates(e0, e1, adj_node, w_mul, w_add, adj_offset, turn, pv, stamp,
+                                                           wid, cand_q, cand_w, 0)
                         if local:
-                            heavier = w > best_w  # the first of the heaviest, kept without a branch for the q0 rule
-                            best_w = w if heavier else best_w
-                            best_i = nc if heavier else best_i
-                        cand_q[nc] = q
-                        cand_w[nc] = w
-                        total_w += w
-                        nc += 1
-                if nc == 0 and n_open > 0:  # maybe every trail is 0: weigh the allowed edges by the heuristic alone
-                    nc, total_w = heuristic_candidates(e0, e1, adj_node, w_mul, w_add, adj_offset, turn, pv, stamp,
-                                                       wid, cand_q, cand_w, 0)
-                    if local:
-                        best_i = heaviest(cand_w, 0, nc)
+                            best_i = heaviest(cand_w, 0, nc)
+                if timed:
+                    level_n[d] = nc
+                    returned = False
                 if nc == 0:  # dead end
                     if not backtrack:
                         flag = STUCK
                         break
                     if d == 0:
                         flag = EXHAUSTED
+                        if timed and timed_out:  # an edge refused at one time may be free at another: no proof
+                            flag = STUCK
                         break
                     d -= 1
                     c = indices[stack_e[d - 1]] if d > 0 else np.uint32(start)
                     if use_turn:
                         pv = stack_prev[d - 1] if d > 0 else no_prev
+                    if timed:  # back at the node's earlier time, with the obstacle bounds measured there
+                        t_cur = stack_t[d - 1] if d > 0 else t_head
+                        for ob in range(n_obs):
+                            gap[ob] = stack_gap[d, ob]
+                        returned = True
                 else:
                     if not local:
                         for i in range(nc):  # the next node is one of these: fetch its list while the choice is made
@@ -264,7 +396,7 @@ def colony_kernel(local: bool, general: bool) -> Callable[..., int]:
                             prefetch(adj_node, ahead)
                         pick = cand_q[choose(cand_w, nc, total_w, q0)]
                     else:
-                        for i in range(nc if fetch_ahead else 0):
+                        for i in range(lv, lv + nc if fetch_ahead else lv):
                             ahead = adj_ptr[adj_node[cand_q[i]]]
                             prefetch(adj_node, ahead)
                             prefetch(w_mul, ahead)
@@ -274,7 +406,7 @@ def colony_kernel(local: bool, general: bool) -> Callable[..., int]:
                         if q0 > 0.0 and np.random.random() < q0:  # ``choose``'s draws, its heaviest found above
                             pick = cand_q[best_i]
                         else:
-                            pick = cand_q[roulette(cand_w, 0, nc, total_w)]
+                            pick = cand_q[roulette(cand_w, lv, nc, total_w)]
                     c = adj_node[pick]
                     stamp[c] = wid
                     sel = pick if adj_edge is None else adj_edge[pick]
@@ -284,6 +416,11 @@ def colony_kernel(local: bool, general: bool) -> Callable[..., int]:
                         if horizontal[o]:
                             pv = o
                         stack_prev[d] = pv
+                    if timed:  # the clock runs; each gap shrinks by at most the distance both have moved
+                        t_cur += length[sel] / speed
+                        stack_t[d] = t_cur
+                        for ob in range(n_obs):
+                            gap[ob] -= length[sel] * shrink[ob]
                     d += 1
                     if local and do_local:
                         k = np.int64(c) if on_nodes else np.int64(sel)
@@ -319,7 +456,8 @@ def colony_kernel(local: bool, general: bool) -> Callable[..., int]:
                     for p in range(d):
                         flat[offsets[a] + p] = stack_e[p]
                 offsets[a + 1] = offsets[a] + (d if flag == REACHED else 0)
-            if flag == ABORTED or (flag == EXHAUSTED and not use_turn) or (general and race and flag == REACHED):
+            if flag == ABORTED or (flag == EXHAUSTED and (timed or not use_turn)) or (general and race
+                                                                                  and flag == REACHED):
                 for b in range(n_ants):  # the others: never started, stopped, or outrun in a race
                     if flags[b] == FRESH or (flags[b] == RUNNING and flag != REACHED):
                         flags[b] = ABORTED
@@ -332,29 +470,33 @@ def colony_kernel(local: bool, general: bool) -> Callable[..., int]:
         counters[0] = a
         return DONE
 
-    kernel.__qualname__ = kernel.__name__ = NAMES[local, general]  # names its cache files
-    kernel.__doc__ = f"The kernel of :func:`colony_kernel` for {WHAT[local, general]}."
+    kernel.__qualname__ = kernel.__name__ = NAMES[local, general, timed]  # names its cache files
+    kernel.__doc__ = f"The kernel of :func:`colony_kernel` for {WHAT[local, general, timed]}."
     return numba.njit(cache=True)(kernel)
 
 
-NAMES = {(False, False): "weighted_colony", (True, False): "local_colony", (True, True): "generic_colony",
-         (False, True): "generic_weighted_colony"}
-"""The name of each kernel of :func:`colony_kernel`, by ``(local, general)``."""
+NAMES = {(False, False, False): "weighted_colony", (True, False, False): "local_colony",
+         (True, True, False): "generic_colony", (False, True, False): "generic_weighted_colony",
+         (True, False, True): "timed_colony"}
+"""The name of each kernel of :func:`colony_kernel`, by ``(local, general, timed)``."""
 
-WHAT = {(False, False): "ants going one after another on weights fixed while they walk",
-        (True, False): "ants going one after another that mark the trail as they go",
-        (True, True): "racing ants or pre-choice additions, weighing the trail at each step",
-        (False, True): "racing ants on weights fixed while they walk"}
-"""What each kernel of :func:`colony_kernel` walks, by ``(local, general)``."""
+WHAT = {(False, False, False): "ants going one after another on weights fixed while they walk",
+        (True, False, False): "ants going one after another that mark the trail as they go",
+        (True, True, False): "racing ants or pre-choice additions, weighing the trail at each step",
+        (False, True, False): "racing ants on weights fixed while they walk",
+        (True, False, True): "ants going one after another that keep time among moving obstacles"}
+"""What each kernel of :func:`colony_kernel` walks, by ``(local, general, timed)``."""
 
 weighted_colony = colony_kernel(False, False)
 local_colony = colony_kernel(True, False)
 generic_colony = colony_kernel(True, True)
 generic_weighted_colony = colony_kernel(False, True)
+timed_colony = colony_kernel(True, False, timed=True)
 
-KERNELS = {(False, False): weighted_colony, (True, False): local_colony, (True, True): generic_colony,
-           (False, True): generic_weighted_colony}
-"""The kernels of :func:`colony_kernel` by ``(local, general)``."""
+KERNELS = {(False, False, False): weighted_colony, (True, False, False): local_colony,
+           (True, True, False): generic_colony, (False, True, False): generic_weighted_colony,
+           (True, False, True): timed_colony}
+"""The kernels of :func:`colony_kernel` by ``(local, general, timed)``."""
 
 
 @numba.njit(cache=True)
