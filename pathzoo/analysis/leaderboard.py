@@ -42,7 +42,7 @@ IQR and SD columns describe successful runs only.
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Sequence
+from typing import Sequence, Unpack
 
 import numpy as np
 import pandas as pd
@@ -52,6 +52,7 @@ from pathzoo.analysis.frame import Direction, with_config
 from pathzoo.analysis.hybrid import HYBRID_MARK, HYBRID_NOTE, hybrid_planners
 from pathzoo.analysis.path_models import (MODEL_COLUMN, MODEL_RATIO, REFERENCE_COLUMN, SOURCE_COLUMNS, path_models,
                                           with_model_ratio)
+from pathzoo.analysis.significance import ALPHA, PairwiseOptions
 from pathzoo.analysis.summary import summarize
 from pathzoo.core.budget import CLOCK_STOPS
 from pathzoo.core.errors import InvalidParameterError
@@ -110,7 +111,7 @@ def power_note(table: pd.DataFrame) -> str:
     have = int(ns["n_runs"].min())
     return (
         f"{len(ns)} comparison(s) marked n/s: with {have} run(s) per planner no result can be significant at "
-        f"alpha={table.attrs.get('alpha', 0.05):g} after Holm's correction; run at least {need} seeds. "
+        f"alpha={table.attrs.get('alpha', ALPHA):g} after Holm's correction; run at least {need} seeds. "
         "A12 still shows the direction and size of each difference."
     )
 
@@ -142,8 +143,7 @@ def leaderboard(
     *,
     direction: Direction | None = None,
     reference: str | None = None,
-    alpha: float = 0.05,
-    paired: bool | str = "auto",
+    **tests: Unpack[PairwiseOptions],
 ) -> pd.DataFrame:
     """Rank configurations within each scenario by one metric.
 
@@ -167,10 +167,10 @@ def leaderboard(
         number of runs cannot reach ``alpha`` after Holm's correction whatever
         the data), ``p_holm``, ``a12`` and ``runs_needed`` (runs per planner
         that would make the comparison testable) are added.
-    alpha : float
-        Significance level for ``vs_reference``.
-    paired : bool or "auto"
-        Passed to :func:`~pathzoo.analysis.stats.pairwise_tests`.
+    **tests
+        ``alpha``, the significance level for ``vs_reference``, and
+        ``paired``: passed to :func:`~pathzoo.analysis.stats.pairwise_tests`
+        (:class:`~pathzoo.analysis.significance.PairwiseOptions`).
 
     Returns
     -------
@@ -202,9 +202,9 @@ def leaderboard(
     if reference is not None:
         from pathzoo.analysis.stats import pairwise_tests
 
-        tests = pairwise_tests(runs, metric, direction=info.direction, reference=reference, alpha=alpha, paired=paired)
+        verdicts = pairwise_tests(runs, metric, direction=info.direction, reference=reference, **tests)
         verdict = {"a": "worse", "b": "better", "tie": "tie"}
-        other = tests[["scenario", "b", "p_holm", "a12", "winner", "testable", "runs_needed"]].rename(
+        other = verdicts[["scenario", "b", "p_holm", "a12", "winner", "testable", "runs_needed"]].rename(
             columns={"b": "config"}
         )
         other["a12"] = 1.0 - other["a12"]  # P(this beats the reference)
@@ -216,7 +216,7 @@ def leaderboard(
         table = table.merge(_references_used(runs), on=["scenario", "config"], how="left")
     order = ["scenario", MODEL_COLUMN, "rank", "config"] if sectioned else ["scenario", "rank", "config"]
     table = table.sort_values(order, kind="stable").reset_index(drop=True)
-    table.attrs.update(metric=info, reference=reference, alpha=alpha, sectioned=sectioned,
+    table.attrs.update(metric=info, reference=reference, alpha=tests.get("alpha", ALPHA), sectioned=sectioned,
                        cpu_warning=cpu_spread_warning(table))
     return table
 
@@ -260,9 +260,8 @@ def leaderboard_from_db(
     *,
     direction: Direction | None = None,
     reference: str | None = None,
-    alpha: float = 0.05,
-    paired: bool | str = "auto",
     chunk_runs: int = 20_000,
+    **tests: Unpack[PairwiseOptions],
 ) -> pd.DataFrame:
     """:func:`leaderboard` of a stored experiment, in memory that does not grow with the number of runs.
 
@@ -280,10 +279,12 @@ def leaderboard_from_db(
         Results database.
     experiment : str
         Experiment name.
-    metric, direction, reference, alpha, paired
+    metric, direction, reference
         As for :func:`leaderboard`.
     chunk_runs : int
         About this many runs are in memory at once (a scenario is never split).
+    **tests
+        As for :func:`leaderboard`.
 
     Returns
     -------
@@ -309,10 +310,10 @@ def leaderboard_from_db(
     parts = []
     for chunk in named_chunks(db, experiment, needed, name_of, chunk_runs=chunk_runs):
         here = reference if reference in set(chunk["label"]) else None  # scenarios without it: no test, as in memory
-        parts.append(leaderboard(chunk, metric, direction=direction, reference=here, alpha=alpha, paired=paired))
+        parts.append(leaderboard(chunk, metric, direction=direction, reference=here, **tests))
     if not parts:
         empty = pd.DataFrame(columns=[*CHUNK_COLUMNS, *needed])
-        parts.append(leaderboard(empty, metric, direction=direction, alpha=alpha, paired=paired))
+        parts.append(leaderboard(empty, metric, direction=direction, **tests))
     return combine_leaderboards(parts, reference)
 
 
@@ -411,7 +412,7 @@ def format_leaderboard(table: pd.DataFrame, fmt: str = "text") -> str:
         display["vs ref"] = table["vs_reference"].fillna("–")
         display["p (Holm)"] = table["p_holm"].map(lambda x: format_number(x, 2))
         display["A12"] = table["a12"].map(lambda x: f"{x:.2f}" if pd.notna(x) else "–")
-        notes.append(_VERDICT_NOTE.format(alpha=table.attrs.get("alpha", 0.05)))
+        notes.append(_VERDICT_NOTE.format(alpha=table.attrs.get("alpha", ALPHA)))
         note = power_note(table)
         if note:
             notes.append(note)

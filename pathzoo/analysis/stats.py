@@ -23,6 +23,7 @@ import pandas as pd
 from scipy import stats
 
 from pathzoo.analysis.frame import Direction, loss_values, metric_info, with_config
+from pathzoo.analysis.significance import ALPHA
 from pathzoo.core.errors import InvalidParameterError
 
 __all__ = [
@@ -246,7 +247,7 @@ def pairwise_tests(
     *,
     direction: Direction | None = None,
     reference: str | None = None,
-    alpha: float = 0.05,
+    alpha: float = ALPHA,
     paired: bool | str = "auto",
 ) -> pd.DataFrame:
     """Test every pair of configurations on every scenario, Holm-corrected per scenario.
