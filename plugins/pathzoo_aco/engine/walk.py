@@ -230,9 +230,9 @@ class WalkEngine:
             self.lists = (adjacency, unsigned_lists(p, self.indices, adjacency))
         cur = np.zeros(n_ants, dtype=np.int64)
         prev = np.zeros(n_ants, dtype=np.int64)
-        if weights is None and not general and rules.tau_exp != 1.0:  # powers are kept only for another exponent
-            self._number_colony(trail.x.size)
         timing = self.timing()
+        if weights is None and not general and rules.tau_exp != 1.0 and timing is None:  # see colony_kernel
+            self._number_colony(trail.x.size)  # powers are kept only for another exponent, and not by timed ants
         kernel = KERNELS[weights is None, general, timing is not None]
         rest = (p.horizontal_offsets, rules.turn, trail.x, trail.scale, trail.lo, trail.hi, trail.on_nodes,
                 rules.tau_exp, rules.q0, rules.local_keep, rules.local_add, rules.pre_add, self.powers,

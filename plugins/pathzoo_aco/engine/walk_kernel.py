@@ -36,7 +36,8 @@ kernels, by three constants of its closure:
   at each node an ant measures the obstacles that may matter, the candidate
   scan refuses an edge a moving obstacle would hit while it is driven and
   re-weighs an edge near one by FGDACO's fuzzy priority, a step advances
-  the clock, and each depth's candidates are kept for the steps back.
+  the clock, and each depth's candidates are kept for the steps back
+  (trail powers are not kept: a timed colony reads too few entries twice).
 
 Numba drops the branches of the other kinds before it compiles, so each
 kernel is the loop written out for its case, with nothing called per step (a
@@ -146,7 +147,8 @@ def colony_kernel(local: bool, general: bool, timed: bool = False) -> Callable[.
         if local:
             do_local = local_keep != 1.0 or local_add != 0.0
             bounded = lo > 0.0 or hi < np.inf
-            keep_powers = tau_exp != 1.0 and not general  # pre-choice additions write the trail at every step
+            # pre-choice additions write the trail at every step; a timed colony reads too few entries twice to repay
+            keep_powers = tau_exp != 1.0 and not general and not timed
             lo_pow = lo**tau_exp
             fetch_ahead = adj_node.size > FETCH_AHEAD_FROM
             if general:
@@ -345,8 +347,8 @@ def colony_kernel(local: bool, general: bool, timed: bool = False) -> Callable[.
                             else:
                                 if not general or not has_pre:
                                     t = read_trail(scale, x[k], lo, hi, bounded)
-                                # without kept powers the exponent of ants one after another is 1
-                                w = (trail_power(t, tau_exp, lo, lo_pow) if general else t) * h
+                                # without kept powers the exponent of untimed ants one after another is 1
+                                w = (trail_power(t, tau_exp, lo, lo_pow) if general or timed else t) * h
                             if has_add:
                                 w += w_add[q]
                             if use_turn:
