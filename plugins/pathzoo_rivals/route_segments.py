@@ -27,8 +27,8 @@ from pathzoo_rivals.route_kernels import clearance_samples
 __all__ = ["SegmentCache", "SEGMENT_VALUES"]
 
 SEGMENT_VALUES = 1 << 22
-"""Most values (pieces and clearance samples) a :class:`SegmentCache` keeps per kind (about 64 MB in all); it
-starts again when full."""
+"""Most values a :class:`SegmentCache` keeps of each kind, pieces and clearance samples (a piece is two float64s,
+a sample one: at most about 100 MB in all); a store starts again when full."""
 
 _Key = tuple[float, ...]
 
