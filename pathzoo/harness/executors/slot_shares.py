@@ -50,6 +50,7 @@ class SlotShares:
         self.capacity = capacity
         self.left: Counter[Config] = Counter()
         self._run_s: dict[Config, tuple[int, float]] = {}  # runs timed, their total seconds
+        self._all_s: tuple[int, float] = (0, 0.0)  # the same over every configuration
         self._start_s: tuple[int, float] = (0, 0.0)
 
     def expect(self, tasks: "Iterable[RunTask]") -> None:
@@ -66,6 +67,8 @@ class SlotShares:
         if math.isfinite(seconds):
             n, total = self._run_s.get(config, (0, 0.0))
             self._run_s[config] = (n + 1, total + seconds)
+            n, total = self._all_s
+            self._all_s = (n + 1, total + seconds)
 
     def started(self, seconds: float) -> None:
         """A worker took ``seconds`` from its launch to the end of its warm-up."""
@@ -74,11 +77,8 @@ class SlotShares:
 
     def run_seconds(self, config: Config) -> float:
         """Mean seconds per run of ``config``; the mean over all configurations until it has one; 1 before any."""
-        n, total = self._run_s.get(config, (0, 0.0))
-        if n:
-            return total / n
-        runs = sum(k for k, _ in self._run_s.values())
-        return sum(s for _, s in self._run_s.values()) / runs if runs else 1.0
+        n, total = self._run_s.get(config) or self._all_s
+        return total / n if n else 1.0
 
     @property
     def start_seconds(self) -> float:
@@ -92,9 +92,7 @@ class SlotShares:
         work = {c: n * self.run_seconds(c) for c, n in self.left.items() if n > 0}
         order = sorted(work, key=lambda c: (-work[c], c))
         shares = dict.fromkeys(order[:self.capacity], 1)
-        for _ in range(self.capacity - len(shares)):
-            if not shares:
-                break
+        for _ in range(self.capacity - len(shares) if shares else 0):
             best = max(shares, key=lambda c: (work[c] / (shares[c] + 1), c))
             shares[best] += 1
         return shares
