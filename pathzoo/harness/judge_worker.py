@@ -45,7 +45,7 @@ from pathzoo.harness.poller import Poller
 from pathzoo.harness.specs import HeldScenarios
 from pathzoo.harness.outcome import describe_exception
 from pathzoo.harness.plugin_loading import ensure_plugins, quiet_registry
-from pathzoo.harness.scenario_cache import keep_payload, load_cached
+from pathzoo.harness.scenario_cache import keep_payload, load_unsealed
 from pathzoo.harness.worker import SETUP_TIMEOUT_S
 from pathzoo.plugins.manager import PluginKind, get_registry, limit_kinds
 
@@ -108,7 +108,7 @@ def _judge_main(conn: Connection, alive: Connection) -> None:
         keep_payload(task.scenario)  # first: the harness counts it as held from now on
         try:
             ensure_plugins(task.plugin_modules, missing_ok=True)
-            scenario, _ = load_cached(task.scenario)
+            scenario = load_unsealed(task.scenario)
             metrics = [entry.obj() for entry in quiet_registry().metrics.values()]
             conn.send(("loaded",))
             with warnings.catch_warnings(record=True) as caught:
@@ -142,7 +142,7 @@ def _warm(task: "RunTask") -> None:
     keep_payload(task.scenario)
     try:
         ensure_plugins(task.plugin_modules, missing_ok=True)
-        scenario, _ = load_cached(task.scenario)
+        scenario = load_unsealed(task.scenario)
         ref = reference_path(scenario)
         if ref is not None and scenario.kind not in _WARMED_KINDS:
             _WARMED_KINDS.add(scenario.kind)

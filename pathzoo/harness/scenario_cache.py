@@ -26,13 +26,15 @@ if TYPE_CHECKING:
     from pathzoo.core.scenario import Scenario
     from pathzoo.harness.specs import ScenarioSpec
 
-__all__ = ["SCENARIO_CACHE_SIZE", "keep_payload", "load_cached", "load_warm", "lru", "evict", "cache_lock"]
+__all__ = ["SCENARIO_CACHE_SIZE", "keep_payload", "load_cached", "load_unsealed", "load_warm", "lru", "evict",
+           "cache_lock"]
 
 SCENARIO_CACHE_SIZE = 4
 """Scenarios kept loaded per process (runs are ordered scenario by scenario)."""
 
 _scenarios: "OrderedDict[tuple[str, str, str, str], tuple[Scenario, ScenarioSeal]]" = OrderedDict()
 cache_lock = threading.Lock()
+_unsealed: "OrderedDict[tuple[str, str, str, str], Scenario]" = OrderedDict()
 _payloads: dict[str, bytes] = {}
 
 
@@ -61,6 +63,16 @@ def load_cached(spec: "ScenarioSpec", size: int = SCENARIO_CACHE_SIZE) -> "tuple
         return scenario, seal(scenario)
 
     return lru(_scenarios, spec.cache_key, size, make)
+
+
+def load_unsealed(spec: "ScenarioSpec", size: int = SCENARIO_CACHE_SIZE) -> "Scenario":
+    """Load a scenario once per process (LRU of ``size``), geometry warmed, arrays not sealed.
+
+    For a process where no planner code ever runs (the judge's): there the
+    seal would guard against nothing, and moving the arrays into sealed
+    memory and taking the scenario's digest cost about as much as loading it.
+    """
+    return lru(_unsealed, spec.cache_key, size, lambda: load_warm(spec))
 
 
 _T = TypeVar("_T")
