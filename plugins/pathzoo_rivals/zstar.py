@@ -45,6 +45,7 @@ from __future__ import annotations
 import math
 from typing import ClassVar
 
+import numba
 import numpy as np
 
 from pathzoo.core import Param, PlanResult, ProgressCallback, Scenario
@@ -72,8 +73,10 @@ def zstar_edge_cost(scenario: Scenario, max_climb_rad: float) -> np.ndarray:
     return cost
 
 
-def zstar_heuristic(scenario: Scenario, max_climb_rad: float) -> np.ndarray:
-    """Z*'s lower bound on the energy from every node's cell centre to the goal cell's centre (J).
+def zstar_heuristic(scenario: Scenario, max_climb_rad: float, nodes: np.ndarray | None = None) -> np.ndarray:
+    """Z*'s lower bound on the energy from each node's cell centre to the goal cell's centre (J).
+
+    Every node's, or only those of ``nodes`` (the same values, element by element).
 
     ``H = max(D, Δh / tan θ_M)`` bounds the horizontal distance any feasible
     path drives (a path may climb at most ``tan θ_M`` metres per horizontal
@@ -83,14 +86,16 @@ def zstar_heuristic(scenario: Scenario, max_climb_rad: float) -> np.ndarray:
     """
     vehicle = scenario.vehicle
     shape = scenario.shape
-    rows, cols = np.indices(shape).reshape(2, -1).astype(np.float64)
+    if nodes is None:
+        nodes = np.arange(math.prod(shape))
+    rows, cols = (np.asarray(axis, dtype=np.float64) for axis in np.unravel_index(nodes, shape))
     goal_r, goal_c = np.unravel_index(scenario.goal_node, shape)
     cs = scenario.cell_size
     horizontal = cs * np.hypot(rows - goal_r, cols - goal_c)
     if scenario.kind == "terrain":
         assert scenario.elevation is not None  # every terrain scenario has one
         z = scenario.elevation.reshape(-1)
-        rise = float(z[scenario.goal_node]) - z
+        rise = float(z[scenario.goal_node]) - z[nodes]
     else:
         rise = np.zeros_like(horizontal)
     tan_max = math.tan(max_climb_rad) * (1.0 + SLOPE_SLACK) if max_climb_rad < math.pi / 2 else math.inf
@@ -107,9 +112,22 @@ def reduced_costs(scenario: Scenario, cost: np.ndarray, h: np.ndarray) -> np.nda
 
     Consistency makes them non-negative up to rounding (at most about 1e-10
     of the edge costs on the pack's DEMs, see ``tests/rivals/test_zstar.py``).
+    One compiled pass over the edges (:func:`_reduce`), without the edge-long
+    temporaries of ``cost + h[indices] - h[sources]``, whose values it gives.
     """
     graph = scenario.graph
-    return cost + h[graph.indices] - h[graph.sources]
+    return _reduce(graph.indptr, graph.indices, cost, h)
+
+
+@numba.njit(cache=True)
+def _reduce(indptr: np.ndarray, indices: np.ndarray, cost: np.ndarray, h: np.ndarray) -> np.ndarray:
+    """``(cost[e] + h[v]) - h[u]`` for every edge ``e = (u, v)`` of the CSR graph ``indptr, indices``."""
+    out = np.empty(cost.shape[0])
+    for u in range(indptr.shape[0] - 1):
+        hu = h[u]
+        for e in range(indptr[u], indptr[u + 1]):
+            out[e] = cost[e] + h[indices[e]] - hu
+    return out
 
 
 class ZStarPlanner(GraphSearchPlanner):
@@ -157,5 +175,5 @@ class ZStarPlanner(GraphSearchPlanner):
         progress: ProgressCallback | None,
     ) -> PlanResult:
         """Turn the goal's reduced cost back into energy (add ``h(start)``), then build the result as usual."""
-        h = zstar_heuristic(scenario, self.max_climb_rad(scenario))
-        return super()._solved(scenario, search, expanded, graph_cost + float(h[scenario.start_node]), path, progress)
+        h = zstar_heuristic(scenario, self.max_climb_rad(scenario), np.array([scenario.start_node]))
+        return super()._solved(scenario, search, expanded, graph_cost + float(h[0]), path, progress)

@@ -14,7 +14,7 @@ from pathzoo.core import Budget, Scenario, Status, VehicleModel
 from pathzoo.core.vehicle import GRAVITY
 from pathzoo.rules import validate_path
 from pathzoo.core.tiny_scenarios import check_scenario
-from pathzoo_rivals.zstar import ZStarPlanner, zstar_edge_cost, zstar_heuristic
+from pathzoo_rivals.zstar import ZStarPlanner, reduced_costs, zstar_edge_cost, zstar_heuristic
 
 MU = 0.1
 MASS = 10.0
@@ -87,6 +87,17 @@ def test_heuristic_is_consistent_on_every_edge(hugo, theta_deg):
     slack = h[g.sources] - (cost + h[g.indices])
     assert np.all(slack[ok] <= 1e-9 * cost[ok].max())
     assert h[hugo.goal_node] == 0.0
+
+
+@pytest.mark.parametrize("theta_deg", [90.0, 12.0])
+def test_reduced_costs_and_single_nodes_give_the_array_expressions_bit_for_bit(hugo, theta_deg):
+    tm = math.radians(theta_deg)
+    h = zstar_heuristic(hugo, tm)
+    cost = zstar_edge_cost(hugo, tm)
+    g = hugo.graph
+    np.testing.assert_array_equal(reduced_costs(hugo, cost, h), cost + h[g.indices] - h[g.sources])
+    for node in np.random.default_rng(0).choice(g.n_nodes, 50, replace=False).tolist() + [hugo.start_node]:
+        assert zstar_heuristic(hugo, tm, np.array([node]))[0] == h[node]
 
 
 @pytest.mark.parametrize("theta_deg", [90.0, 15.0, 12.0])
