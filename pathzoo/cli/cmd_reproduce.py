@@ -164,8 +164,8 @@ def add_parser(subparsers: Any) -> None:
                         help="give every rival the proposed method's median evaluation count on each scenario as "
                         "its only count budget (docs/reproduction.md)")
     parser.add_argument("--estimate", action="store_true",
-                        help="run a short pilot (1 run per planner and scenario at 1 iteration, then 3, 10, 30, 100 until "
-                        "a run costs 2x the first) and print the "
+                        help="run a short pilot (2 runs per planner and scenario at 1 iteration, then 1 at 3, 10, 30, 100 "
+                        "until a run costs 2x the first; a scenario's load counted once) and print the "
                         "expected CPU-hours of the rerun the other options describe, per planner and in total; "
                         "stores nothing")
     parser.add_argument("--db", metavar="FILE", help=f"SQLite results file (default: {DEFAULT_DB})")

@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
+import math
+
 import pytest
 
-from pathzoo.analysis.reproduction.estimate import fit_run
+from pathzoo.analysis.reproduction.estimate import fit_run, rerun_cpu, setup_cpu
 from pathzoo.cli.main import main
 
 
@@ -21,6 +23,23 @@ def test_fit_run_takes_the_pilot_run_as_the_full_run_when_the_planner_does_not_i
     assert fit_run((1.0, 7.0), None, 1000) == 7.0          # ended by itself at the low cap
     assert fit_run((1.0, 7.0), (1.0, 7.2), 1000) == 7.0    # no more iterations at the high cap
     assert fit_run((1.0, 7.0), (3.0, 9.0), None) == 7.0    # nothing limits its iterations
+
+
+def test_setup_cpu_is_what_the_first_run_took_beyond_the_cheaper_one():
+    # a worker's first run on a scenario carries its load: 2.7 s beside 0.74 s
+    assert setup_cpu([2.7, 0.74]) == pytest.approx(1.96)
+    assert setup_cpu([0.74, 2.7]) == pytest.approx(1.96)  # whichever ran first
+    assert setup_cpu([3.0]) == 0.0
+    assert math.isnan(setup_cpu([1.0, math.nan])) and math.isnan(setup_cpu([math.nan, 1.0]))
+
+
+
+def test_rerun_cpu_counts_the_load_once_and_the_rest_with_every_seed():
+    # an exact search: 2.7 s in a worker's first run, 0.74 s in the next, 20 seeds
+    assert rerun_cpu((1.0, 2.7), None, None, 1.96, 20) == pytest.approx(1.96 + 20 * 0.74)
+    # an iterative planner: the fitted 502 s run (2 s fixed, 1 s of it the load) at 1000 iterations, 10 seeds
+    assert rerun_cpu((1.0, 2.5), (3.0, 3.5), 1000, 1.0, 10) == pytest.approx(1.0 + 10 * 501.0)
+    assert rerun_cpu((1.0, 2.5), (3.0, 3.5), 1000, 0.0, 10) == pytest.approx(10 * 502.0)  # no load measured
 
 
 @pytest.mark.slow

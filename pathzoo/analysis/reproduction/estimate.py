@@ -1,8 +1,9 @@
 """The expected CPU time of a paper's full rerun, from a short pilot (``pathzoo reproduce PAPER --estimate``).
 
-The pilot runs every available planner once (seed index 0) on every chosen
-scenario with the iteration count capped at :data:`PILOT_ITERATIONS` ``[0]``,
-then runs the planners whose pilot runs were ended by that cap again at the
+The pilot runs every available planner :data:`PILOT_SEEDS` times (seed
+indices 0 and 1) on every chosen scenario with the iteration count capped at
+:data:`PILOT_ITERATIONS` ``[0]``, then runs the planners whose pilot runs
+were ended by that cap once again at the
 next cap, and the next, until each of its runs took at least
 :data:`PILOT_GROWTH` times the CPU of its first run (or ended before its
 cap): a planner whose iterations are cheap beside its set-up climbs the
@@ -10,14 +11,25 @@ ladder, one whose iterations are dear stops at the second cap, so the pilot
 stays short. From the CPU seconds the harness measured for the first and the
 last of these runs it fits
 ``cpu = fixed + per_iteration x iterations`` per planner and scenario (the
-fixed part: loading the scenario, building graphs and tables; both parts
-clipped at zero), and evaluates it at the iterations the full run would make:
+fixed part: building graphs and tables; both parts clipped at zero), and
+evaluates it at the iterations the full run would make:
 the smallest of the planner's ``iterations`` parameter (its default filled
 in), the paper's iteration budget and ``--iterations``. A planner whose pilot
 run ended by itself (an exact search, a converged colony), or that made no
 more iterations at the higher cap, is not iterative at this budget: its
 pilot run is its full run. Each scenario's figure is then
 multiplied by the rerun's seed count.
+
+A worker charges the loading of a scenario (its shared geometry included)
+to its first run there (``docs/timing.md``), which a rerun pays once per
+worker and scenario, not once per seed. The two runs at the first cap
+measure it: the dearer one's CPU beyond the cheaper one's is the set-up
+(:func:`setup_cpu`). The fit goes through the dearer run and the higher
+cap's (a fresh worker's first run, which carries the load too), and each
+scenario's figure is the set-up once plus the seeds times the fitted run
+less the set-up. Where both runs carried a load (two workers of one
+configuration) the set-up reads as zero and the load is counted with every
+seed, as an upper bound.
 
 The figure is an estimate of this machine under its present load: a run
 that converges early, or whose iterations grow dearer as its search narrows,
@@ -46,13 +58,17 @@ from pathzoo.analysis.reproduction.runs import (
     selected_scenarios,
 )
 
-__all__ = ["PILOT_ITERATIONS", "PILOT_GROWTH", "PlannerEstimate", "full_iterations", "fit_run", "estimate_paper", "format_estimate"]
+__all__ = ["PILOT_ITERATIONS", "PILOT_GROWTH", "PILOT_SEEDS", "PlannerEstimate", "full_iterations", "fit_run",
+           "setup_cpu", "rerun_cpu", "estimate_paper", "format_estimate"]
 
 PILOT_ITERATIONS = (1, 3, 10, 30, 100)
 """The pilot's iteration caps, tried in turn until a planner's higher run is dear enough to fit (:data:`PILOT_GROWTH`)."""
 
 PILOT_GROWTH = 2.0
 """The pilot stops raising a planner's cap once its run there took this many times the CPU of its first run."""
+
+PILOT_SEEDS = 2
+"""Runs per planner and scenario at the first cap: a worker's first run there carries the scenario's load."""
 
 
 @dataclass(frozen=True)
@@ -117,20 +133,42 @@ def fit_run(low: tuple[float, float], high: tuple[float, float] | None, iteratio
     return fixed + slope * iterations
 
 
+def setup_cpu(cpus: list[float]) -> float:
+    """The set-up CPU seconds a worker pays once, from the runs of one planner on one scenario at the first cap.
+
+    The cheapest run is a run without the scenario's load; the set-up is
+    what the dearest took beyond it (zero from a single run; NaN when a run
+    has no CPU time).
+    """
+    if any(math.isnan(c) for c in cpus):
+        return math.nan
+    return max(cpus) - min(cpus)
+
+
+def rerun_cpu(low: tuple[float, float], high: tuple[float, float] | None, iterations: int | None, setup: float,
+              seeds: int) -> float:
+    """Expected CPU seconds of ``seeds`` full runs on one scenario: ``setup`` once, and the fitted run less it per seed.
+
+    ``low`` is the pilot's first-cap run that carried the load and ``high``
+    its run at the higher cap (see :func:`fit_run`).
+    """
+    return setup + (fit_run(low, high, iterations) - setup) * seeds
+
+
 def _resolved(low: tuple[float, float], high: tuple[float, float] | None, cap: int) -> bool:
     """Whether a scenario's pilot runs fit a line: the higher run ended early, or cost :data:`PILOT_GROWTH` x the first."""
     return high is None or high[0] <= low[0] or high[0] < cap or high[1] >= PILOT_GROWTH * low[1]
 
 
-def _points(runs: pd.DataFrame, capped_only: bool = False) -> dict[tuple[str, str], tuple[float, float]]:
-    """Per (planner key, scenario): (iterations done, CPU s) of the pilot run there (only runs its cap ended)."""
-    out = {}
+def _points(runs: pd.DataFrame, capped_only: bool = False) -> dict[tuple[str, str], list[tuple[float, float]]]:
+    """Per (planner key, scenario): (iterations done, CPU s) of the pilot runs there (only runs their cap ended)."""
+    out: dict[tuple[str, str], list[tuple[float, float]]] = {}
     for planner, scenario, its, cpu, stop in zip(runs["planner"], runs["scenario"], runs["iterations"],
                                                  runs["cpu_time_s"], runs["stopped_by"]):
         if capped_only and stop != "iterations":
             continue
         its = float(its) if pd.notna(its) else 0.0
-        out[(str(planner), str(scenario))] = (its, float(cpu) if pd.notna(cpu) else math.nan)
+        out.setdefault((str(planner), str(scenario)), []).append((its, float(cpu) if pd.notna(cpu) else math.nan))
     return out
 
 
@@ -151,17 +189,22 @@ def estimate_paper(paper: PaperData, options: RerunOptions) -> tuple[list[Planne
     with tempfile.TemporaryDirectory(prefix="pathzoo-estimate-") as tmp:
         pilot = replace(options, db=Path(tmp) / "pilot.sqlite", seeds=1)
 
-        def run_level(cap: int, keys: set[str] | None) -> pd.DataFrame:
+        def run_level(cap: int, keys: set[str] | None, n_seeds: int = 1) -> pd.DataFrame:
             groups = planner_groups(paper, cap, keys=lambda p: keys is None or p.key in keys)
             frames = [run_labelled(paper, Experiment.build(
-                planners=specs, scenarios=[sid + variant for sid in ids], seeds=1,
+                planners=specs, scenarios=[sid + variant for sid in ids], seeds=n_seeds,
                 budget=Budget(**paper_budget(paper, cap)),
-                name=experiment_name(paper, 1, cap) + variant.replace("_", ".") + ".pilot", db=pilot.db), pilot)
+                name=experiment_name(paper, n_seeds, cap) + variant.replace("_", ".") + ".pilot", db=pilot.db), pilot)
                 for variant, specs in sorted(groups.items())]
             return pd.concat(frames, ignore_index=True)
 
-        runs = [run_level(low_cap, None)]
-        low, capped_low = _points(runs[0]), _points(runs[0], capped_only=True)
+        runs = [run_level(low_cap, None, PILOT_SEEDS)]
+        low: dict[tuple[str, str], tuple[float, float]] = {}
+        setup: dict[tuple[str, str], float] = {}
+        for key, points in _points(runs[0]).items():
+            setup[key] = setup_cpu([c for _, c in points])
+            low[key] = max(points, key=lambda point: point[1])  # the run that carried the load
+        capped_low = _points(runs[0], capped_only=True)
         high: dict[tuple[str, str], tuple[float, float]] = {}
         full = {p.key: full_iterations(paper, p, options.iterations) for p in paper.planners
                 if any(k[0] == p.key for k in capped_low)}
@@ -171,7 +214,7 @@ def estimate_paper(paper: PaperData, options: RerunOptions) -> tuple[list[Planne
             if not pending:
                 break
             runs.append(run_level(cap, pending))
-            high.update({k: v for k, v in _points(runs[-1]).items() if k in capped_low})
+            high.update({k: v[0] for k, v in _points(runs[-1]).items() if k in capped_low})
             pending = {key for key in pending
                        if not all(_resolved(low[k], high.get(k), cap) for k in capped_low if k[0] == key)}
     every = pd.concat(runs, ignore_index=True)
@@ -180,10 +223,10 @@ def estimate_paper(paper: PaperData, options: RerunOptions) -> tuple[list[Planne
     for p in paper.planners:
         if planner_status(p):
             continue
-        cells = [(low[k], high.get(k)) for k in low if k[0] == p.key]
-        grows = any(hi is not None and hi[0] > lo[0] for lo, hi in cells)
+        cells = [(low[k], high.get(k), setup[k]) for k in low if k[0] == p.key]
+        grows = any(hi is not None and hi[0] > lo[0] for lo, hi, _ in cells)
         iters = full[p.key] if grows else None  # grows: a higher run was fitted, so its cap ended the first one
-        cpu = sum(fit_run(lo, hi, iters) for lo, hi in cells) * seeds
+        cpu = sum(rerun_cpu(lo, hi, iters, once, seeds) for lo, hi, once in cells)
         mine = every.loc[every["planner"] == p.key, "cpu_time_s"]
         estimates.append(PlannerEstimate(p.key, p.label, seeds * len(cells), iters,
                                          float(pd.to_numeric(mine, errors="coerce").sum()), cpu))
@@ -203,10 +246,11 @@ def format_estimate(paper: PaperData, estimates: list[PlannerEstimate], pilot_cp
         + [format_number(total / 3600.0, 3)],
     })
     notes = [
-        f"Pilot: 1 run per planner and scenario at {PILOT_ITERATIONS[0]} iteration, and again at "
+        f"Pilot: {PILOT_SEEDS} runs per planner and scenario at {PILOT_ITERATIONS[0]} iteration, and 1 again at "
         f"{', '.join(map(str, PILOT_ITERATIONS[1:]))} in turn for the planners that iterate, until a run costs "
         f"{PILOT_GROWTH:g}x the first; CPU = fixed + per iteration x iterations through the first and last, "
-        f"times {seeds} run(s) per planner and scenario (the paper: {paper.runs}).",
+        f"times {seeds} run(s) per planner and scenario (the paper: {paper.runs}), the scenario's load (the dearer "
+        "first-cap run's CPU beyond the cheaper one's) counted once.",
         "An estimate on this machine under its present load: runs that converge early cost less.",
     ]
     return render_table(display, "text", title=f"Expected CPU time of the full rerun: {paper.title}, {paper.table}",
