@@ -54,7 +54,7 @@ class MoveTable:
         plus 1; ``(0, 0)`` until built (allocated zeroed: pages cost memory
         only once a list on them is built) No rows without a turn table.
     to_rec : structured ndarray with fields ``node``, ``place``, ``weight``
-        The records: target node, adjacency position and weight, side by side
+        The records: target node (uint32 for int32 node ids), adjacency position and weight, side by side
         (the fields a step reads for every candidate: one run of memory).
         Allocated for every list there could be and written only as lists are
         built, so untouched pages cost no memory. Empty without a turn table.
@@ -104,11 +104,12 @@ class MoveTable:
         degree = int(np.diff(adj_ptr).max(initial=0))
         index = np.int32 if max(records, len(adj_node)) < 2**31 - 1 else np.int64
         edge = np.zeros(0, dtype=np.int64) if adj_edge is None else adj_edge
+        node_ids = np.uint32 if adj_node.dtype == np.int32 else adj_node.dtype  # unsigned: no negative-index fix-up
         if len(adj_node) < 2**32 - 1:  # unsigned 32-bit list pointers: half the cache lines, no negative-index fix-up
             adj_ptr = adj_ptr.astype(np.uint32)
         return cls(adj_ptr, adj_node, w_mul, adj_offset, edge, move_class, class_row,
                    np.zeros((n_nodes * len(class_row) if turn.size else 0, 2), dtype=index),
-                   np.empty(records, dtype=np.dtype([("node", adj_node.dtype), ("place", index),
+                   np.empty(records, dtype=np.dtype([("node", node_ids), ("place", index),
                                                      ("weight", w_mul.dtype)])),
                    np.empty(records, dtype=adj_offset.dtype),
                    np.empty(records if records < 2**47 and degree < 2**16 - 1 else 0, dtype=np.int64),
@@ -127,14 +128,16 @@ class ColonyRun:
         Fitness of the best walk so far.
     best_edges : ndarray of int64
         Its edges, ``best_edges[:counters[3]]``.
-    counters : ndarray of int64, shape (5,)
-        Next iteration, walks started, ant steps, length of the best walk, and
-        1 once an ant has searched the start's whole component (no turn rule).
-    stamps : ndarray of uint8
-        Tabu stamps; walk ``w`` (counted from 0 over the run) stamps its nodes
-        with ``1 + w mod 255``, and the stamps are cleared before every walk
-        ``w`` with ``w mod 255 = 0``.
-    stack, stack_prev : ndarray
+    counters : ndarray of int64, shape (6,)
+        Next iteration, walks started, ant steps, length of the best walk,
+        1 once an ant has searched the start's whole component (no turn rule),
+        and the stamp of the next iteration's first walk.
+    stamps : ndarray of uint8, shape (1, nodes)
+        Tabu stamps; the walks of an iteration stamp their nodes with the
+        next numbers from ``counters[5]`` on, and the stamps are cleared (the
+        numbering starting again from 1) before an iteration whose numbers
+        would pass 255. int32 once an iteration has more than 255 ants.
+    stack, stack_prev : ndarray, shape (1, nodes + 1)
         Work space of the walks: the adjacency positions and headings along the walk.
     cand, cand_w, level_first, level_count, level_more : ndarray
         The candidates (records) and their weights of every node on the walk,
@@ -182,8 +185,8 @@ class ColonyRun:
         room = 2 * max(max_degree, min(n_nodes * max_degree, _LEVEL_ROOM))
         even = trail.size > 0 and trail.min() == trail.max()  # every entry the same
         return cls(np.array([scale]), np.array([np.inf]), np.zeros(max(n_nodes, 1), dtype=np.int64),
-                   np.zeros(5, dtype=np.int64), np.zeros(n_nodes, dtype=np.uint8),
-                   np.zeros(n_nodes + 1, dtype=np.int64), np.zeros(n_nodes + 1, dtype=np.int64),
+                   np.array([0, 0, 0, 0, 0, 1], dtype=np.int64), np.zeros((1, n_nodes), dtype=np.uint8),
+                   np.zeros((1, n_nodes + 1), dtype=np.int64), np.zeros((1, n_nodes + 1), dtype=np.int64),
                    np.zeros(room, dtype=np.int64), np.zeros(room), np.zeros(n_nodes + 1, dtype=np.int64),
                    np.zeros(n_nodes + 1, dtype=np.int64), np.zeros(n_nodes + 1, dtype=np.bool_),
                    np.full(n_nodes, trail.max(initial=0.0)),

@@ -9,8 +9,8 @@ component: without a turn rule that proves the goal unreachable. The step
 rules (trail weight, heuristic fallback, draw, local update) are those of
 :mod:`pathzoo_aco.engine.steps`, inlined.
 
-The body is written once (:func:`colony_kernel`) and compiled as five
-kernels, by three constants of its closure:
+The body is written once (:func:`colony_kernel`) and compiled as six
+kernels, by four constants of its closure:
 
 - :func:`weighted_colony`, the common case: ants go one after another and
   none changes the trail while the colony walks (AS, MMAS, G-Ant; IACA with
@@ -38,6 +38,12 @@ kernels, by three constants of its closure:
   re-weighs an edge near one by FGDACO's fuzzy priority, a step advances
   the clock, and each depth's candidates are kept for the steps back
   (trail powers are not kept: a timed colony reads too few entries twice).
+- :func:`record_colony`: :func:`local_colony` for DSACO's compiled colony
+  (:mod:`pathzoo_aco.dsaco_colony`): the list of a node is that of its
+  allowed moves under the ant's heading (records built the first time an
+  ant needs them, linked to the list their move leads to), a node whose
+  trails all read the same weighs its list with one trail power, and each
+  depth's candidates are kept while they fit, for the steps back.
 
 Numba drops the branches of the other kinds before it compiles, so each
 kernel is the loop written out for its case, with nothing called per step (a
@@ -58,6 +64,7 @@ from typing import Callable
 import numba
 import numpy as np
 
+from pathzoo_aco.dsaco_tables import build_list
 from pathzoo_aco.engine.outcomes import (ABORTED, DONE, EXHAUSTED, FRESH, NEED_SPACE, OUTRUN, REACHED, RUNNING,
                                          STUCK, stop_before_step)
 from pathzoo_aco.engine.prefetch import prefetch
@@ -68,7 +75,8 @@ from pathzoo_aco.fgdaco_fuzzy import clipped_centroid, fired_strengths, rule_cei
 from pathzoo_aco.fgdaco_moving import UNDER, obstacle_min_distance, obstacle_position
 
 __all__ = ["colony_kernel", "weighted_colony", "local_colony", "generic_colony", "generic_weighted_colony",
-           "timed_colony", "KERNELS", "fill_weights", "unsigned_lists", "Adjacency", "FETCH_AHEAD_FROM"]
+           "timed_colony", "record_colony", "KERNELS", "fill_weights", "unsigned_lists", "Adjacency",
+           "FETCH_AHEAD_FROM"]
 
 Adjacency = tuple[np.ndarray, np.ndarray, "np.ndarray | None", np.ndarray, np.ndarray, np.ndarray]
 """``(adj_ptr, adj_node, adj_edge, adj_offset, weight_mul, weight_add)`` of
@@ -92,8 +100,8 @@ def unsigned_lists(problem: ColonyProblem, indices: np.ndarray, adjacency: Adjac
     return (indices.view(np.uint32), adj_ptr, adj_node.view(np.uint32), *adjacency[2:])
 
 
-def colony_kernel(local: bool, general: bool, timed: bool = False) -> Callable[..., int]:
-    """The walk body compiled for one kind of colony (see the module docstring for the five kernels).
+def colony_kernel(local: bool, general: bool, timed: bool = False, records: bool = False) -> Callable[..., int]:
+    """The walk body compiled for one kind of colony (see the module docstring for the six kernels).
 
     ``local``: ants weigh each edge from the trail ``x`` at the step they
     read it and may mark it as they go; otherwise every edge's weight before
@@ -104,12 +112,24 @@ def colony_kernel(local: bool, general: bool, timed: bool = False) -> Callable[.
     numba drops the branches of the other kinds before it compiles.
     ``timed`` (with ``local`` and not ``general``): each ant keeps time among
     moving obstacles, as :mod:`pathzoo_aco.fgdaco_walk` describes; the
-    kernel's last argument ``timing`` is then
-    :meth:`TimedWalkEngine.timing <pathzoo_aco.fgdaco_walk.TimedWalkEngine.timing>`
-    (None for the other kernels), the lists are the whole graph
+    kernel's last argument ``own`` is then
+    :meth:`TimedWalkEngine.timing <pathzoo_aco.fgdaco_walk.TimedWalkEngine.timing>`,
+    the lists are the whole graph
     (``adj_edge`` None), ``cand_w`` has a level of candidate slots per depth,
     and a node whose open edges all weigh 0 is a dead end (no
-    heuristic-alone fallback).
+    heuristic-alone fallback). ``records`` (with ``local`` and not
+    ``general``): DSACO's ants, as :mod:`pathzoo_aco.dsaco_colony` describes;
+    the lists are then the records of a
+    :class:`~pathzoo_aco.dsaco_tables.MoveTable` (``adj_node``, ``adj_edge``
+    and ``w_mul`` their target, place and weight fields, ``adj_offset`` their
+    moves, ``indices`` the table's targets by place; without a turn table
+    the lists are the adjacency read in place, ``adj_edge`` None), the trail
+    ``x`` and the walks in ``flat`` are in places (adjacency positions), and
+    ``own`` holds ``(node_max, node_even, head, to_next, filled, to_rec,
+    move_class, class_row, weight, move, cand, level_first, level_count,
+    level_more)`` of the table and its
+    :class:`~pathzoo_aco.dsaco_tables.ColonyRun`. The kernel's last argument
+    ``own`` is None for the other kernels.
 
     The kernel returns ``DONE`` or ``NEED_SPACE`` (grow ``flat``, or a
     racing ant's stacks, and call again). ``indices``, ``adj_ptr`` and
@@ -139,7 +159,7 @@ def colony_kernel(local: bool, general: bool, timed: bool = False) -> Callable[.
     def kernel(indices, adj_ptr, adj_node, adj_edge, adj_offset, w_mul, w_add, weights, horizontal, turn,
                x, scale, lo, hi, on_nodes, tau_exp, q0, local_keep, local_add, pre_add, powers, power_stamp, colony,
                start, goal, backtrack, max_steps, allowance, race, walk_base,
-               stamps, stacks, prevs, cand_w, cur, depth, prev, steps, flags, counters, flat, offsets, timing):
+               stamps, stacks, prevs, cand_w, cur, depth, prev, steps, flags, counters, flat, offsets, own):
         n_ants = flags.size
         use_turn = turn.shape[0] > 0
         no_prev = turn.shape[0] - 1
@@ -148,7 +168,7 @@ def colony_kernel(local: bool, general: bool, timed: bool = False) -> Callable[.
             do_local = local_keep != 1.0 or local_add != 0.0
             bounded = lo > 0.0 or hi < np.inf
             # pre-choice additions write the trail at every step; a timed colony reads too few entries twice to repay
-            keep_powers = tau_exp != 1.0 and not general and not timed
+            keep_powers = tau_exp != 1.0 and not general and not timed and not records
             lo_pow = lo**tau_exp
             fetch_ahead = adj_node.size > FETCH_AHEAD_FROM
             if general:
@@ -156,7 +176,7 @@ def colony_kernel(local: bool, general: bool, timed: bool = False) -> Callable[.
         if timed:  # the clock, the moving obstacles and FGDACO's fuzzy priority (see :func:`colony_kernel`)
             (length, speed, t_head, tail, node_xy, ob_points, ob_cum, ob_count, ob_speed, ob_phase, ob_radius,
              route_gap, sensing, target_in, angle_in, clear_in, beta, vertices, rule_table, cons, area_w, moment_w,
-             stack_t, stack_gap, level_n, gap, near_ids, ob_ahead, fuzzy_memo) = timing
+             stack_t, stack_gap, level_n, gap, near_ids, ob_ahead, fuzzy_memo) = own
             degree = cand_w.size // stacks.shape[1]  # candidate slots per depth
             n_obs = ob_count.size
             max_len = 0.0
@@ -167,7 +187,15 @@ def colony_kernel(local: bool, general: bool, timed: bool = False) -> Callable[.
             for ob in range(n_obs):
                 shrink[ob] = 1.0 + ob_speed[ob] / speed
                 reach[ob] = max_len * shrink[ob] + sensing
-        cand_q = np.empty(cand_w.size, dtype=adj_ptr.dtype)  # the candidates' list positions, typed as the pointers
+        if records:  # DSACO's lists of records, trail per list and levels of candidates (see :func:`colony_kernel`)
+            (node_max, node_even, head, to_next, filled, to_rec, move_class, class_row, list_weight, list_move, cand_q,
+             level_first, level_n, level_more) = own
+            room = cand_w.size // 2  # levels below, one step's candidates above
+            n_classes = class_row.size
+            link = use_turn and to_next.size > 0  # lists' places fit in to_next (see MoveTable)
+            fetch_ahead = not use_turn  # the lists of the nodes an ant may step to are the adjacency's
+        else:
+            cand_q = np.empty(cand_w.size, dtype=adj_ptr.dtype)  # the candidates' list positions, typed as the pointers
         stamp = stamps[0]
         stack_e = stacks[0]
         stack_prev = prevs[0]
@@ -219,6 +247,11 @@ def colony_kernel(local: bool, general: bool, timed: bool = False) -> Callable[.
                 timed_out = False  # some edge was refused because of a moving obstacle
                 returned = False  # just stepped back to ``c``: same node, same time, same weights as at the first visit
                 gap[:] = -np.inf  # lower bounds on each obstacle's distance (edge to centre of node) now: unknown
+            if records:
+                returned = False  # just stepped back to ``c``: its candidates are kept at its level
+                level_first[0] = 0
+                known = 0  # where the list of the node the ant arrived at starts (<< 16), its length + 1; 0: look up
+                via = -1  # the record the ant arrived by, when it should learn where that list is
             while True:
                 flag = stop_before_step(c, goal, n, max_steps, total, allowance)
                 if flag != RUNNING:
@@ -227,10 +260,13 @@ def colony_kernel(local: bool, general: bool, timed: bool = False) -> Callable[.
                     full = True
                     break
                 # ------------------------------------------------------ one step
-                e0 = adj_ptr[c]
-                e1 = adj_ptr[c + 1]
+                if not records:  # DSACO's list is found below, only when it is read
+                    e0 = adj_ptr[c]
+                    e1 = adj_ptr[c + 1]
                 if timed:
                     lv = d * degree  # a timed ant keeps each depth's candidates, for its steps back
+                elif records:
+                    lv = level_first[d]  # DSACO's levels lie one after another
                 else:
                     lv = 0
                 nc = 0
@@ -238,9 +274,38 @@ def colony_kernel(local: bool, general: bool, timed: bool = False) -> Callable[.
                 total_w = 0.0
                 best_w = -1.0
                 best_i = lv
-                if timed and returned:  # the candidates of the first visit, less the nodes stamped since
+                scan = True
+                if (timed or records) and returned and level_n[d] >= 0:  # the candidates kept at this level
                     nc, total_w, best_i = kept_candidates(cand_q, cand_w, lv, level_n[d], adj_node, stamp, wid)
-                else:
+                    scan = False  # they are the first visit's, less the nodes stamped since
+                    if records:  # none left: a dead end, unless an open move weighed 0 (the heuristic may choose)
+                        scan = nc == 0 and level_more[d]
+                if scan:
+                    if records:
+                        if not use_turn:  # the list is the node's adjacency
+                            e0 = adj_ptr[c]
+                            e1 = adj_ptr[c + 1]
+                        elif known > 0:  # the record the ant came by knows where this list is
+                            e0 = known >> 16
+                            e1 = e0 + (known & 0xFFFF) - 1
+                        else:  # the list of (c, class of its heading), built the first time an ant needs it
+                            h = c * n_classes + move_class[pv]
+                            if head[h, 1] == 0:
+                                build_list(c, move_class[pv], h, adj_ptr, indices, list_weight, list_move, turn,
+                                           class_row, head, to_rec, adj_offset, to_next, filled)
+                            e0 = head[h, 0]
+                            e1 = e0 + head[h, 1] - 1
+                            if via >= 0:
+                                to_next[via] = (np.int64(e0) << 16) | np.int64(head[h, 1])
+                        known = 0
+                        via = -1
+                        cached = lv + e1 - e0 <= room
+                        if not cached:  # no room to keep them: written past the levels, scanned again after a dead end
+                            lv = room
+                        # one trail power for the whole list when every trail from c reads the same
+                        per_edge = not node_even[c] and scale * node_max[c] > lo
+                        tp = trail_power(lo if scale * node_max[c] <= lo else read_trail(scale, node_max[c], lo, hi,
+                                                                                         bounded), tau_exp, lo, lo_pow)
                     if timed:  # the obstacles that may touch a move from here or come within sensing range of its end
                         cx = node_xy[c, 0]
                         cy = node_xy[c, 1]
@@ -270,7 +335,7 @@ def colony_kernel(local: bool, general: bool, timed: bool = False) -> Callable[.
                         if stamp[j] == wid:  # most neighbours on a long walk: test before touching the trail
                             continue
                         f = 1.0
-                        if use_turn:
+                        if use_turn and not records:  # DSACO's records are the moves the turn table allows
                             f = turn[pv, adj_offset[q]]
                             if f <= 0.0:
                                 continue
@@ -319,6 +384,11 @@ def colony_kernel(local: bool, general: bool, timed: bool = False) -> Callable[.
                         n_open += 1
                         if not local:
                             w = weights[q] * f if use_turn else weights[q]
+                        elif records:  # DSACO: the list's one trail power, unless the node's trails differ
+                            if per_edge:
+                                tp = trail_power(read_trail(scale, x[q if adj_edge is None else adj_edge[q]], lo, hi,
+                                                            bounded), tau_exp, lo, lo_pow)
+                            w = tp * w_mul[q]
                         else:
                             if not general or not has_pre:  # the entry of the trail the edge reads
                                 k = (np.int64(j) if on_nodes else np.int64(q) if adj_edge is None
@@ -362,14 +432,23 @@ def colony_kernel(local: bool, general: bool, timed: bool = False) -> Callable[.
                             cand_w[lv + nc] = w
                             total_w += w
                             nc += 1
+                    if records:
+                        level_more[d] = n_open > nc
                     # maybe every trail is 0: weigh the allowed edges by the heuristic alone (not a timed ant's rule)
                     if not timed and nc == 0 and n_open > 0:
+                        if records:
+                            level_more[d] = False  # a record's turn factor is 1: the weight alone
                         nc, total_w = heuristic_candidates(e0, e1, adj_node, w_mul, w_add, adj_offset, turn, pv, stamp,
-                                                           wid, cand_q, cand_w, 0)
+                                                           wid, cand_q, cand_w, lv)
                         if local:
-                            best_i = heaviest(cand_w, 0, nc)
+                            best_i = heaviest(cand_w, lv, nc)
+                    if records:
+                        level_n[d] = nc if cached else -1
+                elif records:
+                    level_n[d] = nc
                 if timed:
                     level_n[d] = nc
+                if timed or records:
                     returned = False
                 if nc == 0:  # dead end
                     if not backtrack:
@@ -388,7 +467,11 @@ def colony_kernel(local: bool, general: bool, timed: bool = False) -> Callable[.
                         t_cur = stack_t[d - 1] if d > 0 else t_head
                         for ob in range(n_obs):
                             gap[ob] = stack_gap[d, ob]
+                    if timed or records:
                         returned = True
+                    if records:
+                        known = 0
+                        via = -1
                 else:
                     if not local:
                         for i in range(nc):  # the next node is one of these: fetch its list while the choice is made
@@ -402,7 +485,7 @@ def colony_kernel(local: bool, general: bool, timed: bool = False) -> Callable[.
                             ahead = adj_ptr[adj_node[cand_q[i]]]
                             prefetch(adj_node, ahead)
                             prefetch(w_mul, ahead)
-                            if not on_nodes and adj_edge is None:  # the edge trail in list order
+                            if not records and not on_nodes and adj_edge is None:  # the edge trail in list order
                                 prefetch(x, ahead)
                                 prefetch(x, ahead + 7)  # its first eight entries span one or two lines
                         if q0 > 0.0 and np.random.random() < q0:  # ``choose``'s draws, its heaviest found above
@@ -417,6 +500,9 @@ def colony_kernel(local: bool, general: bool, timed: bool = False) -> Callable[.
                         o = adj_offset[pick]
                         if horizontal[o]:
                             pv = o
+                            if records and link:  # the next list follows from the record alone
+                                known = to_next[pick]
+                                via = pick if known == 0 else -1
                         stack_prev[d] = pv
                     if timed:  # the clock runs; each gap shrinks by at most the distance both have moved
                         t_cur += length[sel] / speed
@@ -424,6 +510,8 @@ def colony_kernel(local: bool, general: bool, timed: bool = False) -> Callable[.
                         for ob in range(n_obs):
                             gap[ob] -= length[sel] * shrink[ob]
                     d += 1
+                    if records:
+                        level_first[d] = lv + nc if level_n[d - 1] >= 0 else level_first[d - 1]
                     if local and do_local:
                         k = np.int64(c) if on_nodes else np.int64(sel)
                         local_update(x, k, scale, lo, hi, local_keep, local_add)
@@ -472,28 +560,30 @@ def colony_kernel(local: bool, general: bool, timed: bool = False) -> Callable[.
         counters[0] = a
         return DONE
 
-    kernel.__qualname__ = kernel.__name__ = NAMES[local, general, timed]  # names its cache files
-    kernel.__doc__ = f"The kernel of :func:`colony_kernel` for {WHAT[local, general, timed]}."
+    kernel.__qualname__ = kernel.__name__ = NAMES[local, general, timed, records]  # names its cache files
+    kernel.__doc__ = f"The kernel of :func:`colony_kernel` for {WHAT[local, general, timed, records]}."
     return numba.njit(cache=True)(kernel)
 
 
-NAMES = {(False, False, False): "weighted_colony", (True, False, False): "local_colony",
-         (True, True, False): "generic_colony", (False, True, False): "generic_weighted_colony",
-         (True, False, True): "timed_colony"}
-"""The name of each kernel of :func:`colony_kernel`, by ``(local, general, timed)``."""
+NAMES = {(False, False, False, False): "weighted_colony", (True, False, False, False): "local_colony",
+         (True, True, False, False): "generic_colony", (False, True, False, False): "generic_weighted_colony",
+         (True, False, True, False): "timed_colony", (True, False, False, True): "record_colony"}
+"""The name of each kernel of :func:`colony_kernel`, by ``(local, general, timed, records)``."""
 
-WHAT = {(False, False, False): "ants going one after another on weights fixed while they walk",
-        (True, False, False): "ants going one after another that mark the trail as they go",
-        (True, True, False): "racing ants or pre-choice additions, weighing the trail at each step",
-        (False, True, False): "racing ants on weights fixed while they walk",
-        (True, False, True): "ants going one after another that keep time among moving obstacles"}
-"""What each kernel of :func:`colony_kernel` walks, by ``(local, general, timed)``."""
+WHAT = {(False, False, False, False): "ants going one after another on weights fixed while they walk",
+        (True, False, False, False): "ants going one after another that mark the trail as they go",
+        (True, True, False, False): "racing ants or pre-choice additions, weighing the trail at each step",
+        (False, True, False, False): "racing ants on weights fixed while they walk",
+        (True, False, True, False): "ants going one after another that keep time among moving obstacles",
+        (True, False, False, True): "DSACO's ants, reading lists of the moves its turn limit allows"}
+"""What each kernel of :func:`colony_kernel` walks, by ``(local, general, timed, records)``."""
 
 weighted_colony = colony_kernel(False, False)
 local_colony = colony_kernel(True, False)
 generic_colony = colony_kernel(True, True)
 generic_weighted_colony = colony_kernel(False, True)
 timed_colony = colony_kernel(True, False, timed=True)
+record_colony = colony_kernel(True, False, records=True)
 
 KERNELS = {(False, False, False): weighted_colony, (True, False, False): local_colony,
            (True, True, False): generic_colony, (False, True, False): generic_weighted_colony,
