@@ -8,7 +8,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from pathzoo.cli.cmd_run import EXECUTORS, positive_int
+from pathzoo.cli.cmd_run import EXECUTORS, add_sandbox_memory_option, check_sandbox_memory, positive_int
 from pathzoo.cli.errors import CommandError
 
 __all__ = ["add_parser", "markdown_section", "reductions", "scope_sentence", "PAPER_NAMES"]
@@ -81,10 +81,12 @@ def _run(args: argparse.Namespace) -> int:
     from pathzoo.analysis.reproduction.sections import replace_section
     from pathzoo.analysis.reproduction.verdicts import compare_paper
 
+    check_sandbox_memory(args, args.executor)
     paper = load_paper(args.paper)
     db = args.db or DEFAULT_DB
     options = RerunOptions(db=db, seeds=args.seeds, iterations=args.iterations, scenarios=args.scenarios,
-                           jobs=args.jobs, executor=args.executor, progress=not args.no_progress)
+                           jobs=args.jobs, executor=args.executor, progress=not args.no_progress,
+                           sandbox_limits=args.sandbox_limits)
     if args.estimate:
         return _estimate(args, paper, options)
     equal = ""
@@ -176,5 +178,6 @@ def add_parser(subparsers: Any) -> None:
     parser.add_argument("-o", "--output", metavar="DIR", help="also write the HTML report of the runs to DIR")
     parser.add_argument("--markdown", metavar="FILE", help="write this paper's section of FILE "
                         "(docs/reproduction.md) from the runs, replacing the previous one")
+    add_sandbox_memory_option(parser)
     parser.add_argument("--no-progress", action="store_true", help="do not show a progress bar")
     parser.set_defaults(handler=_run)

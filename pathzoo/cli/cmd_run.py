@@ -18,9 +18,11 @@ from pathzoo.core.errors import PathzooError
 
 if TYPE_CHECKING:
     from pathzoo.harness.executors import RunExecutor
+    from pathzoo.harness.sandbox import SandboxLimits
     from pathzoo.harness.shard import Shard
 
-__all__ = ["add_parser", "add_execution_options", "executor_of", "positive_int", "shard_of", "status_list"]
+__all__ = ["add_parser", "add_execution_options", "add_sandbox_memory_option", "executor_of", "positive_int",
+           "check_sandbox_memory", "sandbox_memory", "shard_of", "status_list"]
 
 EXECUTORS = ("process", "dask", "inline", "slurm", "pbs", "sge")
 CLUSTER_KEYS = ("queue", "account", "cores", "memory", "walltime", "jobs", "prologue")
@@ -36,6 +38,32 @@ def positive_int(text: str) -> int:
     if value < 1:
         raise argparse.ArgumentTypeError(f"must be a positive integer, got {text!r}")
     return value
+
+
+def sandbox_memory(text: str) -> "SandboxLimits":
+    """argparse type: the memory of each sandboxed worker in GiB (a number > 0), as its limits."""
+    from pathzoo.harness.sandbox import SandboxLimits
+
+    try:
+        gib = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"must be a number of GiB, got {text!r}") from None
+    if not gib > 0 or gib == float("inf"):
+        raise argparse.ArgumentTypeError(f"must be a positive number of GiB, got {text!r}")
+    return SandboxLimits(memory_bytes=int(gib * 2**30))
+
+
+def add_sandbox_memory_option(parser: argparse.ArgumentParser) -> None:
+    """``--sandbox-memory GIB`` (shared with ``pathzoo reproduce``)."""
+    parser.add_argument("--sandbox-memory", type=sandbox_memory, metavar="GIB", dest="sandbox_limits",
+                        help="memory of each sandboxed worker, its runs included, in GiB (default 4; a run over it "
+                        "is stored as a crash, 'out of memory'; docs/sandbox.md)")
+
+
+def check_sandbox_memory(args: argparse.Namespace, executor: str) -> None:
+    """Refuse ``--sandbox-memory`` with an executor whose workers it would not reach."""
+    if args.sandbox_limits is not None and executor != "process":
+        raise CommandError(f"--sandbox-memory applies to the process executor's workers, not to --executor {executor}")
 
 
 def shard_of(text: str) -> "Shard":
@@ -139,7 +167,7 @@ def _early_executor(executor: str, data: dict[str, Any], args: argparse.Namespac
         return None
     if args.require_sandbox and sandbox_problem():  # refused by run_experiment, after the file's own errors
         return None
-    pool = make_executor(executor, jobs, require_sandbox=args.require_sandbox)
+    pool = make_executor(executor, jobs, require_sandbox=args.require_sandbox, limits=args.sandbox_limits)
     first = planners[0].get("id") if isinstance(planners, list) and planners and isinstance(planners[0], dict) else None
     if isinstance(first, str) and isinstance(pool, ProcessExecutor):
         pool.start_worker(first)
@@ -148,6 +176,7 @@ def _early_executor(executor: str, data: dict[str, Any], args: argparse.Namespac
 
 def _run(args: argparse.Namespace) -> int:
     executor = executor_of(args)
+    check_sandbox_memory(args, executor)
     from pathzoo.harness.launch import start_server
 
     start_server()  # it imports while this process reads the experiment; the judge is its fork
@@ -180,7 +209,8 @@ def _run(args: argparse.Namespace) -> int:
             with _harness_info_on_stderr() if args.verbose else nullcontext():
                 runs = run_experiment(exp, db=db, jobs=args.jobs, executor=early or executor,
                                       progress=not args.no_progress, retry=args.retry,
-                                      require_sandbox=args.require_sandbox, shard=args.shard)
+                                      require_sandbox=args.require_sandbox, shard=args.shard,
+                                      sandbox_limits=args.sandbox_limits)
         except KeyboardInterrupt:
             raise CommandError(f"interrupted; finished runs are stored in {db}, run the same command again to resume") \
                 from None
@@ -224,6 +254,7 @@ def add_parser(subparsers: Any) -> None:
                         "(N machines, one shard each; 'pathzoo merge' joins their databases)")
     parser.add_argument("--require-sandbox", action="store_true",
                         help="refuse to run planners outside the OS sandbox (bubblewrap + cgroups; docs/sandbox.md)")
+    add_sandbox_memory_option(parser)
     parser.add_argument("-v", "--verbose", action="store_true",
                         help="also list the unsupported planner x scenario pairs that are not run")
     add_table_options(parser)

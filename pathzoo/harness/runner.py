@@ -39,6 +39,7 @@ if TYPE_CHECKING:
     import pandas as pd
 
     from pathzoo.harness.experiment import Experiment
+    from pathzoo.harness.sandbox import SandboxLimits
     from pathzoo.harness.shard import Shard
     from pathzoo.core.results import RunRecord
     from pathzoo.harness.specs import RunTask
@@ -193,6 +194,7 @@ def run_experiment(
     judge_timeout_s: float = JUDGE_TIMEOUT_S,
     require_sandbox: bool = False,
     shard: "Shard | None" = None,
+    sandbox_limits: "SandboxLimits | None" = None,
 ) -> "pd.DataFrame":
     """Run every run of ``experiment`` not yet stored in ``db``; return exactly the experiment's runs.
 
@@ -223,6 +225,10 @@ def run_experiment(
     shard : Shard, optional
         Run only this shard of the experiment's runs
         (:mod:`pathzoo.harness.shard`; ``pathzoo merge`` joins the shards' databases).
+    sandbox_limits : SandboxLimits, optional
+        Memory, process and scratch limits of each sandboxed worker of the
+        ``process`` executor (default: :class:`~pathzoo.harness.sandbox.SandboxLimits`'
+        own, 4 GiB of memory); an executor passed as an instance keeps its own.
 
     Returns
     -------
@@ -269,7 +275,8 @@ def run_experiment(
             try:
                 # the judges first: they start while the executor starts its workers; one per local worker
                 with JudgePool(min(n_jobs, os.cpu_count() or 1), judge_timeout_s) as judges, \
-                        make_executor(executor, n_jobs, require_sandbox=require_sandbox) as pool:
+                        make_executor(executor, n_jobs, require_sandbox=require_sandbox,
+                                      limits=sandbox_limits) as pool:
                     if pool.sandbox_problem:
                         log.warning("pathzoo: planners run without an OS sandbox (%s); see docs/sandbox.md",
                                     pool.sandbox_problem)

@@ -168,9 +168,10 @@ def test_bad_experiment_files_are_one_line(tmp_path, capsys, body, message):
 def test_executor_options_reach_the_runner(experiment, tmp_path, capsys, monkeypatch):
     seen = {}
 
-    def fake_run_experiment(exp, *, db, jobs, executor, progress, retry=(), require_sandbox=False, shard=None):
+    def fake_run_experiment(exp, *, db, jobs, executor, progress, retry=(), require_sandbox=False, shard=None,
+                            sandbox_limits=None):
         seen.update(db=db, jobs=jobs, executor=executor, progress=progress, seeds=exp.seeds,
-                    require_sandbox=require_sandbox, shard=str(shard))
+                    require_sandbox=require_sandbox, shard=str(shard), sandbox_limits=sandbox_limits)
         raise KeyboardInterrupt
 
     monkeypatch.setattr(runner, "run_experiment", fake_run_experiment)
@@ -179,10 +180,37 @@ def test_executor_options_reach_the_runner(experiment, tmp_path, capsys, monkeyp
             "--jobs", "3", "--seeds", "4", "--no-progress", "--require-sandbox", "--shard", "2/3"]
     assert main(argv) == 2
     assert seen == {"db": str(db), "jobs": 3, "executor": "dask:tcp://10.0.0.1:8786", "progress": False,
-                    "seeds": (0, 1, 2, 3), "require_sandbox": True, "shard": "2/3"}
+                    "seeds": (0, 1, 2, 3), "require_sandbox": True, "shard": "2/3", "sandbox_limits": None}
     assert one_error(capsys) == (
         f"interrupted; finished runs are stored in {db}, run the same command again to resume"
     )
+
+
+def test_sandbox_memory_reaches_the_process_executors_workers(experiment, tmp_path, capsys, monkeypatch):
+    seen = {}
+
+    def fake_run_experiment(exp, *, executor, sandbox_limits=None, **kwargs):
+        seen.update(executor_limits=getattr(executor, "limits", None), sandbox_limits=sandbox_limits)
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(runner, "run_experiment", fake_run_experiment)
+    argv = ["run", str(experiment), "--db", str(tmp_path / "r.sqlite"), "--no-progress", "--jobs", "1",
+            "--sandbox-memory", "1.5"]
+    assert main(argv) == 2
+    assert seen["sandbox_limits"].memory_bytes == 3 << 29
+    if seen["executor_limits"] is not None:  # the process executor built early, while the experiment was read
+        assert seen["executor_limits"].memory_bytes == 3 << 29
+
+
+@pytest.mark.parametrize(("option", "message"), [
+    (["--sandbox-memory", "0"], "--sandbox-memory: must be a positive number of GiB, got '0'"),
+    (["--sandbox-memory", "lots"], "--sandbox-memory: must be a number of GiB, got 'lots'"),
+    (["--sandbox-memory", "2", "--executor", "inline"],
+     "--sandbox-memory applies to the process executor's workers, not to --executor inline"),
+])
+def test_a_bad_sandbox_memory_is_a_one_line_error(experiment, tmp_path, capsys, option, message):
+    assert main(["run", str(experiment), "--db", str(tmp_path / "r.sqlite"), "--no-progress", *option]) == 2
+    assert message in one_error(capsys)
 
 
 def test_require_sandbox_refuses_the_inline_executor_in_one_line(experiment, tmp_path, capsys):

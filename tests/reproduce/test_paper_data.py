@@ -79,6 +79,8 @@ def test_unknown_paper_is_a_one_line_error():
         (lambda t: t.replace('planner = "iaca"\nvalues', 'planner = "ghost"\nvalues'), "ghost"),
         (lambda t: t.replace("eq21_distance = [33.5], cpu_time = [21.0]", "bogus = [1.0]"), "bogus"),
         (lambda t: t.replace("[paper]", "[paper", 1), "toml"),
+        (lambda t: t.replace("[paper]", "[paper]\nsandbox_memory_gib = 0", 1), "sandbox_memory_gib"),
+        (lambda t: t.replace("[paper]", '[paper]\nsandbox_memory_gib = "8"', 1), "sandbox_memory_gib"),
     ],
 )
 def test_bad_paper_file_names_the_file_and_field(tmp_path, edit, field):
@@ -91,6 +93,27 @@ def test_bad_paper_file_names_the_file_and_field(tmp_path, edit, field):
     assert str(bad) in msg and "\n" not in msg
     if field != "toml":
         assert field in msg
+
+
+def test_a_paper_sets_its_workers_memory_and_the_rerun_passes_it_to_the_harness(tmp_path, monkeypatch):
+    from pathzoo.analysis.reproduction.runs import RerunOptions, run_labelled
+    from pathzoo.harness import runner
+    from pathzoo.harness.sandbox import SandboxLimits
+
+    assert load_paper("ggaco").sandbox_memory_gib == 8.0
+    assert load_paper("iaca").sandbox_memory_gib is None
+    seen = []
+
+    def fake_run_experiment(experiment, **kwargs):
+        seen.append(kwargs["sandbox_limits"])
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(runner, "run_experiment", fake_run_experiment)
+    for paper, given, expected in [("ggaco", None, 8 << 30), ("ggaco", SandboxLimits(memory_bytes=5 << 30), 5 << 30),
+                                   ("iaca", None, None)]:
+        with pytest.raises(KeyboardInterrupt):
+            run_labelled(load_paper(paper), None, RerunOptions(db=tmp_path / "r.sqlite", sandbox_limits=given))
+        assert (seen[-1] and seen[-1].memory_bytes) == expected
 
 
 def test_the_papers_tables_come_through_the_plugin_hook(tmp_path):

@@ -8,6 +8,9 @@ come from, the statistic they are (median, mean or a single value), the run
 count, the planners (pathzoo ids and parameters), the metrics (with the
 factor from our SI unit to the paper's unit) and, per scenario and planner,
 the paper's value and SD (and its ↑/↓/≈ mark where the paper prints one).
+A ``[paper]`` table may also set ``sandbox_memory_gib``, the memory each
+sandboxed worker needs for the paper's largest scenarios (default: the
+sandbox's own limit).
 """
 
 from __future__ import annotations
@@ -100,6 +103,7 @@ class PaperData:
     scenarios: Mapping[str, str]
     values: pd.DataFrame
     source: str = ""
+    sandbox_memory_gib: float | None = None
 
     def planner(self, key: str) -> PaperPlanner:
         """The planner with data key ``key``."""
@@ -219,11 +223,15 @@ def load_paper(name: str, path: str | Path | None = None) -> PaperData:
             rows.append(dict(scenario=scen, planner=planner, metric=metric, value=float(pair[0]),
                              sd=float(pair[1]) if len(pair) == 2 else math.nan, mark=marks.get(metric, "")))
     budget = dict(_field(head, "budget", dict, f"{where} [paper]"))
+    memory = head.get("sandbox_memory_gib")
+    if memory is not None and (isinstance(memory, bool) or not isinstance(memory, (int, float)) or not memory > 0):
+        raise PaperDataError(f"{where} [paper]: sandbox_memory_gib must be a positive number of GiB, got {memory!r}")
     return PaperData(
         name=name, title=_field(head, "title", str, f"{where} [paper]"), file=str(head.get("file", "")),
         table=_field(head, "table", str, f"{where} [paper]"), statistic=statistic, runs=runs, reference=reference,
         budget=budget, claim=str(head.get("claim", "")), notes=tuple(head.get("notes", ())),
         planners=tuple(planners), metrics=tuple(metrics), scenarios=scenarios,
         values=pd.DataFrame(rows, columns=["scenario", "planner", "metric", "value", "sd", "mark"]), source=where,
+        sandbox_memory_gib=None if memory is None else float(memory),
     )
 

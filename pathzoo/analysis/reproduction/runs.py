@@ -12,13 +12,16 @@ import importlib
 import math
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Callable
+from typing import TYPE_CHECKING, Any, Callable
 
 import numpy as np
 import pandas as pd
 
 from pathzoo.analysis.reproduction.paper_data import PaperData, PaperPlanner
 from pathzoo.core.errors import InvalidExperimentError, InvalidParameterError, PathzooError
+
+if TYPE_CHECKING:
+    from pathzoo.harness.sandbox import SandboxLimits
 
 __all__ = [
     "NOT_AVAILABLE",
@@ -189,6 +192,9 @@ class RerunOptions:
         :func:`build_experiments`.
     jobs, executor, progress
         Passed to :func:`~pathzoo.harness.runner.run_experiment`.
+    sandbox_limits : SandboxLimits, optional
+        The limits of each sandboxed worker; by default the paper's
+        ``sandbox_memory_gib`` where it sets one, else the sandbox's own.
     """
 
     db: str | Path
@@ -198,14 +204,20 @@ class RerunOptions:
     jobs: int | None = None
     executor: str = "process"
     progress: bool = True
+    sandbox_limits: "SandboxLimits | None" = None
 
 
 def run_labelled(paper: PaperData, experiment: Any, options: RerunOptions) -> pd.DataFrame:
     """Run (or resume) one experiment of a rerun; its runs with the derived metrics, labelled (:func:`label_runs`)."""
     from pathzoo.harness.runner import run_experiment
 
+    limits = options.sandbox_limits
+    if limits is None and paper.sandbox_memory_gib is not None:
+        from pathzoo.harness.sandbox import SandboxLimits
+
+        limits = SandboxLimits(memory_bytes=int(paper.sandbox_memory_gib * 2**30))
     runs = run_experiment(experiment, db=options.db, jobs=options.jobs, executor=options.executor,
-                          progress=options.progress)
+                          progress=options.progress, sandbox_limits=limits)
     return label_runs(paper, add_derived(paper, runs, options.db, experiment.name), experiment)
 
 

@@ -11,7 +11,7 @@ from pathzoo.harness.executors.cluster_options import ClusterOptions
 from pathzoo.harness.executors.base import RunExecutor
 from pathzoo.harness.executors.inline import InlineExecutor
 from pathzoo.harness.executors.process import ProcessExecutor
-from pathzoo.harness.sandbox import SandboxUnavailableError, sandbox_problem
+from pathzoo.harness.sandbox import SandboxLimits, SandboxUnavailableError, sandbox_problem
 
 __all__ = ["RunExecutor", "InlineExecutor", "ProcessExecutor", "ClusterOptions", "dask_executor", "jobqueue_executor",
            "make_executor", "worker_count", "EXECUTORS"]
@@ -60,7 +60,8 @@ def worker_count(jobs: Any, default: Any = None) -> Any:
     return jobs or default or os.cpu_count() or 1
 
 
-def make_executor(spec: "str | RunExecutor", jobs: int, *, require_sandbox: bool = False) -> RunExecutor:
+def make_executor(spec: "str | RunExecutor", jobs: int, *, require_sandbox: bool = False,
+                  limits: SandboxLimits | None = None) -> RunExecutor:
     """Build an executor from its name, or pass an instance through.
 
     Parameters
@@ -74,6 +75,9 @@ def make_executor(spec: "str | RunExecutor", jobs: int, *, require_sandbox: bool
     require_sandbox : bool
         Refuse to build an executor whose planners would run unsandboxed here
         (``docs/sandbox.md``).
+    limits : SandboxLimits, optional
+        The limits of each sandboxed worker of the ``process`` executor
+        (default: :class:`~pathzoo.harness.sandbox.SandboxLimits`' own).
 
     Raises
     ------
@@ -92,7 +96,7 @@ def make_executor(spec: "str | RunExecutor", jobs: int, *, require_sandbox: bool
     if isinstance(spec, RunExecutor):
         return spec
     if spec == "process":
-        return ProcessExecutor(jobs, sandbox=True if require_sandbox else None)
+        return ProcessExecutor(jobs, sandbox=True if require_sandbox else None, limits=limits)
     if spec == "inline":
         return InlineExecutor()
     if spec in ("slurm", "pbs", "sge"):
