@@ -25,7 +25,8 @@ import numpy as np
 import scipy.sparse as sp
 
 from pathzoo.grid.segments import touched_cells_2d, touched_cells_3d
-from pathzoo.grid.terrain import neighbour_slope_range, segments_slope_range, slope_exceeds, slope_limit_band
+from pathzoo.grid.slope_limit import slope_exceeds, slope_limit_band
+from pathzoo.grid.terrain import neighbour_slope_range, segments_slope_range
 
 if TYPE_CHECKING:
     from pathzoo.core.scenario import Scenario
@@ -199,7 +200,7 @@ def _move_verdicts(free_padded, dims, pads, touched_ptr, touched_shift, move_ok,
     (:func:`pathzoo.grid.terrain.neighbour_slope_range`, the validator's
     :func:`~pathzoo.grid.terrain.segment_slope_range` for these segments;
     ``steps[j]`` = rows, columns) must lie
-    below both limits' bands (:func:`pathzoo.grid.terrain.slope_limit_band`):
+    below both limits' bands (:func:`pathzoo.grid.slope_limit.slope_limit_band`):
     the climb limit's for the greatest gradient, the descent limit's for the
     negated least. Returns the number of undecided moves.
     """
@@ -295,7 +296,7 @@ def build_graph(scenario: "Scenario", allocate: "Callable[[str, type, int], np.n
     cell's moves (:func:`_move_verdicts`: free touched cells, and on terrain
     the validator's exact slope test, once per candidate edge), one byte per
     cell and move; the few slope verdicts a comparison cannot settle get
-    :func:`pathzoo.grid.terrain.slope_exceeds` itself. The second writes the
+    :func:`pathzoo.grid.slope_limit.slope_exceeds` itself. The second writes the
     CSR arrays in order (:func:`_write_edges`), with lengths and slopes by
     :func:`move_values`'s expressions.
 

@@ -16,7 +16,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from pathzoo.grid.terrain import path_slope_ranges, segment_slope_range, slope_exceeds
+from pathzoo.grid.slope_limit import slope_exceeds
+from pathzoo.grid.terrain import path_slope_ranges, segment_slope_range
 from pathzoo.rules.wording import fmt_point
 
 if TYPE_CHECKING:

@@ -17,7 +17,7 @@ where ``diagonal`` is the map diagonal in metres and ``violation`` (unitless,
 - **slope** (terrain): the horizontal length, in cells, of the segments whose
   exact gradient range (:func:`pathzoo.grid.terrain.segments_slope_range`, the
   validator's own slope rule) breaks the vehicle's climb or descent limit
-  (:func:`pathzoo.grid.terrain.slope_exceeds`), so a 0 here is never rejected
+  (:func:`pathzoo.grid.slope_limit.slope_exceeds`), so a 0 here is never rejected
   there;
 - **turns**: the number of heading changes beyond ``vehicle.max_turn_deg``
   (only when that limit is below 180 degrees; zero-length segments are not
@@ -47,7 +47,8 @@ import numpy as np
 
 from pathzoo.core import Scenario
 from pathzoo.grid.segments import blocked_segments, count_blocked_cells_2d, to_cell_units
-from pathzoo.grid.terrain import MAX_PIECE_CELLS, bilinear_elevation, segments_slope_range, slope_exceeds
+from pathzoo.grid.slope_limit import slope_exceeds
+from pathzoo.grid.terrain import MAX_PIECE_CELLS, bilinear_elevation, segments_slope_range
 from pathzoo_baselines.margin import MARGIN_CELLS, segment_clear
 
 __all__ = ["PathCost", "collision_counts"]

@@ -206,7 +206,7 @@ def test_slope_limit_test_is_the_angle_expression_at_the_cut(limit, cell_size):
     """slope_exceeds compares gradients with the limit's gradient: the verdicts are the angle expression's, ulp by ulp."""
     from types import SimpleNamespace
 
-    from pathzoo.grid.terrain import slope_exceeds
+    from pathzoo.grid.slope_limit import slope_exceeds
 
     rng = np.random.default_rng(3)
     vehicle = SimpleNamespace(max_climb_deg=limit, max_descent_deg=limit / 2)
