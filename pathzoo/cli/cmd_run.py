@@ -50,7 +50,7 @@ def sandbox_memory(text: str) -> "SandboxLimits":
         raise argparse.ArgumentTypeError(f"must be a number of GiB, got {text!r}") from None
     if not gib > 0 or gib == float("inf"):
         raise argparse.ArgumentTypeError(f"must be a positive number of GiB, got {text!r}")
-    return SandboxLimits(memory_bytes=int(gib * 2**30))
+    return SandboxLimits.with_memory_gib(gib)
 
 
 def add_sandbox_memory_option(parser: argparse.ArgumentParser) -> None:

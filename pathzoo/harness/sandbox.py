@@ -92,6 +92,11 @@ class SandboxLimits:
     max_tasks: int = 512
     scratch_bytes: int = 1 << 30
 
+    @classmethod
+    def with_memory_gib(cls, gib: float) -> "SandboxLimits":
+        """The default limits with ``gib`` GiB of memory."""
+        return cls(memory_bytes=int(gib * 2**30))
+
 
 @functools.lru_cache(maxsize=1)
 def sandbox_problem() -> str:

@@ -11,7 +11,9 @@ with the example id of a user's own planner in ``docs/aco-engine.md``.
 from __future__ import annotations
 
 import re
+from functools import cache
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -26,14 +28,18 @@ NOT_RECONSTRUCTED = {"aco.chen", "swarm.mopso", "evo.lro_ga"}
 """Rivals a paper compares against that pathzoo does not reconstruct (docs/reproduction.md)."""
 EXAMPLES = {"aco.mine"}
 """Ids of a user's own planner in a registration example."""
-INSTALLED = discover()
-"""The installed plugins, discovered afresh: other tests of the same process register planners of their own (the hostile
-tests' ``sandbox.*``) in the process-wide registry and leave them there."""
 FILE_SUFFIXES = {"md", "py", "rst", "toml", "org", "html", "json", "csv", "txt"}
 
 
+@cache
+def _installed() -> dict[str, Any]:
+    """The installed planners, from plugins discovered afresh once: other tests of the same process register planners
+    of their own (the hostile tests' ``sandbox.*``) in the process-wide registry and leave them there."""
+    return dict(discover().table("planners"))
+
+
 def _families() -> set[str]:
-    return {pid.split(".", 1)[0] for pid in INSTALLED.table("planners")}
+    return {pid.split(".", 1)[0] for pid in _installed()}
 
 
 def named_ids(text: str, families: set[str]) -> set[str]:
@@ -53,7 +59,7 @@ def test_the_pattern_finds_ids_and_skips_modules() -> None:
 
 @pytest.mark.parametrize("page", PAGES, ids=lambda p: str(p.relative_to(REPO_ROOT)))
 def test_page_names_only_registered_planners(page: Path) -> None:
-    registered = set(INSTALLED.table("planners"))
+    registered = set(_installed())
     unknown = named_ids(page.read_text(encoding="utf-8"), _families()) - registered - NOT_RECONSTRUCTED - EXAMPLES
     assert not unknown, f"{page.relative_to(REPO_ROOT)} names unregistered planner id(s): {sorted(unknown)}"
 
@@ -81,7 +87,7 @@ def test_every_kind_a_planner_does_not_support_has_a_stated_reason() -> None:
     from pathzoo.core.scenario import SCENARIO_KINDS
 
     missing = []
-    for pid, entry in sorted(INSTALLED.table("planners").items()):
+    for pid, entry in sorted(_installed().items()):
         own = REPO_ROOT / "docs" / "planners" / f"{pid}.md"
         page = own if own.exists() else REPO_ROOT / "docs" / "planners" / "metaheuristics.md"
         section = _section(page.read_text(encoding="utf-8"), "Kinds not supported")

@@ -77,11 +77,15 @@ def hugo() -> Scenario:
     return pathzoo.load_scenario("ggaco.hugo")
 
 
-@pytest.mark.parametrize("theta_deg", [90.0, 12.0])
-def test_heuristic_is_consistent_on_every_edge(hugo, theta_deg):
-    tm = math.radians(theta_deg)
-    h = zstar_heuristic(hugo, tm)
-    cost = zstar_edge_cost(hugo, tm)
+@pytest.fixture(params=[90.0, 12.0], ids=lambda deg: f"theta{deg:g}")
+def hugo_tables(hugo, request) -> tuple[float, np.ndarray, np.ndarray]:
+    """``(max climb in rad, heuristic, edge costs)`` of Z* on ``ggaco.hugo`` at a 90 and a 12 degree climb limit."""
+    tm = math.radians(request.param)
+    return tm, zstar_heuristic(hugo, tm), zstar_edge_cost(hugo, tm)
+
+
+def test_heuristic_is_consistent_on_every_edge(hugo, hugo_tables):
+    _, h, cost = hugo_tables
     g = hugo.graph
     ok = np.isfinite(cost)
     slack = h[g.sources] - (cost + h[g.indices])
@@ -89,11 +93,8 @@ def test_heuristic_is_consistent_on_every_edge(hugo, theta_deg):
     assert h[hugo.goal_node] == 0.0
 
 
-@pytest.mark.parametrize("theta_deg", [90.0, 12.0])
-def test_reduced_costs_and_single_nodes_give_the_array_expressions_bit_for_bit(hugo, theta_deg):
-    tm = math.radians(theta_deg)
-    h = zstar_heuristic(hugo, tm)
-    cost = zstar_edge_cost(hugo, tm)
+def test_reduced_costs_and_single_nodes_give_the_array_expressions_bit_for_bit(hugo, hugo_tables):
+    tm, h, cost = hugo_tables
     g = hugo.graph
     np.testing.assert_array_equal(reduced_costs(hugo, cost, h), cost + h[g.indices] - h[g.sources])
     for node in np.random.default_rng(0).choice(g.n_nodes, 50, replace=False).tolist() + [hugo.start_node]:

@@ -215,7 +215,7 @@ def run_labelled(paper: PaperData, experiment: Any, options: RerunOptions) -> pd
     if limits is None and paper.sandbox_memory_gib is not None:
         from pathzoo.harness.sandbox import SandboxLimits
 
-        limits = SandboxLimits(memory_bytes=int(paper.sandbox_memory_gib * 2**30))
+        limits = SandboxLimits.with_memory_gib(paper.sandbox_memory_gib)
     runs = run_experiment(experiment, db=options.db, jobs=options.jobs, executor=options.executor,
                           progress=options.progress, sandbox_limits=limits)
     return label_runs(paper, add_derived(paper, runs, options.db, experiment.name), experiment)
