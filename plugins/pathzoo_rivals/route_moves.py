@@ -79,8 +79,8 @@ def leap(problem: RouteProblem, worst: np.ndarray, best: np.ndarray, rng: np.ran
     result is string-pulled (:meth:`RouteProblem.pull_string`), the same
     simplification random routes get; otherwise returns ``None``.
     """
-    pa, pb = problem.polyline(worst), problem.polyline(best)
-    longest = max(float(np.hypot(*np.diff(p, axis=0).T).sum()) for p in (pa, pb))
+    (pa, length_a), (pb, length_b) = problem.outline(worst), problem.outline(best)
+    longest = max(length_a, length_b)
     n = max(len(worst), len(best), int(np.ceil(longest / problem.scenario.cell_size)) + 1)
     h, w = problem.shape
     cells = blend_cells(pa, pb, n, rng.uniform(), problem.scenario.cell_size, h, w, problem.start, problem.goal)

@@ -52,7 +52,8 @@ from pathzoo_exact.problem import H_OCTILE, H_ZERO, search_problem
 from pathzoo_exact.search_loop import astar_batch
 from pathzoo_exact.search_state import FOUND, HEAP_FULL, RUNNING, SearchState, run_batch
 from pathzoo_exact.waypoints import trace_path
-from pathzoo_rivals.route_kernels import pull_string_free, route_free, segment_free, via_route
+from pathzoo_rivals.route_kernels import SEEN_BITS, pull_string_free, route_free, segment_free, via_route
+from pathzoo_rivals.route_memo import RouteMemo
 from pathzoo_rivals.route_segments import SegmentCache
 
 __all__ = ["RouteProblem", "SLOPE_MARGIN_DEG", "N_OBJECTIVES", "OBJECTIVES", "DETOUR", "SEGMENT_CACHE_SIZE"]
@@ -89,9 +90,12 @@ class RouteProblem:
         self.shape = scenario.shape
         self.free = ~scenario.blocked
         self._segments = SegmentCache(scenario)
+        self._measured: dict[str, RouteMemo[tuple[np.ndarray, float]]] = {}  # measure()'s values per rule
+        self._outlines: RouteMemo[tuple[np.ndarray, float]] = RouteMemo()  # outline()'s values
         self._segment_ok: dict[tuple[int, int], bool] = {}
         self._via: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None = None  # random_route's trees
         self._candidates: tuple[float, np.ndarray, np.ndarray] | None = None  # its via cells and scratch array
+        self._seen: np.ndarray | None = None  # pull_string's segment verdicts (route_kernels.kept_segment_free)
         vehicle = scenario.vehicle
         self._slopes_matter = scenario.kind == "terrain" and (
             min(vehicle.max_climb_deg, vehicle.max_descent_deg) < 90.0
@@ -233,7 +237,9 @@ class RouteProblem:
         the result is one too, with the same first and last node.
         """
         if self.collision_only:
-            return pull_string_free(self.blocked, self.cell_size, np.asarray(nodes, dtype=np.int64))
+            if self._seen is None:
+                self._seen = np.full(1 << SEEN_BITS, -1, dtype=np.int64)
+            return pull_string_free(self.blocked, self.cell_size, np.asarray(nodes, dtype=np.int64), self._seen)
         keep = [int(nodes[0])]
         anchor = 0
         i = 1
@@ -251,6 +257,18 @@ class RouteProblem:
         """Cell-centre polyline of a route (world coordinates, no endpoint connectors)."""
         return self.scenario.point_of(route)
 
+    def outline(self, route: np.ndarray) -> tuple[np.ndarray, float]:
+        """A route's :meth:`polyline` and its length (NumPy's sum of the segments' ``hypot``), kept per route.
+
+        The arrays are kept (:class:`~pathzoo_rivals.route_memo.RouteMemo`): callers must not modify them.
+        """
+        known = self._outlines.get(route)
+        if known is None:
+            points = self.polyline(route)
+            known = points, float(np.hypot(*np.diff(points, axis=0).T).sum())
+            self._outlines.keep(route, known)
+        return known
+
     def objectives(self, route: np.ndarray) -> np.ndarray:
         """``(length, risk, turning)`` of a route's world path, all to be minimised (see module)."""
         return self.measure(route, "length")[0]
@@ -263,8 +281,18 @@ class RouteProblem:
         driven pieces, the harness's (:func:`~pathzoo.metrics.geometry.driven_pieces`)
         kept per segment (:class:`~pathzoo_rivals.route_segments.SegmentCache`),
         and heading changes (:func:`~pathzoo.metrics.geometry.turn_angles`).
+        A route measured before is answered from a :class:`~pathzoo_rivals.route_memo.RouteMemo`
+        (the same values, to the last bit).
         """
-        pts = self.world_path(route)
+        memo = self._measured.setdefault(rule, RouteMemo())
+        known = memo.get(route)
+        if known is None:
+            known = self._measure_path(self.world_path(route), rule)
+            memo.keep(route, known)
+        return known[0].copy(), known[1]
+
+    def _measure_path(self, pts: np.ndarray, rule: str) -> tuple[np.ndarray, float]:
+        """:meth:`measure` of a route's world path, computed."""
         lengths, slopes = self._segments.pieces(pts)
         turns = turn_angles(pts)
         f = np.array([float(lengths.sum()), -self.mean_clearance(pts), float(turns.sum())])
