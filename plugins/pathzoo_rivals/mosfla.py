@@ -14,9 +14,10 @@ shuffled frog-leaping algorithm of Eusuff and Lansey (2003):
 3. the memeplexes are shuffled back together: one iteration.
 
 "Best" and "worst" are NSGA-II's order (front rank, then crowding distance,
-by pymoo), our multi-objective reading of SFLA's fitness sort. The route
-encoding, the leap on routes (:func:`pathzoo_rivals.route_moves.leap`) and
-the defaults are pathzoo's (``docs/planners/swarm.mosfla.md``).
+pymoo's, compiled in :mod:`pathzoo_rivals.pareto`), our multi-objective
+reading of SFLA's fitness sort. The route encoding, the leap on routes
+(:func:`pathzoo_rivals.route_moves.leap`) and the defaults are pathzoo's
+(``docs/planners/swarm.mosfla.md``).
 """
 
 from __future__ import annotations

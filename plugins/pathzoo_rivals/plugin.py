@@ -18,11 +18,11 @@ PLANNERS: tuple[LazyPlanner, ...] = (
     LazyPlanner("swarm.mosfla",
                 "MOSFLA after Hidalgo-Paniagua et al. 2015 (reconstructed): shuffled frog-leaping on waypoint "
                 "routes, objectives length, safety, smoothness",
-                "pathzoo_rivals.mosfla:MosflaPlanner", kinds=_GRID_TERRAIN, requires={"pymoo": "evo"}),
+                "pathzoo_rivals.mosfla:MosflaPlanner", kinds=_GRID_TERRAIN),
     LazyPlanner("search.movns",
                 "MOVNS after Hidalgo-Paniagua et al. 2016 (reconstructed): multi-objective VNS on waypoint routes, "
                 "objectives length, safety, smoothness",
-                "pathzoo_rivals.movns:MovnsPlanner", kinds=_GRID_TERRAIN, requires={"pymoo": "evo"}),
+                "pathzoo_rivals.movns:MovnsPlanner", kinds=_GRID_TERRAIN),
 )
 """``exact.zstar`` and the reconstructions ``swarm.mosfla`` and ``search.movns``, declared without importing them."""
 

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import abc
 import math
-from typing import Any, ClassVar, Mapping
+from typing import Any, ClassVar
 
 import numpy as np
 
@@ -115,7 +115,6 @@ class RouteSearchPlanner(Planner, abc.ABC):
     """Base of the multi-objective route rivals (``grid2d`` and ``terrain``)."""
 
     kinds: ClassVar[frozenset[str]] = frozenset({"grid2d", "terrain"})
-    requires: ClassVar[Mapping[str, str]] = {"pymoo": "evo"}  # NSGA-II sorting and crowding (pathzoo_rivals.pareto)
     archive_size: ClassVar[int] = 50
     """Capacity of the Pareto archive reported in ``extras["front"]``."""
 

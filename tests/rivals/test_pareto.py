@@ -3,8 +3,9 @@
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
-from pathzoo_rivals.pareto import ParetoArchive, dominates, rank_and_crowding_order
+from pathzoo_rivals.pareto import ParetoArchive, crowding_distances, dominates, rank_and_crowding_order
 
 
 def test_dominance():
@@ -50,3 +51,34 @@ def test_rank_and_crowding_order():
     order = list(rank_and_crowding_order(F))
     assert set(order[:3]) == {1, 2, 3} and order[2] == 2  # boundary points before the interior one
     assert order[3:] == [0, 4]
+
+
+def pymoo_order(objectives: np.ndarray) -> np.ndarray:
+    """NSGA-II's order by pymoo's own functions (the definition the compiled one follows)."""
+    from pymoo.operators.survival.rank_and_crowding.metrics import calc_crowding_distance
+    from pymoo.util.nds.non_dominated_sorting import NonDominatedSorting
+
+    rank = np.empty(len(objectives), dtype=np.int64)
+    crowd = np.empty(len(objectives))
+    for r, members in enumerate(NonDominatedSorting().do(objectives)):
+        rank[members] = r
+        front = objectives[members]
+        crowd[members] = np.inf if len(front) <= 2 else calc_crowding_distance(front)
+    return np.lexsort((np.arange(len(objectives)), -crowd, rank))
+
+
+@pytest.mark.parametrize("values", ["continuous", "ties"])
+def test_compiled_order_and_crowding_are_pymoos(values):
+    # continuous values tell apart any other order of the sums; small integers make ties, duplicates and flat objectives
+    from pymoo.operators.survival.rank_and_crowding.metrics import calc_crowding_distance
+
+    rng = np.random.default_rng(11)
+    for _ in range(3000):
+        n = int(rng.integers(1, 26))
+        f = rng.normal(size=(n, 3)) * rng.uniform(0.1, 1e4, 3) if values == "continuous" else \
+            rng.integers(0, 4, size=(n, 3)).astype(np.float64)
+        if values == "ties" and rng.uniform() < 0.2:
+            f[:, int(rng.integers(3))] = 1.0
+        assert rank_and_crowding_order(f).tolist() == pymoo_order(f).tolist()
+        expected = np.full(n, np.inf) if n <= 2 else calc_crowding_distance(f)
+        assert crowding_distances(f).tobytes() == expected.tobytes()
