@@ -26,11 +26,23 @@ if TYPE_CHECKING:
     from pathzoo.core.scenario import Scenario
     from pathzoo.harness.specs import ScenarioSpec
 
-__all__ = ["SCENARIO_CACHE_SIZE", "keep_payload", "load_cached", "load_unsealed", "load_warm", "lru", "evict",
-           "cache_lock"]
+__all__ = ["SCENARIO_CACHE_SIZE", "UNSEALED_CACHE_CELLS", "keep_payload", "load_cached", "load_unsealed", "load_warm",
+           "lru", "evict", "cache_lock"]
 
 SCENARIO_CACHE_SIZE = 4
 """Scenarios kept loaded per process (runs are ordered scenario by scenario)."""
+
+UNSEALED_CACHE_CELLS = 1 << 20
+"""Map cells that :func:`load_unsealed` keeps loaded beyond :data:`SCENARIO_CACHE_SIZE` scenarios.
+
+A judge meets a scenario once per configuration, and a sweep's pilot
+(:func:`~pathzoo.harness.eta.pilot_first`) runs each scenario's first
+configuration long before the others, so with four scenarios a study of
+many small problems loads each, and derives its reference paths, once per
+configuration. Counting cells, it keeps 1,024 problems of a 32 x 32 map
+(about 45 KB each with their reference paths), 16 of a 256 x 256 one, and
+never fewer than four scenarios, whatever their size.
+"""
 
 _scenarios: "OrderedDict[tuple[str, str, str, str], tuple[Scenario, ScenarioSeal]]" = OrderedDict()
 cache_lock = threading.Lock()
@@ -65,14 +77,27 @@ def load_cached(spec: "ScenarioSpec", size: int = SCENARIO_CACHE_SIZE) -> "tuple
     return lru(_scenarios, spec.cache_key, size, make)
 
 
-def load_unsealed(spec: "ScenarioSpec", size: int = SCENARIO_CACHE_SIZE) -> "Scenario":
-    """Load a scenario once per process (LRU of ``size``), geometry warmed, arrays not sealed.
+def load_unsealed(spec: "ScenarioSpec", cells: int = UNSEALED_CACHE_CELLS) -> "Scenario":
+    """Load a scenario once per process, geometry warmed, arrays not sealed; keep the most recent ones while their
+    maps hold at most ``cells`` cells in all, and at least :data:`SCENARIO_CACHE_SIZE` of them.
 
     For a process where no planner code ever runs (the judge's): there the
     seal would guard against nothing, and moving the arrays into sealed
     memory and taking the scenario's digest cost about as much as loading it.
     """
-    return lru(_unsealed, spec.cache_key, size, lambda: load_warm(spec))
+    loaded: list[Scenario] = []
+
+    def make() -> "Scenario":
+        loaded.append(load_warm(spec))
+        return loaded[0]
+
+    scenario = lru(_unsealed, spec.cache_key, len(_unsealed) + 1, make)
+    if loaded:
+        with cache_lock:
+            held = sum(kept.occupancy.size for kept in _unsealed.values())
+            while len(_unsealed) > SCENARIO_CACHE_SIZE and held > cells:
+                held -= _unsealed.popitem(last=False)[1].occupancy.size
+    return scenario
 
 
 _T = TypeVar("_T")

@@ -1,0 +1,43 @@
+"""The judge's scenario cache: bounded by map cells, so a study of many small problems loads each once."""
+
+from __future__ import annotations
+
+import pytest
+
+from pathzoo.harness import Experiment
+from pathzoo.harness import scenario_cache
+from pathzoo.harness.scenario_cache import SCENARIO_CACHE_SIZE, load_unsealed
+from pathzoo.plugins.manager import get_registry
+
+
+@pytest.fixture()
+def specs():
+    """Twelve problems of one 32 x 32 MovingAI map (1,024 cells each), with an empty cache around the test."""
+    problems = sorted(k for k in get_registry().scenarios if k.startswith("movingai.random-32-32-20."))[:12]
+    tasks = Experiment.build(planners=["exact.astar"], scenarios=problems, seeds=1).tasks()
+    saved = dict(scenario_cache._unsealed)
+    scenario_cache._unsealed.clear()
+    yield [task.scenario for task in tasks]
+    scenario_cache._unsealed.clear()
+    scenario_cache._unsealed.update(saved)
+
+
+def test_scenarios_within_the_cell_budget_are_loaded_once(specs):
+    first = [load_unsealed(spec, cells=12 * 1024) for spec in specs]
+    again = [load_unsealed(spec, cells=12 * 1024) for spec in specs]
+    assert all(a is b for a, b in zip(first, again))  # the same objects: no reload, references derived once
+    assert len(scenario_cache._unsealed) == 12
+
+
+def test_the_oldest_go_beyond_the_cell_budget(specs):
+    first = [load_unsealed(spec, cells=6 * 1024) for spec in specs]
+    assert list(scenario_cache._unsealed) == [spec.cache_key for spec in specs[6:]]
+    assert load_unsealed(specs[-1], cells=6 * 1024) is first[-1]
+    assert load_unsealed(specs[0], cells=6 * 1024) is not first[0]  # evicted: loaded afresh
+
+
+def test_at_least_the_scenario_count_is_kept_whatever_their_size(specs):
+    for spec in specs:
+        load_unsealed(spec, cells=1)
+    assert len(scenario_cache._unsealed) == SCENARIO_CACHE_SIZE
+    assert list(scenario_cache._unsealed) == [spec.cache_key for spec in specs[-SCENARIO_CACHE_SIZE:]]
