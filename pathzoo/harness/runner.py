@@ -117,7 +117,9 @@ def _execute(
     scenarios_seen: set[tuple[str, str, str, str]] = set()
 
     def submit_more() -> None:
-        while len(in_flight) + len(judging) < executor.capacity + executor.lookahead:  # a run is done once stored
+        # a run is done once stored, but up to `lookahead` runs being judged do not hold the next ones back: a worker
+        # that ends a run finds its next one queued while the harness judges and stores the last (executors.base)
+        while len(in_flight) + max(0, len(judging) - executor.lookahead) < executor.capacity + executor.lookahead:
             task = next(queue, None)
             if task is None:
                 return

@@ -106,8 +106,8 @@ def worker_main(conn: Connection, alive: Connection, stop_flag: Any, sandboxed: 
         if changed:
             conn.send_bytes(b"T" + ", ".join(changed).encode("utf-8", "replace")[:1000])
             return
-        fingerprint.update()
-        conn.send_bytes(b"I")
+        conn.send_bytes(b"I")  # right behind the outcome: the harness reads both at one wake-up, and may send the next
+        fingerprint.update()  # run at once (it waits in the pipe while the modules this run loaded are snapshotted)
 
 
 def reporter(conn: Connection) -> "Callable[[str], None]":
