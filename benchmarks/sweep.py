@@ -31,6 +31,12 @@ TARGET = 0.8
 
 def stored_rate(scenarios: list[str], seeds: int, jobs: int, db: Path) -> float:
     """Stored runs per wall second, from the first stored run to the last."""
+    stamps = stored_stamps(scenarios, seeds, jobs, db)
+    return (len(stamps) - 1) / (stamps[-1] - stamps[0])
+
+
+def stored_stamps(scenarios: list[str], seeds: int, jobs: int, db: Path) -> list[float]:
+    """The ``time.perf_counter`` of each run's storing, in order, for the sweep's planners on ``scenarios``."""
     import pathzoo
     from pathzoo import Budget
     from pathzoo.harness import Experiment, run_experiment
@@ -54,7 +60,7 @@ def stored_rate(scenarios: list[str], seeds: int, jobs: int, db: Path) -> float:
         registry.pm.unregister(marks)
     if len(runs) < 2 or len(stamps) < 2:
         raise SystemExit(f"sweep: only {len(runs)} runs stored")
-    return (len(stamps) - 1) / (stamps[-1] - stamps[0])
+    return stamps
 
 
 def problem_ids(problems: int) -> list[str]:
