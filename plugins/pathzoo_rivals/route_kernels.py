@@ -28,8 +28,8 @@ SEEN_BITS = 21
 """Size of :func:`pull_string_free`'s table of segment verdicts: ``2 ** SEEN_BITS`` int64 slots (16 MiB)."""
 
 __all__ = [
-    "SEEN_BITS", "clearance_samples", "segment_free", "kept_segment_free", "route_free", "pull_string_free", "bridge_corners_free", "via_route", "resample",
-    "blend_cells",
+    "SEEN_BITS", "clearance_samples", "segment_free", "kept_segment_free", "route_free", "pull_string_free",
+    "bridge_corners_free", "via_route", "resample", "blend_cells",
 ]
 
 
@@ -110,7 +110,11 @@ def pull_string_free(blocked: np.ndarray, cs: float, nodes: np.ndarray, seen: np
 
 @numba.njit(cache=True)
 def bridge_corners_free(blocked: np.ndarray, cs: float, cells: np.ndarray) -> np.ndarray:
-    """:func:`pathzoo_rivals.route_moves._bridge_corners` with :func:`segment_free` as the segment test."""
+    """:func:`pathzoo_rivals.route_moves._bridge_corners` with :func:`segment_free` as the segment test.
+
+    Returns an empty array as soon as a step stays blocked (where the Python
+    function returns ``None``), without looking at the steps after it.
+    """
     w = blocked.shape[1]
     out = np.empty(2 * len(cells), dtype=np.int64)
     out[0] = cells[0]
@@ -118,14 +122,20 @@ def bridge_corners_free(blocked: np.ndarray, cs: float, cells: np.ndarray) -> np
     for i in range(1, len(cells)):
         v = cells[i]
         u = out[k - 1]
-        ru, cu = u // w, u % w
-        rv, cv = v // w, v % w
-        if abs(ru - rv) == 1 and abs(cu - cv) == 1 and not segment_free(blocked, cs, u, v):
+        if not segment_free(blocked, cs, u, v):
+            ru, cu = u // w, u % w
+            rv, cv = v // w, v % w
+            if abs(ru - rv) != 1 or abs(cu - cv) != 1:
+                return out[:0].copy()
+            bridged = False
             for side in (ru * w + cv, rv * w + cu):
                 if segment_free(blocked, cs, u, side) and segment_free(blocked, cs, side, v):
                     out[k] = side
                     k += 1
+                    bridged = True
                     break
+            if not bridged:
+                return out[:0].copy()
         out[k] = v
         k += 1
     return out[:k].copy()

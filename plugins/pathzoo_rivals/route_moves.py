@@ -84,28 +84,34 @@ def leap(problem: RouteProblem, worst: np.ndarray, best: np.ndarray, rng: np.ran
     n = max(len(worst), len(best), int(np.ceil(longest / problem.scenario.cell_size)) + 1)
     h, w = problem.shape
     cells = blend_cells(pa, pb, n, rng.uniform(), problem.scenario.cell_size, h, w, problem.start, problem.goal)
-    cells = _bridge_corners(problem, cells)
-    return problem.pull_string(cells) if problem.route_ok(cells) else None
+    bridged = _bridge_corners(problem, cells)
+    return problem.pull_string(bridged) if bridged is not None and problem.route_ok(bridged) else None
 
 
-def _bridge_corners(problem: RouteProblem, cells: np.ndarray) -> np.ndarray:
+def _bridge_corners(problem: RouteProblem, cells: np.ndarray) -> np.ndarray | None:
     """Replace each diagonal step the corner rule forbids by two straight steps through a free side cell, if one works.
 
     Snapping a smooth blend to cells often produces a diagonal step past a
     blocked corner; the blend itself does not cross the obstacle, so going
-    round the corner on the free side is the faithful cell route.
+    round the corner on the free side is the faithful cell route. Returns
+    ``None`` as soon as a step is not allowed and cannot be bridged (the
+    route is infeasible: the steps after it are not looked at).
     """
     if problem.collision_only:
-        return bridge_corners_free(problem.blocked, problem.cell_size, cells)
+        bridged = bridge_corners_free(problem.blocked, problem.cell_size, cells)
+        return bridged if len(bridged) else None
     w = problem.shape[1]
     out = [int(cells[0])]
     for v in (int(c) for c in cells[1:]):
         u = out[-1]
-        (ru, cu), (rv, cv) = divmod(u, w), divmod(v, w)
-        if abs(ru - rv) == 1 and abs(cu - cv) == 1 and not problem.segment_ok(u, v):
-            for side in (ru * w + cv, rv * w + cu):
-                if problem.segment_ok(u, side) and problem.segment_ok(side, v):
-                    out.append(side)
-                    break
+        if not problem.segment_ok(u, v):
+            (ru, cu), (rv, cv) = divmod(u, w), divmod(v, w)
+            if abs(ru - rv) != 1 or abs(cu - cv) != 1:
+                return None
+            side = next((c for c in (ru * w + cv, rv * w + cu) if problem.segment_ok(u, c) and problem.segment_ok(c, v)),
+                        None)
+            if side is None:
+                return None
+            out.append(side)
         out.append(v)
     return np.array(out, dtype=np.int64)
