@@ -8,7 +8,8 @@ the same float operations as ``Scenario.point_of`` followed by
 ``to_cell_units`` (``((col + 0.5) * cs) / cs``), so every verdict is the
 Python one. String-pulling and corner bridging are the loops of
 :meth:`RouteProblem.pull_string` and :func:`pathzoo_rivals.route_moves.leap`
-over that test; :func:`via_route` joins the two shortest-path trees of a
+over that test (string-pulling's verdicts kept in a table,
+:func:`kept_segment_free`); :func:`via_route` joins the two shortest-path trees of a
 route problem through one cell; :func:`blend_cells` is the geometry of the
 SFLA leap (:func:`pathzoo_rivals.route_moves.leap`): two polylines resampled
 by arc length as NumPy's ``cumsum``, ``linspace`` and ``interp`` do (the same
