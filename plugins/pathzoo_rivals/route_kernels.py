@@ -72,10 +72,11 @@ def kept_segment_free(blocked: np.ndarray, cs: float, u: int, v: int, seen: np.n
 
     A slot holds the last segment hashed to it (``-1`` when empty); a segment
     found there is answered without its walk, any other is walked and replaces
-    it. The verdict is the walk's in both cases.
+    it. The verdict is the walk's in both cases. ``len(seen)`` is a power of
+    two, at most ``2 ** 32``.
     """
     key = u * blocked.size + v
-    slot = ((np.uint64(key) * np.uint64(0x9E3779B97F4A7C15)) >> np.uint64(64 - SEEN_BITS)) & np.uint64(len(seen) - 1)
+    slot = ((np.uint64(key) * np.uint64(0x9E3779B97F4A7C15)) >> np.uint64(32)) & np.uint64(len(seen) - 1)
     known = seen[slot]
     if known >= 0 and known >> 1 == key:
         return known & 1 == 1
