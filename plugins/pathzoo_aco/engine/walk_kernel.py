@@ -54,6 +54,11 @@ The kernels fetch ahead: once an ant knows its candidate edges, and before
 it draws, it asks the cache for the edge lists (and weights, or trail entries
 and factors) of every node it may step to next. On a large map those lists
 are mostly outside the core's own caches, and a step would wait for them.
+A general kernel also fetches the gains of those lists, and the tabu stamps
+and list pointers of the node one step further in the same direction
+(``2 j - c`` for a step from ``c`` to ``j``, a grid's ids): a racing ant's
+next step reads them after every other ant has taken its own, time enough
+for them to arrive.
 """
 
 from __future__ import annotations
@@ -485,6 +490,12 @@ def colony_kernel(local: bool, general: bool, timed: bool = False, records: bool
                             ahead = adj_ptr[adj_node[cand_q[i]]]
                             prefetch(adj_node, ahead)
                             prefetch(w_mul, ahead)
+                            if general and has_pre:  # the gains added to every edge leaving the next node
+                                prefetch(pre_add, ahead)
+                            if general:  # racing ants: the stamps and list pointers one node further on
+                                further = 2 * np.int64(adj_node[cand_q[i]]) - np.int64(c)  # a grid's ids: ahead
+                                prefetch(stamp, further)
+                                prefetch(adj_ptr, further)
                             if not records and not on_nodes and adj_edge is None:  # the edge trail in list order
                                 prefetch(x, ahead)
                                 prefetch(x, ahead + 7)  # its first eight entries span one or two lines
