@@ -75,7 +75,6 @@ class WalkEngine:
         self.walk_base = 1
         self.race_stamps = np.zeros((0, g.n_nodes), dtype=np.uint8)  # one row per racing ant, stamped 1..255
         self.race_colony = 1
-        self.race_depth = 256  # entries per racing ant's stack row: the last race's, so a race seldom grows them
         self.stack_e = np.zeros((1, problem.n_free + 1), dtype=np.int64)
         self.stack_prev = np.zeros((1, problem.n_free + 1), dtype=np.int64)
         kmax = int(g.degree.max()) if g.n_nodes else 0
@@ -214,8 +213,8 @@ class WalkEngine:
             self.race_stamps = np.zeros((n_ants, p.n_nodes), dtype=np.uint8)
             self.race_colony = 1
         if rules.race:  # a stack row per ant, grown when one outgrows it: int32 edge ids, headings only if turns count
-            stacks = np.zeros((n_ants, self.race_depth), dtype=np.int32 if p.graph.n_edges < 2**31 else np.int64)
-            prevs = np.zeros((n_ants, self.race_depth if rules.turn.size else 1), dtype=np.int64)
+            stacks = np.zeros((n_ants, 256), dtype=np.int32 if p.graph.n_edges < 2**31 else np.int64)
+            prevs = np.zeros((n_ants, 256 if rules.turn.size else 1), dtype=np.int64)
         else:
             stacks, prevs = self.stack_e, self.stack_prev
         depth = np.zeros(n_ants, dtype=np.int64)
@@ -259,7 +258,6 @@ class WalkEngine:
                 if rules.turn.size:
                     prevs = _grown(prevs, depth)
         if rules.race:  # a byte per node and ant: the stamps are cleared once every 255 colonies
-            self.race_depth = stacks.shape[1]
             self.race_colony += 1
             if self.race_colony > 255:
                 self.race_stamps[:] = 0
