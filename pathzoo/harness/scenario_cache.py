@@ -26,11 +26,20 @@ if TYPE_CHECKING:
     from pathzoo.core.scenario import Scenario
     from pathzoo.harness.specs import ScenarioSpec
 
-__all__ = ["SCENARIO_CACHE_SIZE", "UNSEALED_CACHE_CELLS", "keep_payload", "load_cached", "load_unsealed", "load_warm",
+__all__ = ["SCENARIO_CACHE_SIZE", "SEALED_CACHE_CELLS", "UNSEALED_CACHE_CELLS", "keep_payload", "load_cached", "load_unsealed", "load_warm",
            "lru", "evict", "cache_lock"]
 
 SCENARIO_CACHE_SIZE = 4
 """Scenarios kept loaded per process (runs are ordered scenario by scenario)."""
+
+SEALED_CACHE_CELLS = 1 << 22
+"""Map cells that :func:`load_cached` keeps loaded in all, beyond one scenario.
+
+A worker holds a scenario's graph and its sealed copy: for one of GGACO's
+terrain maps (2.7-6.6 million cells) 1.6-3.9 GiB. With four of them a
+worker went over its sandbox's memory limit while loading the next, so
+maps this large are kept one at a time (two while the next one loads).
+"""
 
 UNSEALED_CACHE_CELLS = 1 << 20
 """Map cells that :func:`load_unsealed` keeps loaded beyond :data:`SCENARIO_CACHE_SIZE` scenarios.
@@ -64,17 +73,25 @@ def keep_payload(spec: "ScenarioSpec") -> None:
         _payloads.setdefault(spec.digest, spec.payload)
 
 
-def load_cached(spec: "ScenarioSpec", size: int = SCENARIO_CACHE_SIZE) -> "tuple[Scenario, ScenarioSeal]":
-    """Load a scenario once per process (LRU of ``size``), geometry warmed and arrays sealed; returns it with its seal.
+def load_cached(spec: "ScenarioSpec", size: int = SCENARIO_CACHE_SIZE,
+                cells: int = SEALED_CACHE_CELLS) -> "tuple[Scenario, ScenarioSeal]":
+    """Load a scenario once per process, geometry warmed and arrays sealed; returns it with its seal. The most recent
+    ``size`` are kept, while their maps hold at most ``cells`` cells in all (the last one whatever its size).
 
     A scenario object sent by reference is loaded from the bytes
     :func:`keep_payload` kept.
     """
+    loaded: list[tuple[Scenario, ScenarioSeal]] = []
+
     def make() -> "tuple[Scenario, ScenarioSeal]":
         scenario = load_warm(spec)
-        return scenario, seal(scenario)
+        loaded.append((scenario, seal(scenario)))
+        return loaded[0]
 
-    return lru(_scenarios, spec.cache_key, size, make)
+    value = lru(_scenarios, spec.cache_key, size, make)
+    if loaded:
+        _drop_beyond(_scenarios, cells, keep=1, cells_of=lambda kept: kept[0].occupancy.size)
+    return value
 
 
 def load_unsealed(spec: "ScenarioSpec", cells: int = UNSEALED_CACHE_CELLS) -> "Scenario":
@@ -93,11 +110,17 @@ def load_unsealed(spec: "ScenarioSpec", cells: int = UNSEALED_CACHE_CELLS) -> "S
 
     scenario = lru(_unsealed, spec.cache_key, len(_unsealed) + 1, make)
     if loaded:
-        with cache_lock:
-            held = sum(kept.occupancy.size for kept in _unsealed.values())
-            while len(_unsealed) > SCENARIO_CACHE_SIZE and held > cells:
-                held -= _unsealed.popitem(last=False)[1].occupancy.size
+        _drop_beyond(_unsealed, cells, keep=SCENARIO_CACHE_SIZE, cells_of=lambda kept: kept.occupancy.size)
     return scenario
+
+
+def _drop_beyond(cache: "OrderedDict[Any, _T]", cells: int, keep: int, cells_of: Callable[[_T], int]) -> None:
+    """Forget the oldest entries while the maps of those left hold over ``cells`` cells and more than ``keep`` are
+    left."""
+    with cache_lock:
+        held = sum(map(cells_of, cache.values()))
+        while len(cache) > keep and held > cells:
+            held -= cells_of(cache.popitem(last=False)[1])
 
 
 _T = TypeVar("_T")
