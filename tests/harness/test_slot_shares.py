@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -67,6 +68,20 @@ def test_measured_times_are_means_and_unmeasured_configurations_take_the_overall
     assert shares.start_seconds == pytest.approx(1.5)
 
 
+@pytest.fixture
+def spawned(monkeypatch: pytest.MonkeyPatch) -> list[Any]:
+    """The configurations of the workers that process executors start while the test runs, in order."""
+    configs: list[Any] = []
+    spawn = ProcessExecutor._spawn
+
+    def recorded(executor: ProcessExecutor, config: Any) -> Any:
+        configs.append(config)
+        return spawn(executor, config)
+
+    monkeypatch.setattr(ProcessExecutor, "_spawn", recorded)
+    return configs
+
+
 SWEEP = """
 [experiment]
 name = "sweep"
@@ -83,7 +98,7 @@ id = "exact.dijkstra"
 
 
 @pytest.mark.skipif(bool(sandbox_problem()), reason=f"no OS sandbox here: {sandbox_problem()}")
-def test_a_sweep_of_two_planners_on_two_slots_starts_two_workers(tmp_path: Path, monkeypatch):
+def test_a_sweep_of_two_planners_on_two_slots_starts_two_workers(tmp_path: Path, spawned: list[Any]):
     from pathzoo.plugins.manager import get_registry
 
     problems = sorted(k for k in get_registry().scenarios if k.startswith("movingai.random-32-32-20."))[:20]
@@ -91,14 +106,19 @@ def test_a_sweep_of_two_planners_on_two_slots_starts_two_workers(tmp_path: Path,
     path = tmp_path / "sweep.toml"
     path.write_text(SWEEP.format(scenarios=ids))
     exp = Experiment.from_toml(path)
-    configs: list[object] = []
-    spawn = ProcessExecutor._spawn
-
-    def recorded(executor: ProcessExecutor, config):  # type: ignore[no-untyped-def]
-        configs.append(config)
-        return spawn(executor, config)
-
-    monkeypatch.setattr(ProcessExecutor, "_spawn", recorded)
     runs = run_experiment(exp, db=tmp_path / "sweep.sqlite", executor=ProcessExecutor(2), progress=False)
     assert len(runs) == 40 and (runs.status == "solved").all() and runs.sandboxed.all()
-    assert sorted(c[0] for c in configs) == ["exact.astar", "exact.dijkstra"]  # not a second one of either
+    assert sorted(c[0] for c in spawned) == ["exact.astar", "exact.dijkstra"]  # not a second one of either
+
+
+@pytest.mark.skipif(bool(sandbox_problem()), reason=f"no OS sandbox here: {sandbox_problem()}")
+def test_a_slot_kept_for_a_configuration_with_no_run_waiting_goes_to_the_waiting_one(forged, tmp_path: Path,
+                                                                                   spawned: list[Any]):
+    # a paper's table: each configuration's seeds come together, and the runner hands the pool a few at a time, so
+    # while the first configuration's nine runs wait the other's share of the slots would idle
+    exp = Experiment.build(planners=[("test.honest", {"delay_s": 0.5}), ("test.honest", {"delay_s": 0.0})],
+                           scenarios=["test.wall"], seeds=10, name="table")
+    runs = run_experiment(exp, db=tmp_path / "table.sqlite", executor=ProcessExecutor(2), progress=False)
+    assert len(runs) == 20 and (runs.status == "solved").all()
+    slow = [c for c in spawned if c is not None and c[1] == exp.planners[0].params_hash]
+    assert len(slow) == 2  # its second worker: the slow runs did not wait for one worker alone

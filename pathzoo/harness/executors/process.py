@@ -25,9 +25,12 @@ many) stay alive, idle ones waiting for their configuration's next run: a
 sweep that alternates configurations keeps its workers instead of starting
 one per switch. No configuration gets more workers than ``jobs``, and one
 that has a worker gets another only when its share of the slots, by the work
-it has left, says so (:mod:`~pathzoo.harness.executors.slot_shares`). Only
-when that many are alive is an idle worker that no queued run can use
-retired to make room.
+it has left, says so (:mod:`~pathzoo.harness.executors.slot_shares`), or
+when a slot its share keeps for other configurations has stayed free for a
+worker start's worth of time while its runs wait: the runner hands over runs
+a few at a time, in the experiment's order, so a paper's table of 20 seeds
+per pair shows the pool one configuration for minutes. Only when that many
+are alive is an idle worker that no queued run can use retired to make room.
 
 When a sandboxed worker reports idle, its cgroup must hold only the
 processes it held when it became ready; anything else (a child, a daemon)
@@ -147,6 +150,7 @@ class ProcessExecutor(RunExecutor):
         self._early: list[str] = []  # planner ids of start_worker, for the monitor to start
         self._workers: list[Worker] = []
         self._first_alone = self.capacity > 1  # see _dispatch
+        self._slot_idle_since = math.nan  # since when a slot is free while runs wait for a worker (_start_workers)
         self._closing = False
         self._wake_r, self._wake_w = self._ctx.Pipe(duplex=False)
         self._poller = Poller()  # the monitor's: one poll object for all its waits
@@ -243,7 +247,9 @@ class ProcessExecutor(RunExecutor):
             if len(self._workers) < self.capacity and not self._closing:
                 self._visibility.see_planner(planner_id)
                 self._spawn(any_configuration(planner_id))
+        refused: "tuple[RunTask, tuple[str, str, str]] | None" = None  # the first run its share kept from a worker
         if self._first_alone and any(w.task is not None for w in self._workers):
+            self._slot_idle_since = math.nan
             return
         starting = Counter(w.config for w in self._workers if not w.was_ready)
         taken = sum(w.listening for w in self._workers)  # a slot is taken by a run, or a start or end on its way
@@ -261,18 +267,37 @@ class ProcessExecutor(RunExecutor):
                 starting[None] -= 1
                 continue
             alive = sum(w.config in (config, any_configuration(config[0])) and sees(w, task) for w in self._workers)
-            if alive >= self.capacity or not self._shares.worth_another(config, alive):
-                continue  # one of its workers takes it: another would cost more than it saves, or could not run
-            if taken >= self.capacity:
-                return
-            if len(self._workers) >= self.kept_workers:  # retire an idle worker that no queued run can use
-                spare = next((w for w in self._workers if w.idle and w.task is None and w.config not in wanted), None)
-                if spare is None:
-                    return
-                self._retire(spare)
-            self._visibility.see_files([task])
-            self._spawn(config)
+            if alive >= self.capacity:
+                continue  # one of its workers takes it: another could not run
+            if not self._shares.worth_another(config, alive):
+                refused = refused or (task, config)
+                continue  # one of its workers takes it: another would cost more than it saves, unless a slot idles
+            if taken >= self.capacity or not self._spawn_for(task, config, wanted):
+                refused = None
+                break
             taken += 1
+        if refused is None or taken >= self.capacity:
+            self._slot_idle_since = math.nan
+        elif math.isnan(self._slot_idle_since):
+            self._slot_idle_since = _clock()
+        elif _clock() >= self._idle_slot_due():  # idle for a start's worth: a start costs less than idling on
+            self._slot_idle_since = math.nan if self._spawn_for(*refused, wanted) else _clock()
+
+    def _spawn_for(self, task: "RunTask", config: "tuple[str, str, str]", wanted: "set[Any]") -> bool:
+        """Start a worker for ``task``'s configuration, first retiring an idle one that no queued run (of the
+        configurations ``wanted``) can use when :attr:`kept_workers` are alive; False when none can be retired."""
+        if len(self._workers) >= self.kept_workers:
+            spare = next((w for w in self._workers if w.idle and w.task is None and w.config not in wanted), None)
+            if spare is None:
+                return False
+            self._retire(spare)
+        self._visibility.see_files([task])
+        self._spawn(config)
+        return True
+
+    def _idle_slot_due(self) -> float:
+        """When a slot left free by the shares is given to a waiting run (:meth:`_start_workers`); inf if none is."""
+        return self._slot_idle_since + self._shares.start_seconds if math.isfinite(self._slot_idle_since) else math.inf
 
     def _take(self) -> "tuple[Worker, RunTask, Future[RunOutcome]] | None":
         """The first queued run with an idle worker of its configuration (or, unsandboxed, one not yet used), while
@@ -301,6 +326,8 @@ class ProcessExecutor(RunExecutor):
             if taken is None:
                 if sum(w.task is not None for w in self._workers) < self.capacity:
                     self._start_workers()
+                else:
+                    self._slot_idle_since = math.nan
                 return
             worker, task, future = taken
             if not future.set_running_or_notify_cancel():
@@ -446,7 +473,7 @@ class ProcessExecutor(RunExecutor):
                 self._dispatch()
                 listening = [w for w in self._workers if w.listening]
                 nearest = min(min((w.deadline for w in listening), default=math.inf),
-                              watch_clocks(self._workers, _clock()))
+                              watch_clocks(self._workers, _clock()), self._idle_slot_due())
                 timeout = None if math.isinf(nearest) else max(0.0, nearest - _clock())
                 ready = set(self._poller.wait(
                     [self._wake_r, *(w.conn for w in listening), *(w.process.sentinel for w in self._workers)], timeout
