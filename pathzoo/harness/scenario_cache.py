@@ -26,8 +26,8 @@ if TYPE_CHECKING:
     from pathzoo.core.scenario import Scenario
     from pathzoo.harness.specs import ScenarioSpec
 
-__all__ = ["SCENARIO_CACHE_SIZE", "SEALED_CACHE_CELLS", "UNSEALED_CACHE_CELLS", "keep_payload", "load_cached", "load_unsealed", "load_warm",
-           "lru", "evict", "cache_lock"]
+__all__ = ["SCENARIO_CACHE_SIZE", "SEALED_CACHE_CELLS", "UNSEALED_CACHE_CELLS", "keep_payload", "load_cached",
+           "load_unsealed", "load_warm", "lru", "evict", "cache_lock"]
 
 SCENARIO_CACHE_SIZE = 4
 """Scenarios kept loaded per process (runs are ordered scenario by scenario)."""
@@ -81,17 +81,11 @@ def load_cached(spec: "ScenarioSpec", size: int = SCENARIO_CACHE_SIZE,
     A scenario object sent by reference is loaded from the bytes
     :func:`keep_payload` kept.
     """
-    loaded: list[tuple[Scenario, ScenarioSeal]] = []
-
     def make() -> "tuple[Scenario, ScenarioSeal]":
         scenario = load_warm(spec)
-        loaded.append((scenario, seal(scenario)))
-        return loaded[0]
+        return scenario, seal(scenario)
 
-    value = lru(_scenarios, spec.cache_key, size, make)
-    if loaded:
-        _drop_beyond(_scenarios, cells, keep=1, cells_of=lambda kept: kept[0].occupancy.size)
-    return value
+    return lru(_scenarios, spec.cache_key, size, make, cells=(cells, 1, lambda kept: kept[0].occupancy.size))
 
 
 def load_unsealed(spec: "ScenarioSpec", cells: int = UNSEALED_CACHE_CELLS) -> "Scenario":
@@ -102,32 +96,18 @@ def load_unsealed(spec: "ScenarioSpec", cells: int = UNSEALED_CACHE_CELLS) -> "S
     seal would guard against nothing, and moving the arrays into sealed
     memory and taking the scenario's digest cost about as much as loading it.
     """
-    loaded: list[Scenario] = []
-
-    def make() -> "Scenario":
-        loaded.append(load_warm(spec))
-        return loaded[0]
-
-    scenario = lru(_unsealed, spec.cache_key, len(_unsealed) + 1, make)
-    if loaded:
-        _drop_beyond(_unsealed, cells, keep=SCENARIO_CACHE_SIZE, cells_of=lambda kept: kept.occupancy.size)
-    return scenario
-
-
-def _drop_beyond(cache: "OrderedDict[Any, _T]", cells: int, keep: int, cells_of: Callable[[_T], int]) -> None:
-    """Forget the oldest entries while the maps of those left hold over ``cells`` cells and more than ``keep`` are
-    left."""
-    with cache_lock:
-        held = sum(map(cells_of, cache.values()))
-        while len(cache) > keep and held > cells:
-            held -= cells_of(cache.popitem(last=False)[1])
+    return lru(_unsealed, spec.cache_key, None, lambda: load_warm(spec),
+               cells=(cells, SCENARIO_CACHE_SIZE, lambda kept: kept.occupancy.size))
 
 
 _T = TypeVar("_T")
 
 
-def lru(cache: "OrderedDict[Any, _T]", key: Any, size: int, make: Callable[[], _T]) -> _T:
-    """``cache[key]``, made by ``make`` (outside the lock) when missing; entries beyond the ``size`` most recent go."""
+def lru(cache: "OrderedDict[Any, _T]", key: Any, size: int | None, make: Callable[[], _T],
+        cells: "tuple[int, int, Callable[[_T], int]] | None" = None) -> _T:
+    """``cache[key]``, made by ``make`` (outside the lock) when missing; entries beyond the ``size`` most recent go
+    (``None``: no count limit). With ``cells = (budget, keep, cells_of)``, the oldest also go while the maps of those
+    left hold over ``budget`` cells and more than ``keep`` are left."""
     with cache_lock:
         if key in cache:
             cache.move_to_end(key)
@@ -135,8 +115,13 @@ def lru(cache: "OrderedDict[Any, _T]", key: Any, size: int, make: Callable[[], _
     value = make()
     with cache_lock:
         cache[key] = value
-        while len(cache) > size:
+        while size is not None and len(cache) > size:
             cache.popitem(last=False)
+        if cells is not None:
+            budget, keep, cells_of = cells
+            held = sum(map(cells_of, cache.values()))
+            while len(cache) > keep and held > budget:
+                held -= cells_of(cache.popitem(last=False)[1])
     return value
 
 
