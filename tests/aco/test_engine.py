@@ -286,9 +286,12 @@ def test_time_budget_is_respected_on_a_large_map():
     planner = pathzoo.make_planner("aco.as", n_ants=50, beta=0.0)  # blind ants: long walks
     planner.plan(scenario, budget=Budget(iterations=1, time_s=5.0), rng=np.random.default_rng(0))  # compile
     started = time.perf_counter()
+    planner.plan(scenario, budget=Budget(iterations=1), rng=np.random.default_rng(0))
+    one_iteration = time.perf_counter() - started  # timed now: a loaded machine stretches both alike
+    started = time.perf_counter()
     result = planner.plan(scenario, budget=Budget(time_s=0.5), rng=np.random.default_rng(0))
-    # the conformance kit's tolerance: stopping granularity on a loaded machine
-    assert time.perf_counter() - started < 0.5 + 1.0 and result.iterations >= 1
+    # the conformance kit's tolerance (stopping granularity), or two iterations where one takes longer
+    assert time.perf_counter() - started < 0.5 + max(1.0, 2 * one_iteration) and result.iterations >= 1
 
 
 def test_progress_reports_best_so_far():
