@@ -27,8 +27,14 @@ def _shares(capacity: int, **runs: int) -> SlotShares:
 
 def test_two_configurations_with_many_runs_on_two_slots_get_one_worker_each():
     shares = _shares(2, a=200, b=200)
+    shares.ran(A, 0.03)
+    shares.started(1.2)
     assert shares.shares() == {A: 1, B: 1}
     assert shares.worth_another(A, 0) and not shares.worth_another(A, 1)
+    assert shares.pays_for_a_start(A, 1)  # only its share keeps it from a second: 200 x 0.03 s / 2 = 3 s > 1.2 s
+    for _ in range(130):
+        shares.taken(A)
+    assert not shares.pays_for_a_start(A, 1)  # 70 x 0.03 s / 2 = 1.05 s: less than a start
 
 
 def test_one_configuration_gets_every_slot_while_its_runs_outlast_a_start():
@@ -116,7 +122,7 @@ def test_a_slot_kept_for_a_configuration_with_no_run_waiting_goes_to_the_waiting
                                                                                    spawned: list[Any]):
     # a paper's table: each configuration's seeds come together, and the runner hands the pool a few at a time, so
     # while the first configuration's nine runs wait the other's share of the slots would idle
-    exp = Experiment.build(planners=[("test.honest", {"delay_s": 0.5}), ("test.honest", {"delay_s": 0.0})],
+    exp = Experiment.build(planners=[("test.honest", {"delay_s": 1.0}), ("test.honest", {"delay_s": 0.0})],
                            scenarios=["test.wall"], seeds=10, name="table")
     runs = run_experiment(exp, db=tmp_path / "table.sqlite", executor=ProcessExecutor(2), progress=False)
     assert len(runs) == 20 and (runs.status == "solved").all()

@@ -27,7 +27,8 @@ one per switch. No configuration gets more workers than ``jobs``, and one
 that has a worker gets another only when its share of the slots, by the work
 it has left, says so (:mod:`~pathzoo.harness.executors.slot_shares`), or
 when a slot its share keeps for other configurations has stayed free for a
-worker start's worth of time while its runs wait: the runner hands over runs
+worker start's worth of time while its runs wait, and they would still give
+each of its workers over a start's worth of work: the runner hands over runs
 a few at a time, in the experiment's order, so a paper's table of 20 seeds
 per pair shows the pool one configuration for minutes. Only when that many
 are alive is an idle worker that no queued run can use retired to make room.
@@ -270,7 +271,8 @@ class ProcessExecutor(RunExecutor):
             if alive >= self.capacity:
                 continue  # one of its workers takes it: another could not run
             if not self._shares.worth_another(config, alive):
-                refused = refused or (task, config)
+                if refused is None and self._shares.pays_for_a_start(config, alive):
+                    refused = (task, config)  # refused for its share only: it may take a slot that idles
                 continue  # one of its workers takes it: another would cost more than it saves, unless a slot idles
             if taken >= self.capacity or not self._spawn_for(task, config, wanted):
                 refused = None

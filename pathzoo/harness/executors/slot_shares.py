@@ -107,5 +107,9 @@ class SlotShares:
         """
         if alive == 0 or config not in self.left:
             return True
-        per_worker = self.left[config] * self.run_seconds(config) / (alive + 1)
-        return self.shares().get(config, 0) > alive and per_worker > self.start_seconds
+        return self.shares().get(config, 0) > alive and self.pays_for_a_start(config, alive)
+
+    def pays_for_a_start(self, config: Config, alive: int) -> bool:
+        """Whether, with one more worker than its ``alive`` ones, each worker of ``config`` would still have over a
+        start's worth of its runs left (its share of the slots aside)."""
+        return self.left[config] * self.run_seconds(config) / (alive + 1) > self.start_seconds
