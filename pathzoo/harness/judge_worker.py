@@ -110,11 +110,13 @@ def _judge_main(conn: Connection, alive: Connection) -> None:
             ensure_plugins(task.plugin_modules, missing_ok=True)
             scenario = load_unsealed(task.scenario)
             metrics = [entry.obj() for entry in quiet_registry().metrics.values()]
-            conn.send(("loaded",))
+            loaded_at = _clock()
+            conn.send(("loaded", loaded_at))
             with warnings.catch_warnings(record=True) as caught:
                 warnings.simplefilter("always")
                 record = judge(task, outcome, scenario, metrics, isolated=isolated)
-            conn.send(("done", record, [str(w.message) for w in caught if issubclass(w.category, RuntimeWarning)]))
+            conn.send(("done", record, [str(w.message) for w in caught if issubclass(w.category, RuntimeWarning)],
+                       _clock() - loaded_at))
         except Exception as exc:  # noqa: BLE001 - MemoryError included: the run is invalid, the judge goes on
             conn.send(("error", describe_exception(exc).splitlines()[0]))
 
@@ -233,7 +235,7 @@ class JudgeWorker:
         self._launched()
         assert self._conn is not None
         if not self._ready:
-            if self._receive(SETUP_TIMEOUT_S) != ("ready",):
+            if self._receive(_clock() + SETUP_TIMEOUT_S) != ("ready",):
                 self._stop()
                 raise RuntimeError("the judge process failed to start")
             self._ready = True
@@ -292,15 +294,12 @@ class JudgeWorker:
                 pass
         self._stop()
 
-    def _receive(self, limit_s: float) -> Any:
-        """The next message, ``"timeout"`` past ``limit_s`` or ``"died"``."""
+    def _receive(self, deadline: float) -> Any:
+        """The next message, ``"timeout"`` when none has come by ``deadline`` (this module's clock), or ``"died"``;
+        a message already waiting is read even past the deadline (this thread may have been slow to look)."""
         assert self._conn is not None and self._process is not None
-        deadline = _clock() + limit_s
         while True:
-            left = deadline - _clock()
-            if left <= 0:
-                return "timeout"
-            ready = self._poller.wait([self._conn, self._process.sentinel], left)
+            ready = self._poller.wait([self._conn, self._process.sentinel], max(0.0, deadline - _clock()))
             if self._conn in ready:
                 try:
                     return self._conn.recv()
@@ -308,6 +307,8 @@ class JudgeWorker:
                     return "died"
             if self._process.sentinel in ready:
                 return "died"
+            if _clock() >= deadline:
+                return "timeout"
 
     def judge(self, task: "RunTask", outcome: "RunOutcome", *, isolated: bool = True) -> "RunRecord":
         """The stored record of one run: judged in the judge process, or ``invalid`` when it could not be."""
@@ -327,10 +328,15 @@ class JudgeWorker:
                 if attempt or not died:
                     return unjudged(task, outcome, f"the run could not be sent to the judge ({type(exc).__name__})",
                                     isolated=isolated)
-        reply = self._receive(SETUP_TIMEOUT_S)
+        reply = self._receive(_clock() + SETUP_TIMEOUT_S)
         limit = SETUP_TIMEOUT_S
-        if reply == ("loaded",):
-            reply, limit = self._receive(self.judge_timeout_s), self.judge_timeout_s
+        if isinstance(reply, tuple) and reply[0] == "loaded":
+            # the limit runs from the judge's own "loaded", not from when this thread read it: a harness slow to
+            # look neither lets a judge run past the limit nor cuts a verdict that came in time
+            limit = self.judge_timeout_s
+            reply = self._receive(reply[1] + limit)
+            if isinstance(reply, tuple) and reply[0] == "done" and reply[3] > limit:
+                reply = "timeout"
         if isinstance(reply, tuple) and reply[0] == "done":
             for text in reply[2]:  # e.g. a metric that failed: warn here, where the caller can see it
                 warnings.warn(text, RuntimeWarning, stacklevel=2)
