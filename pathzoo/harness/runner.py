@@ -22,7 +22,7 @@ import warnings
 from collections import Counter
 from concurrent.futures import FIRST_COMPLETED, Future, wait
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Iterator
+from typing import TYPE_CHECKING, Any
 
 from pathzoo.core.errors import InvalidExperimentError
 from pathzoo.core.status import RunStatus
@@ -32,6 +32,7 @@ from pathzoo.harness.eta import RunTimes, pilot_first
 from pathzoo.harness.run_record import unjudged
 from pathzoo.harness.judge_worker import JUDGE_TIMEOUT_S, JudgePool
 from pathzoo.harness.planner_info import extra_plugin_modules
+from pathzoo.harness.run_queue import RunQueue
 from pathzoo.harness.store import read_runs
 from pathzoo.harness.store_writer import ResultStore
 
@@ -105,7 +106,7 @@ def _execute(
     bar: Any,
     retry: tuple[str, ...],
 ) -> None:
-    queue: Iterator[RunTask] = iter(tasks)
+    queue = RunQueue(tasks, executor.lane)
     in_flight: dict[Future[RunOutcome], RunTask] = {}
     judging: dict[Future[RunRecord], tuple[RunTask, RunOutcome]] = {}
     isolated = bool(getattr(executor, "isolated", False))
@@ -116,19 +117,33 @@ def _execute(
 
     scenarios_seen: set[tuple[str, str, str, str]] = set()
 
+    def submit(task: "RunTask") -> None:
+        if task.scenario.cache_key not in scenarios_seen:  # the judges load it while the run executes
+            scenarios_seen.add(task.scenario.cache_key)
+            judges.prepare(task)
+        _call_hook(registry, "pathzoo_run_started", run_key=task.run_key, planner_id=task.planner.id,
+                   scenario_id=task.scenario.id, seed=task.seed)
+        in_flight[executor.submit(task)] = task
+
     def submit_more() -> None:
         # a run is done once stored, but up to `lookahead` runs being judged do not hold the next ones back: a worker
         # that ends a run finds its next one queued while the harness judges and stores the last (executors.base)
         while len(in_flight) + max(0, len(judging) - executor.lookahead) < executor.capacity + executor.lookahead:
-            task = next(queue, None)
+            task = queue.next()
             if task is None:
-                return
-            if task.scenario.cache_key not in scenarios_seen:  # the judges load it while the run executes
-                scenarios_seen.add(task.scenario.cache_key)
-                judges.prepare(task)
-            _call_hook(registry, "pathzoo_run_started", run_key=task.run_key, planner_id=task.planner.id,
-                       scenario_id=task.scenario.id, seed=task.seed)
-            in_flight[executor.submit(task)] = task
+                break
+            submit(task)
+        # and every lane executing a run, or judging its last, has its next one queued, out of order if need be
+        # (run_queue)
+        started = {f: f.running() or f.done() for f in in_flight}
+        queued = {executor.lane(t) for f, t in in_flight.items() if not started[f]}
+        busy = [t for f, t in in_flight.items() if started[f]] + [t for t, _ in judging.values()]
+        for lane in dict.fromkeys(executor.lane(t) for t in busy):
+            if lane is None or lane in queued:  # None: the executor has no lanes
+                continue
+            task = queue.next_of(lane)
+            if task is not None:
+                submit(task)
 
     executor.prepare(tasks)
     submit_more()

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import abc
 from concurrent.futures import Future
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Hashable
 
 if TYPE_CHECKING:
     from pathzoo.harness.specs import RunTask
@@ -42,6 +42,17 @@ class RunExecutor(abc.ABC):
     @abc.abstractmethod
     def submit(self, task: "RunTask") -> "Future[RunOutcome]":
         """Schedule one run."""
+
+    def lane(self, task: "RunTask") -> Hashable:
+        """The lane of a run, where runs of one lane go to the same workers; None (the default) for an executor
+        without lanes.
+
+        The runner keeps a run queued for every lane that has one executing
+        (:mod:`pathzoo.harness.run_queue`), so the worker of a lane whose runs
+        are fast does not wait for the harness while the runs queued ahead
+        are another lane's.
+        """
+        return None
 
     def capacity_changed(self) -> "Future[None] | None":
         """A future that resolves when :attr:`capacity` or :attr:`lookahead` next changes, so the runner submits

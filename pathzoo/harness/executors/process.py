@@ -69,7 +69,7 @@ import time
 from collections import Counter, deque
 from concurrent.futures import Future
 from dataclasses import replace
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Hashable
 
 from pathzoo.core.errors import PathzooError
 from pathzoo.harness.cpu_clock import process_cpu_time
@@ -173,6 +173,11 @@ class ProcessExecutor(RunExecutor):
             self._pending.append((task, future))
         self._wake_w.send(None)
         return future
+
+    def lane(self, task: "RunTask") -> Hashable:
+        """The task's configuration (:func:`~pathzoo.harness.executors.worker_handle.configuration`): a worker runs
+        one."""
+        return configuration(task)
 
     def start_worker(self, planner_id: str) -> None:
         """Start a sandboxed worker for ``planner_id`` now, before its configuration is known.
