@@ -148,6 +148,7 @@ class ProcessExecutor(RunExecutor):
         self._start_failures = 0
         self._lock = threading.Lock()
         self._pending: deque[tuple[RunTask, Future[RunOutcome]]] = deque()
+        self._ended: list[tuple[Future[RunOutcome], RunOutcome]] = []  # resolved by _resolve, after the dispatch
         self._early: list[str] = []  # planner ids of start_worker, for the monitor to start
         self._workers: list[Worker] = []
         self._first_alone = self.capacity > 1  # see _dispatch
@@ -374,7 +375,16 @@ class ProcessExecutor(RunExecutor):
         if worker.group is not None and worker.group.out_of_memory() and outcome.crash:
             outcome = replace(outcome, message=f"{outcome.message} (out of memory: over the sandbox's limit of "
                                                f"{self.limits.memory_bytes / 2**20:.0f} MiB)")
-        worker.finish(replace(outcome, sandboxed=worker.group is not None))
+        self._ended.append((worker.end_run(), replace(outcome, sandboxed=worker.group is not None)))
+
+    def _resolve(self) -> None:
+        """Resolve the futures of the runs that ended. The monitor calls it once it has given the workers that ended
+        them their next runs: the runner's thread, woken by a future, would otherwise hold the interpreter while an
+        idle worker waits for its next run."""
+        ended, self._ended = self._ended, []
+        for future, outcome in ended:
+            if not future.done():
+                future.set_result(outcome)
 
     def _violation(self, worker: Worker, what: str) -> None:
         if worker.task is not None:
@@ -476,8 +486,10 @@ class ProcessExecutor(RunExecutor):
             while True:
                 with self._lock:
                     if self._closing:
+                        self._resolve()
                         return
                 self._dispatch()
+                self._resolve()
                 listening = [w for w in self._workers if w.listening]
                 nearest = min(min((w.deadline for w in listening), default=math.inf),
                               watch_clocks(self._workers, _clock()), self._idle_slot_due())
@@ -503,6 +515,7 @@ class ProcessExecutor(RunExecutor):
                     if worker.task is not None and now >= worker.deadline:
                         self._kill(worker)
         except BaseException as exc:  # never leave the runner waiting on futures forever
+            self._resolve()
             for worker in self._workers:
                 if worker.future is not None and not worker.future.done():
                     worker.future.set_exception(exc)

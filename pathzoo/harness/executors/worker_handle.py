@@ -119,11 +119,12 @@ class Worker:
     def listening(self) -> bool:
         return self.task is not None or not self.idle
 
-    def finish(self, outcome: RunOutcome) -> None:
-        assert self.future is not None
-        if not self.future.done():
-            self.future.set_result(outcome)
+    def end_run(self) -> "Future[RunOutcome]":
+        """Forget the current run; return its future, for the caller to resolve."""
+        future = self.future
+        assert future is not None
         self.task, self.future, self.deadline = None, None, math.inf
+        return future
 
     def kill_tree(self) -> None:
         """``SIGKILL`` the worker and, when sandboxed, every process of its cgroup."""
