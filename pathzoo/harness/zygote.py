@@ -222,10 +222,16 @@ class Zygote:
         gc.collect()  # finalisers of the warm-up's objects run now, before any run is known here
         self.residue = Residue.now().left(self.baseline)
 
-    def run(self, task: "RunTask", report: Callable[[str], None]) -> tuple[bytes, float]:
-        """Prepare (``report("started")``), hand over (``report("planning")``), fork; return the child's encoded
-        outcome (or one made here for a failed setup or a dead child) and the child's CPU seconds as the kernel
-        reported them on reaping it (with its reaped descendants'; NaN without a child)."""
+    def run(self, task: "RunTask", report: Callable[[str], None], go: Callable[[], None]) -> tuple[bytes, float]:
+        """Prepare (``report("started")``), wait for the harness's ``go()``, hand over (``report("planning")``),
+        fork; return the child's encoded outcome (or one made here for a failed setup or a dead child) and the
+        child's CPU seconds as the kernel reported them on reaping it (with its reaped descendants'; NaN without a
+        child).
+
+        A run may be sent while the previous one is still executing; the
+        harness says go once it has seen that the previous run left no
+        process behind, so the setup overlaps with the harness's check.
+        """
         from pathzoo.harness.wire import encode_outcome
 
         started_at = utc_now()
@@ -234,6 +240,7 @@ class Zygote:
             ready = self._prepare(task, report)
         except Exception as exc:  # noqa: BLE001 - the plugin, planner or scenario could not be set up
             ready = RunOutcome(task.run_key, message="run setup failed: " + describe_exception(exc), crash=True)
+        go()
         if isinstance(ready, RunOutcome):
             return encode_outcome(replace(ready, started_at=started_at)), math.nan
         scenario, sealed, versions = ready

@@ -9,8 +9,10 @@ from typing import Hashable
 from pathzoo import Budget
 from pathzoo.harness.executors.inline import InlineExecutor
 from pathzoo.harness.experiment import Experiment
+from pathzoo.harness.outcome import RunOutcome
 from pathzoo.harness.run_queue import RunQueue
 from pathzoo.harness.runner import run_experiment
+from pathzoo.harness.specs import RunTask
 
 
 def test_items_come_in_order_or_by_lane_each_once():
@@ -40,11 +42,11 @@ class LaneWorkers(InlineExecutor):
         self._workers: dict[str, ThreadPoolExecutor] = {}
         self._lock = threading.Lock()
 
-    def lane(self, task) -> Hashable:  # type: ignore[no-untyped-def]
+    def lane(self, task: RunTask) -> Hashable:
         return task.planner.name if self.lanes else None
 
-    def submit(self, task):  # type: ignore[no-untyped-def]
-        future: Future = Future()
+    def submit(self, task: RunTask) -> "Future[RunOutcome]":
+        future: "Future[RunOutcome]" = Future()
         with self._lock:
             self.submitted.append(task.planner.name)
             worker = self._workers.setdefault(task.planner.name, ThreadPoolExecutor(1))

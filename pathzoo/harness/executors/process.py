@@ -79,7 +79,7 @@ from pathzoo.harness.executors.slot_shares import SlotShares
 from pathzoo.harness.executors.visibility import Visibility, sees
 from pathzoo.harness.executors.worker_handle import (Worker, any_configuration, configuration, describe_exit,
                                                      launch_worker, wrote_to_exit_pipe)
-from pathzoo.harness.executors.worker_loop import CPU_FRAME
+from pathzoo.harness.executors.worker_loop import CPU_FRAME, GO
 from pathzoo.harness.launch import NoMainContext, default_start_method, start_server
 from pathzoo.harness.outcome import RunOutcome, utc_now
 from pathzoo.harness.poller import Poller
@@ -220,8 +220,9 @@ class ProcessExecutor(RunExecutor):
         for worker in self._workers:
             worker.process.join(max(0.0, deadline - time.monotonic()))
             worker.release()
-            if worker.future is not None:
-                worker.future.cancel()
+            for future in (worker.future, worker.ahead[1] if worker.ahead is not None else None):
+                if future is not None:
+                    future.cancel()
         self._workers.clear()
         for _, future in self._pending:
             future.cancel()
@@ -241,8 +242,17 @@ class ProcessExecutor(RunExecutor):
         return worker
 
     def _retire(self, worker: Worker) -> None:
+        """Stop a worker; its run sent ahead, and its current run if not yet let go (``G``), wait for another."""
+        again = [worker.ahead] if worker.ahead is not None else []
+        if worker.task is not None and not worker.cleared:
+            assert worker.future is not None
+            again.insert(0, (worker.task, worker.future))
+            worker.task, worker.future = None, None
+        worker.ahead = None
         worker.release()
         self._workers.remove(worker)
+        with self._lock:
+            self._pending.extendleft(reversed(again))
 
     def _start_workers(self) -> None:
         """Start the workers asked for by :meth:`start_worker`, then those for the queued runs that no idle or starting
@@ -340,15 +350,73 @@ class ProcessExecutor(RunExecutor):
             worker, task, future = taken
             if not future.set_running_or_notify_cancel():
                 continue
-            worker.task, worker.future, worker.idle, worker.started_once = task, future, False, False
-            worker.sent_at, worker.started_at = _clock(), utc_now()
-            worker.taken_at = worker.sent_at if worker.warm else math.nan  # a new worker's warm-up is not a run's
-            worker.plan_t0 = worker.plan_t1 = math.nan
-            worker.stopped_by = None
-            worker.stop.clear()  # the worker is idle: it reads the byte only once it plans this task
-            worker.deadline = worker.sent_at + max(task.timeout_s, SETUP_TIMEOUT_S)
-            worker.in_setup = True
+            self._assign(worker, task, future)
             self._send(worker, task, future)
+
+    def _assign(self, worker: Worker, task: "RunTask", future: "Future[RunOutcome]") -> None:
+        """Make ``task`` the worker's current run, in setup from now."""
+        worker.task, worker.future, worker.idle, worker.started_once = task, future, False, False
+        worker.sent_at, worker.started_at = _clock(), utc_now()
+        worker.taken_at = worker.sent_at if worker.warm else math.nan  # a new worker's warm-up is not a run's
+        worker.plan_t0 = worker.plan_t1 = math.nan
+        worker.stopped_by = None
+        worker.stop.clear()  # no child of the worker's plans now: the next reads the byte only once it plans this task
+        worker.deadline = worker.sent_at + max(task.timeout_s, SETUP_TIMEOUT_S)
+        worker.in_setup = True
+
+    def _take_ahead(self) -> "tuple[Worker, RunTask, Future[RunOutcome]] | None":
+        """The first queued run of a busy warm worker's configuration, for a worker whose current run is let go
+        and that has none sent ahead."""
+        with self._lock:
+            for worker in self._workers:
+                if worker.task is None or not worker.cleared or worker.ahead is not None or not worker.warm:
+                    continue
+                for i, (task, future) in enumerate(self._pending):
+                    if configuration(task) == worker.config and sees(worker, task):
+                        del self._pending[i]
+                        self._shares.taken(worker.config)
+                        return worker, task, future
+        return None
+
+    def _send_ahead(self) -> None:
+        """Send each busy worker its next run of the same configuration, queued in its pipe behind its current run:
+        the worker sets it up as soon as it has sent its outcome, and plans it once told ``G``
+        (:meth:`_clear`)."""
+        while (taken := self._take_ahead()) is not None:
+            worker, task, future = taken
+            try:
+                worker.conn.send(worker.held.outgoing(task))
+            except (OSError, EOFError):  # the worker died: its sentinel says so, and the run waits for another
+                with self._lock:
+                    self._pending.appendleft((task, future))
+                return
+            except Exception as exc:  # the task did not pickle
+                if future.set_running_or_notify_cancel():
+                    self._ended.append((future, RunOutcome(task.run_key, crash=True, started_at=utc_now(),
+                                                           message=f"task could not be sent: {exc!r}")))
+                continue
+            worker.held.sent(task)
+            worker.ahead = (task, future)
+
+    def _promote(self, worker: Worker) -> None:
+        """The run sent ahead becomes the current one (in setup), waiting for ``G``."""
+        if worker.ahead is None:
+            return
+        (task, future), worker.ahead = worker.ahead, None
+        self._assign(worker, task, future)
+        worker.cleared = False
+
+    def _clear(self, worker: Worker) -> None:
+        """Let the worker's current run hand over (``G``): its last run left nothing behind."""
+        assert worker.future is not None
+        if not worker.future.set_running_or_notify_cancel():  # cancelled: the executor is shutting down
+            self._retire(worker)
+            return
+        worker.cleared = True
+        try:
+            worker.conn.send_bytes(GO)
+        except (OSError, EOFError):  # the worker died: its sentinel says so
+            pass
 
     def _send(self, worker: Worker, task: "RunTask", future: "Future[RunOutcome]") -> None:
         """Send the task to its worker, or first the order to warm up (a new worker; the task follows its ``W``)."""
@@ -356,6 +424,8 @@ class ProcessExecutor(RunExecutor):
             if worker.warm:
                 worker.conn.send(worker.held.outgoing(task))
                 worker.held.sent(task)
+                worker.cleared = True
+                worker.conn.send_bytes(GO)  # idle, so its last run left nothing behind (checked at its I)
             else:
                 worker.conn.send(WarmUp.of(task))
         except (OSError, EOFError):  # the idle worker had died: retry the task on a fresh one
@@ -415,8 +485,14 @@ class ProcessExecutor(RunExecutor):
                 if self._left_behind(worker):  # nothing of a run outlives it: the whole tree goes
                     self._retire(worker)
                     return
-            elif tag == b"T" and worker.task is None:
-                self._retire(worker)  # a planner patched modules in it: never reuse it
+            elif tag == b"I" and not worker.cleared:  # the run sent ahead is set up meanwhile, and waits for G
+                if self._left_behind(worker):  # the whole tree goes, and the run sent ahead waits for another
+                    self._retire(worker)
+                    return
+                self._clear(worker)
+            elif tag == b"T" and (worker.task is None or not worker.cleared):
+                self._retire(worker)  # a planner patched modules in it: never reuse it (a run sent ahead waits for
+                # another worker)
                 return
             elif tag == b"S" and worker.task is not None and not worker.started_once:
                 worker.started_once, worker.in_setup = True, False
@@ -440,6 +516,7 @@ class ProcessExecutor(RunExecutor):
                 (child_cpu,) = CPU_FRAME.unpack(body[:CPU_FRAME.size])
                 self._finish(worker, timed(worker, decode_outcome(body[CPU_FRAME.size:], worker.task.run_key),
                                                  child_cpu))
+                self._promote(worker)
             elif worker.task is not None:
                 continue  # a repeated announcement, or one out of turn (planner code can write frames during its
                 # warm-up): it changes nothing, the clocks run from the warm-up's end to the outcome whatever it says
@@ -489,6 +566,7 @@ class ProcessExecutor(RunExecutor):
                         self._resolve()
                         return
                 self._dispatch()
+                self._send_ahead()
                 self._resolve()
                 listening = [w for w in self._workers if w.listening]
                 nearest = min(min((w.deadline for w in listening), default=math.inf),
@@ -517,8 +595,9 @@ class ProcessExecutor(RunExecutor):
         except BaseException as exc:  # never leave the runner waiting on futures forever
             self._resolve()
             for worker in self._workers:
-                if worker.future is not None and not worker.future.done():
-                    worker.future.set_exception(exc)
+                for future in (worker.future, worker.ahead[1] if worker.ahead is not None else None):
+                    if future is not None and not future.done():
+                        future.set_exception(exc)
             with self._lock:
                 for _, future in self._pending:
                     if not future.cancelled() and future.set_running_or_notify_cancel():

@@ -94,6 +94,10 @@ class Worker:
     started_once: bool = False
     task: "RunTask | None" = None
     future: "Future[RunOutcome] | None" = None
+    cleared: bool = True
+    """The harness has let the current run hand over (``G``); a run sent ahead waits for it after its setup."""
+    ahead: "tuple[RunTask, Future[RunOutcome]] | None" = None
+    """The run sent ahead, queued in the worker's pipe behind its current one."""
     sent_at: float = math.nan
     started_at: str = ""
     deadline: float = math.inf

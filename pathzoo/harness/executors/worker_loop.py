@@ -23,6 +23,12 @@ The frames, and what the harness does with each:
   ``timeout_s`` counts from the *first* ``S``; later ones are ignored. The
   setup before it has its own limit,
   :data:`~pathzoo.harness.worker.SETUP_TIMEOUT_S`, and is recorded as ``crash``;
+- after ``S`` the worker waits for the harness's ``G`` (:data:`GO`). An idle
+  worker gets it with its run. A busy one may be sent its configuration's
+  next run ahead, behind its current one in the pipe: it sets that run up
+  as soon as it has sent ``D`` and ``I``, and the harness says ``G`` once it
+  has seen at ``I`` that the last run left no process behind (else the
+  worker is retired and the run sent ahead goes to another);
 - ``P`` (hand-over, just before the worker forks the run's child): the wall
   clock starts;
 - ``D`` + the child's CPU seconds (``wait4``) + the outcome, sent once the
@@ -57,11 +63,14 @@ from pathzoo.harness.scenario_cache import keep_payload
 from pathzoo.harness.tamper import ModuleFingerprint
 from pathzoo.harness.zygote import WarmUp, Zygote, drop_resource_tracker, refuse_audit_hooks, undumpable
 
-__all__ = ["EVENTS", "CPU_FRAME", "worker_main"]
+__all__ = ["EVENTS", "GO", "CPU_FRAME", "worker_main"]
 
 EVENTS = {"warming": b"U", "started": b"S", "planning": b"P"}
 """The frame each event of a run sends (:meth:`~pathzoo.harness.zygote.Zygote.run`\'s ``report``)."""
 
+
+GO = b"G"
+"""The harness's word that the worker may hand its current run over (its last one left nothing behind)."""
 
 CPU_FRAME = struct.Struct("<d")
 """The child's CPU seconds at the head of a ``D`` message, as the zygote's ``wait4`` read them from the kernel."""
@@ -95,7 +104,7 @@ def worker_main(conn: Connection, alive: Connection, stop_flag: Any, sandboxed: 
             continue
         keep_payload(task.scenario)  # the executor counts it as held from now on
         try:
-            data, child_cpu = zygote.run(task, reporter(conn))
+            data, child_cpu = zygote.run(task, reporter(conn), cleared(conn))
         except (EOFError, OSError):
             return
         changed = fingerprint.changed() + zygote.residue  # the outcome and the verdict on the process go out together
@@ -108,6 +117,17 @@ def worker_main(conn: Connection, alive: Connection, stop_flag: Any, sandboxed: 
             return
         conn.send_bytes(b"I")  # right behind the outcome: the harness reads both at one wake-up, and may send the next
         fingerprint.update()  # run at once (it waits in the pipe while the modules this run loaded are snapshotted)
+
+
+def cleared(conn: Connection) -> "Callable[[], None]":
+    """The ``go`` callback of :meth:`~pathzoo.harness.zygote.Zygote.run`: wait for the harness's ``G``
+    (:class:`EOFError` for anything else)."""
+
+    def go() -> None:
+        if conn.recv_bytes(16) != GO:
+            raise EOFError("the harness sent something other than G")
+
+    return go
 
 
 def reporter(conn: Connection) -> "Callable[[str], None]":
