@@ -220,9 +220,8 @@ class ProcessExecutor(RunExecutor):
         for worker in self._workers:
             worker.process.join(max(0.0, deadline - time.monotonic()))
             worker.release()
-            for future in (worker.future, worker.ahead[1] if worker.ahead is not None else None):
-                if future is not None:
-                    future.cancel()
+            for future in worker.futures():
+                future.cancel()
         self._workers.clear()
         for _, future in self._pending:
             future.cancel()
@@ -324,15 +323,13 @@ class ProcessExecutor(RunExecutor):
             if sum(w.task is not None for w in self._workers) >= self.capacity:
                 return None
             for i, (task, future) in enumerate(self._pending):
-                config = configuration(task)
-                worker = next((w for w in self._workers if w.idle and w.task is None
-                               and w.config in (config, any_configuration(config[0])) and sees(w, task)), None)
+                worker = next((w for w in self._workers if w.idle and w.task is None and _fits(w, task)), None)
                 if worker is None and not self.sandboxed:
                     worker = next((w for w in self._workers if w.idle and w.task is None and w.config is None), None)
                 if worker is not None:
                     del self._pending[i]
-                    worker.config = config
-                    self._shares.taken(config)
+                    worker.config = configuration(task)
+                    self._shares.taken(worker.config)
                     return worker, task, future
         return None
 
@@ -372,9 +369,9 @@ class ProcessExecutor(RunExecutor):
                 if worker.task is None or not worker.cleared or worker.ahead is not None or not worker.warm:
                     continue
                 for i, (task, future) in enumerate(self._pending):
-                    if configuration(task) == worker.config and sees(worker, task):
+                    if _fits(worker, task):
                         del self._pending[i]
-                        self._shares.taken(worker.config)
+                        self._shares.taken(configuration(task))
                         return worker, task, future
         return None
 
@@ -385,7 +382,7 @@ class ProcessExecutor(RunExecutor):
         while (taken := self._take_ahead()) is not None:
             worker, task, future = taken
             try:
-                worker.conn.send(worker.held.outgoing(task))
+                _write_task(worker, task)
             except (OSError, EOFError):  # the worker died: its sentinel says so, and the run waits for another
                 with self._lock:
                     self._pending.appendleft((task, future))
@@ -395,7 +392,6 @@ class ProcessExecutor(RunExecutor):
                     self._ended.append((future, RunOutcome(task.run_key, crash=True, started_at=utc_now(),
                                                            message=f"task could not be sent: {exc!r}")))
                 continue
-            worker.held.sent(task)
             worker.ahead = (task, future)
 
     def _promote(self, worker: Worker) -> None:
@@ -422,8 +418,7 @@ class ProcessExecutor(RunExecutor):
         """Send the task to its worker, or first the order to warm up (a new worker; the task follows its ``W``)."""
         try:
             if worker.warm:
-                worker.conn.send(worker.held.outgoing(task))
-                worker.held.sent(task)
+                _write_task(worker, task)
                 worker.cleared = True
                 worker.conn.send_bytes(GO)  # idle, so its last run left nothing behind (checked at its I)
             else:
@@ -595,8 +590,8 @@ class ProcessExecutor(RunExecutor):
         except BaseException as exc:  # never leave the runner waiting on futures forever
             self._resolve()
             for worker in self._workers:
-                for future in (worker.future, worker.ahead[1] if worker.ahead is not None else None):
-                    if future is not None and not future.done():
+                for future in worker.futures():
+                    if not future.done():
                         future.set_exception(exc)
             with self._lock:
                 for _, future in self._pending:
@@ -604,3 +599,16 @@ class ProcessExecutor(RunExecutor):
                         future.set_exception(exc)
                 self._pending.clear()
             raise
+
+
+def _fits(worker: Worker, task: "RunTask") -> bool:
+    """Whether ``worker`` runs ``task``'s configuration (or was started early for its planner) and can read its
+    scenario."""
+    config = configuration(task)
+    return worker.config in (config, any_configuration(config[0])) and sees(worker, task)
+
+
+def _write_task(worker: Worker, task: "RunTask") -> None:
+    """Send ``task`` down the worker's pipe (a scenario it holds goes by reference)."""
+    worker.conn.send(worker.held.outgoing(task))
+    worker.held.sent(task)

@@ -130,6 +130,10 @@ class Worker:
         self.task, self.future, self.deadline = None, None, math.inf
         return future
 
+    def futures(self) -> "list[Future[RunOutcome]]":
+        """The futures of the runs the worker holds: its current one and the one sent ahead."""
+        return [f for f in (self.future, self.ahead[1] if self.ahead is not None else None) if f is not None]
+
     def kill_tree(self) -> None:
         """``SIGKILL`` the worker and, when sandboxed, every process of its cgroup."""
         if self.group is not None:

@@ -104,7 +104,7 @@ def worker_main(conn: Connection, alive: Connection, stop_flag: Any, sandboxed: 
             continue
         keep_payload(task.scenario)  # the executor counts it as held from now on
         try:
-            data, child_cpu = zygote.run(task, reporter(conn), cleared(conn))
+            data, child_cpu = zygote.run(task, reporter(conn), go_waiter(conn))
         except (EOFError, OSError):
             return
         changed = fingerprint.changed() + zygote.residue  # the outcome and the verdict on the process go out together
@@ -119,7 +119,7 @@ def worker_main(conn: Connection, alive: Connection, stop_flag: Any, sandboxed: 
         fingerprint.update()  # run at once (it waits in the pipe while the modules this run loaded are snapshotted)
 
 
-def cleared(conn: Connection) -> "Callable[[], None]":
+def go_waiter(conn: Connection) -> "Callable[[], None]":
     """The ``go`` callback of :meth:`~pathzoo.harness.zygote.Zygote.run`: wait for the harness's ``G``
     (:class:`EOFError` for anything else)."""
 
