@@ -53,8 +53,10 @@ a run of their configuration is queued and a slot is free, counting workers
 still starting as taking a slot, or earlier for a planner named to
 :meth:`ProcessExecutor.start_worker`), and the runner keeps one run per
 worker queued here (:attr:`lookahead`), so a worker goes from one run to the
-next without waiting for the harness. The very first run goes alone: no other worker gets a run or starts
-until it plans or ends, so that its setup shares the cores with the judge's start only.
+next without waiting for the harness. The very first run goes alone: no other sandboxed worker starts until
+its worker is ready (its interpreter's imports done), and no other worker gets a run until it plans or ends, so
+that its imports share the cores with the judge's start only, and its warm-up and setup with the start of the
+next workers too.
 """
 
 from __future__ import annotations
@@ -255,7 +257,8 @@ class ProcessExecutor(RunExecutor):
 
     def _start_workers(self) -> None:
         """Start the workers asked for by :meth:`start_worker`, then those for the queued runs that no idle or starting
-        worker of their configuration will take; only the first queued run's until it plans (see :meth:`_dispatch`)."""
+        worker of their configuration will take; only the first queued run's until its worker is ready (it then holds
+        that run, in its warm-up)."""
         with self._lock:
             early, self._early = self._early, []
             queued = [task for task, _ in self._pending]
@@ -264,14 +267,13 @@ class ProcessExecutor(RunExecutor):
                 self._visibility.see_planner(planner_id)
                 self._spawn(any_configuration(planner_id))
         refused: "tuple[RunTask, tuple[str, str, str]] | None" = None  # the first run its share kept from a worker
-        if self._first_alone and any(w.task is not None for w in self._workers):
-            self._slot_idle_since = math.nan
-            return
+        if self._first_alone and not any(w.task is not None for w in self._workers):
+            queued = queued[:1]  # the first run's worker starts alone: its imports have the cores to themselves
         starting = Counter(w.config for w in self._workers if not w.was_ready)
         taken = sum(w.listening for w in self._workers)  # a slot is taken by a run, or a start or end on its way
         wanted = {configuration(task) for task in queued}
         wanted |= {any_configuration(config[0]) for config in wanted}
-        for task in queued[:1] if self._first_alone else queued:
+        for task in queued:
             config = configuration(task)
             if starting[config] > 0:
                 starting[config] -= 1
@@ -334,21 +336,21 @@ class ProcessExecutor(RunExecutor):
         return None
 
     def _dispatch(self) -> None:
-        if self._first_alone and any(w.task is not None for w in self._workers):
-            return  # the first run's setup shares the cores with the judge's only, until it plans or ends
-        while True:
+        # no other worker gets a run until the first run plans or ends: its setup shares the cores with the judge's
+        # and with the start of the next workers only
+        while not (self._first_alone and any(w.task is not None for w in self._workers)):
             taken = self._take()
             if taken is None:
-                if sum(w.task is not None for w in self._workers) < self.capacity:
-                    self._start_workers()
-                else:
-                    self._slot_idle_since = math.nan
-                return
+                break
             worker, task, future = taken
             if not future.set_running_or_notify_cancel():
                 continue
             self._assign(worker, task, future)
             self._send(worker, task, future)
+        if sum(w.task is not None for w in self._workers) < self.capacity:
+            self._start_workers()
+        else:
+            self._slot_idle_since = math.nan
 
     def _assign(self, worker: Worker, task: "RunTask", future: "Future[RunOutcome]") -> None:
         """Make ``task`` the worker's current run, in setup from now."""
