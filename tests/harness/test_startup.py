@@ -55,20 +55,18 @@ def test_an_experiment_file_describes_its_planners_in_one_child(tmp_path, monkey
 
 
 class _Spawns:
-    """Records each sandboxed worker start (its configuration; whether it started while the first run had not
-    planned yet, and then whether a worker not ready yet was there) and each run handed to a worker while the first
-    run, held by another, had not planned yet."""
+    """Records each sandboxed worker start (its configuration, and whether it started while the first run had not
+    planned yet and a worker not ready yet was there) and each run handed to a worker while the first run, held by
+    another, had not planned yet."""
 
     def __init__(self, monkeypatch: pytest.MonkeyPatch) -> None:
         self.configs: list[tuple[str, str] | None] = []
-        self.before_first_plan: list[bool] = []
         self.beside_unready: list[bool] = []
         self.beside_first_run: list[bool] = []
         spawn, assign = ProcessExecutor._spawn, ProcessExecutor._assign
 
         def recorded(executor: ProcessExecutor, config: tuple[str, str] | None):  # type: ignore[no-untyped-def]
             self.configs.append(config)
-            self.before_first_plan.append(executor._first_alone)
             self.beside_unready.append(executor._first_alone and any(not w.was_ready for w in executor._workers))
             return spawn(executor, config)
 
@@ -95,14 +93,13 @@ def test_an_early_worker_takes_the_first_run_of_its_planner(tmp_path, monkeypatc
 
 
 @sandboxed
-def test_other_sandboxed_workers_start_once_the_first_is_ready_and_get_runs_once_the_first_run_plans(tmp_path,
-                                                                                                   monkeypatch):
+def test_the_first_workers_start_together_and_only_the_first_run_goes_before_it_plans(tmp_path, monkeypatch):
     exp = _experiment(tmp_path, "alone")
     spawns = _Spawns(monkeypatch)
     runs = run_experiment(exp, db=tmp_path / "alone.sqlite", executor=ProcessExecutor(2), progress=False)
     assert (runs.status == "solved").all() and runs.sandboxed.all()
-    assert len(spawns.configs) == 3 and not any(spawns.beside_unready)
-    assert spawns.before_first_plan[:2] == [True, True]  # the second started in the first run's warm-up
+    assert len(spawns.configs) == 3
+    assert spawns.beside_unready[:2] == [False, True]  # the second started with the first, before it was ready
     assert len(spawns.beside_first_run) >= 3 and not any(spawns.beside_first_run)
 
 

@@ -53,10 +53,9 @@ a run of their configuration is queued and a slot is free, counting workers
 still starting as taking a slot, or earlier for a planner named to
 :meth:`ProcessExecutor.start_worker`), and the runner keeps one run per
 worker queued here (:attr:`lookahead`), so a worker goes from one run to the
-next without waiting for the harness. The very first run goes alone: no other sandboxed worker starts until
-its worker is ready (its interpreter's imports done), and no other worker gets a run until it plans or ends, so
-that its imports share the cores with the judge's start only, and its warm-up and setup with the start of the
-next workers too.
+next without waiting for the harness. The very first run goes alone: the workers of the first configurations
+start together, but no worker other than the first run's gets a run until that run plans or ends, so that its
+warm-up and setup share the cores with no other run's.
 """
 
 from __future__ import annotations
@@ -257,8 +256,7 @@ class ProcessExecutor(RunExecutor):
 
     def _start_workers(self) -> None:
         """Start the workers asked for by :meth:`start_worker`, then those for the queued runs that no idle or starting
-        worker of their configuration will take; only the first queued run's until its worker is ready (it then holds
-        that run, in its warm-up)."""
+        worker of their configuration will take."""
         with self._lock:
             early, self._early = self._early, []
             queued = [task for task, _ in self._pending]
@@ -267,8 +265,6 @@ class ProcessExecutor(RunExecutor):
                 self._visibility.see_planner(planner_id)
                 self._spawn(any_configuration(planner_id))
         refused: "tuple[RunTask, tuple[str, str, str]] | None" = None  # the first run its share kept from a worker
-        if self._first_alone and not any(w.task is not None for w in self._workers):
-            queued = queued[:1]  # the first run's worker starts alone: its imports have the cores to themselves
         starting = Counter(w.config for w in self._workers if not w.was_ready)
         taken = sum(w.listening for w in self._workers)  # a slot is taken by a run, or a start or end on its way
         wanted = {configuration(task) for task in queued}
@@ -336,8 +332,7 @@ class ProcessExecutor(RunExecutor):
         return None
 
     def _dispatch(self) -> None:
-        # no other worker gets a run until the first run plans or ends: its setup shares the cores with the judge's
-        # and with the start of the next workers only
+        # no other worker gets a run until the first run plans or ends: its setup shares the cores with no other run's
         while not (self._first_alone and any(w.task is not None for w in self._workers)):
             taken = self._take()
             if taken is None:
