@@ -110,6 +110,7 @@ class ProcessGroup:
         (self.dirs["memory"] / "memory.limit_in_bytes").write_text(str(int(memory_bytes)))
         (self.dirs["pids"] / "pids.max").write_text(str(int(max_tasks)))
         self._usage = os.open(self.dirs["cpuacct"] / "cpuacct.usage", os.O_RDONLY | os.O_CLOEXEC)
+        self._procs = str(self.dirs["freezer"] / "cgroup.procs")  # read after every run: no path built each time
 
     @property
     def procs_files(self) -> list[str]:
@@ -123,7 +124,8 @@ class ProcessGroup:
     def pids(self) -> list[int]:
         """The processes in the group now."""
         try:
-            text = (self.dirs["freezer"] / "cgroup.procs").read_text()
+            with open(self._procs, "rb") as procs:
+                text = procs.read()
         except OSError:
             return []
         return [int(p) for p in text.split()]

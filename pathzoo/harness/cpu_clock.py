@@ -158,9 +158,7 @@ class ChargedCpu:
 
     def start(self, *, relist: bool = True) -> None:
         """Start counting from now (with ``relist``, the descendants are listed afresh: a scan of every process)."""
-        self._tree0 = self.tree.read(relist=relist)
-        self._reaped0 = self.tree.reaped
-        self._group0 = self.cgroup() if self.cgroup is not None else math.nan
+        self._tree0, self._reaped0, self._group0 = self._read(relist=relist)
 
     def spent(self, reaped: float = math.nan) -> float:
         """CPU seconds charged since :meth:`start` (NaN before it).
@@ -173,10 +171,27 @@ class ChargedCpu:
         :meth:`start` misses is added, so the figure can only rise, by at most
         the child's own figure.
         """
-        tree = self.tree.read() - self._tree0
+        return self._charged(*self._read(), reaped)
+
+    def lap(self, reaped: float = math.nan) -> float:
+        """:meth:`spent`, then :meth:`start` from the same reading (the descendants not listed afresh): one reading
+        ends a run's charge and starts the next's, so no CPU time falls between the two."""
+        now = self._read()
+        charged = self._charged(*now, reaped)
+        self._tree0, self._reaped0, self._group0 = now
+        return charged
+
+    def _read(self, *, relist: bool = False) -> tuple[float, float, float]:
+        """The tree's CPU seconds, the reaped-children part of them, and the cgroup's (NaN without one), now."""
+        tree = self.tree.read(relist=relist)
+        return tree, self.tree.reaped, self.cgroup() if self.cgroup is not None else math.nan
+
+    def _charged(self, tree_now: float, reaped_now: float, group_now: float, reaped: float) -> float:
+        """The charge since :meth:`start` at a reading of :meth:`_read` (``reaped``: see :meth:`spent`)."""
+        tree = tree_now - self._tree0
         if math.isfinite(reaped):
-            tree += max(0.0, reaped - max(0.0, self.tree.reaped - self._reaped0))
+            tree += max(0.0, reaped - max(0.0, reaped_now - self._reaped0))
         if self.cgroup is None:
             return tree
-        group = self.cgroup() - self._group0
+        group = group_now - self._group0
         return group if math.isnan(tree) else max(tree, group)

@@ -35,3 +35,13 @@ def test_a_reaped_child_is_charged_its_exact_cpu_not_whole_ticks():
     assert child >= 0.1057
     assert exact >= child  # the tree alone may read 0.10 here
     assert ticks <= exact <= ticks + (child - 0.09) + 0.005  # only what the ticks missed: the child is not counted twice
+
+
+def test_a_lap_ends_one_charge_and_starts_the_next_from_one_reading():
+    """Each reading of the cgroup is taken once: the lap's end is the next lap's start, so nothing is read twice or
+    falls between two runs."""
+    readings = iter([1.0, 2.5, 4.0])
+    charged = ChargedCpu(os.getpid(), cgroup=lambda: next(readings))
+    charged.start()
+    assert charged.lap() == 1.5  # the cgroup's 1.0 to 2.5 (this process's own CPU meanwhile is far less)
+    assert charged.spent() == 1.5  # from 2.5, the lap's reading, to 4.0

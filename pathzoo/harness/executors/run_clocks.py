@@ -54,9 +54,8 @@ def timed(worker: Worker, outcome: RunOutcome, child_cpu: float) -> RunOutcome:
     if math.isnan(worker.plan_t0):
         return RunOutcome(worker.task.run_key, crash=True, message=outcome.message, started_at=worker.started_at)
     worker.plan_t1 = _clock()
-    cpu = worker.cpu.spent(reaped=child_cpu)
-    worker.cpu.start(relist=False)  # what the worker spends until its next run's end is charged to that run;
-    # its child is reaped by now, and a new one is listed within DESCENDANTS_REFRESH_S (the cgroup counts it)
+    cpu = worker.cpu.lap(reaped=child_cpu)  # what the worker spends until its next run's end is charged to that
+    # run; its child is reaped by now, and a new one is listed within DESCENDANTS_REFRESH_S (the cgroup counts it)
     stopped_by = worker.stopped_by or worker.task.budget.count_reached(outcome.iterations, outcome.evaluations)
     return replace(outcome, wall_time_s=worker.plan_t1 - worker.plan_t0, cpu_time_s=cpu,
                    stopped_by=stopped_by or "none", started_at=worker.started_at)
